@@ -1,0 +1,44 @@
+# Compiler options shared by every swlio target.
+#
+# swlio_target_options(<target>) turns on our warnings (as errors) for a target we own;
+# third-party headers are included as SYSTEM through their imported targets, so their
+# warnings do not count.
+
+if(SWLIO_SANITIZE STREQUAL "address")
+  set(_swlio_san -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+elseif(SWLIO_SANITIZE STREQUAL "thread")
+  set(_swlio_san -fsanitize=thread -fno-omit-frame-pointer)
+elseif(NOT SWLIO_SANITIZE STREQUAL "")
+  message(FATAL_ERROR "SWLIO_SANITIZE must be '', 'address' or 'thread', got '${SWLIO_SANITIZE}'")
+endif()
+if(_swlio_san)
+  # Applied globally so that test executables and the libraries they link agree.
+  add_compile_options(${_swlio_san})
+  add_link_options(${_swlio_san})
+endif()
+
+function(swlio_target_options target)
+  get_target_property(_type ${target} TYPE)
+  if(_type STREQUAL "INTERFACE_LIBRARY")
+    return()
+  endif()
+  target_compile_options(${target} PRIVATE
+    -Wall -Wextra -Wpedantic -Wconversion -Werror)
+endfunction()
+
+# swlio_executable(<name> SOURCES ... LIBS ...) adds a program that lands in build/bin.
+function(swlio_executable name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS})
+  swlio_target_options(${name})
+endfunction()
+
+if(SWLIO_BUILD_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "SWLIO_BUILD_FUZZ needs clang (CC=clang CXX=clang++)")
+  endif()
+  # Everything is instrumented for coverage; only the fuzz targets link libFuzzer's main.
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=address,undefined)
+endif()

@@ -1,0 +1,52 @@
+#pragma once
+/// @file
+/// The daemon's whole configuration: one struct per module, aggregated. Loaded from YAML only
+/// by config_loader.cpp; every field has an in-class default.
+
+#include <cstdint>
+#include <string>
+
+#include "swlio/core/config_issue.h"
+#include "swlio/drivers/can_config.h"
+#include "swlio/drivers/imu_config.h"
+#include "swlio/drivers/lidar_config.h"
+#include "swlio/estimator/estimator_config.h"
+#include "swlio/ipc/ipc_config.h"
+
+namespace swlio::daemon {
+
+/// Log output: rotating files plus stderr (journald picks stderr up under systemd).
+struct LoggingConfig {
+  /// Directory of the rotating log files; relative paths are taken from the config file's
+  /// directory. Empty disables file logging.
+  std::string directory = "/var/log/swlio";
+  std::string file_name = "swliod.log";
+  std::string file_level = "info";    ///< trace, debug, info, warn, error, critical, off
+  std::string stderr_level = "info";  ///< same levels
+  int64_t max_file_size_mb = 20;      ///< rotate when a file reaches this size
+  int64_t max_files = 10;             ///< rotated files kept
+  double status_period_s = 5.0;       ///< period of the one-line status in the log
+
+  ConfigIssues Validate() const;
+};
+
+/// Version of the configuration schema this build reads (`config_version` in the file).
+inline constexpr int64_t kConfigVersion = 1;
+
+struct DaemonConfig {
+  int64_t config_version = kConfigVersion;
+  drivers::LidarConfig lidar;
+  drivers::ImuConfig imu;
+  drivers::CanConfig can;
+  estimator::EstimatorConfig estimator;
+  ipc::IpcConfig ipc;
+  LoggingConfig logging;
+
+  /// Every violated rule, keys prefixed by section ("lidar.max_range_m").
+  ConfigIssues Validate() const;
+};
+
+/// True when `level` is one of spdlog's level names listed in LoggingConfig.
+bool IsLogLevelName(const std::string& level);
+
+}  // namespace swlio::daemon

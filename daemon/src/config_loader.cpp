@@ -1,0 +1,389 @@
+// The only file that includes yaml-cpp. A `Section` walks one YAML mapping: each Get() call
+// takes a known key, checks its type and stores it; Finish() reports every key nobody took.
+// Marks (line/column) of every key are remembered so that the modules' Validate() results,
+// which only know key names, can be reported with their place in the file.
+
+#include "swlio/daemon/config_loader.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace swlio::daemon {
+namespace {
+
+struct Context {
+  std::string file;
+  std::vector<ConfigError> errors;
+  std::map<std::string, YAML::Mark> marks;  ///< dotted key → where its value starts
+
+  void Error(const YAML::Mark& mark, const std::string& key, const std::string& reason) {
+    const bool known = mark.line >= 0;
+    errors.push_back({file, known ? mark.line + 1 : 0, known ? mark.column + 1 : 0, key, reason});
+  }
+};
+
+std::string Describe(const YAML::Node& node) {
+  if (node.IsNull()) return "nothing";
+  if (node.IsSequence()) return "a list";
+  if (node.IsMap()) return "a mapping";
+  return "'" + node.Scalar() + "'";
+}
+
+/// Edit distance, for "did you mean" hints on unknown keys.
+size_t Levenshtein(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+bool ParseInt(const std::string& text, int64_t* out) {
+  const char* end = text.data() + text.size();
+  auto [ptr, ec] = std::from_chars(text.data(), end, *out);
+  return ec == std::errc() && ptr == end;
+}
+
+bool ParseDouble(const std::string& text, double* out) {
+  const char* end = text.data() + text.size();
+  auto [ptr, ec] = std::from_chars(text.data(), end, *out);
+  return ec == std::errc() && ptr == end && std::isfinite(*out);
+}
+
+bool ParseBool(const std::string& text, bool* out) {
+  static const std::set<std::string> kTrue = {"true", "True", "TRUE", "yes", "Yes", "on", "On"};
+  static const std::set<std::string> kFalse = {"false", "False", "FALSE", "no", "No", "off", "Off"};
+  if (kTrue.count(text) != 0) {
+    *out = true;
+    return true;
+  }
+  if (kFalse.count(text) != 0) {
+    *out = false;
+    return true;
+  }
+  return false;
+}
+
+class Section {
+ public:
+  Section(const YAML::Node& node, std::string path, Context* ctx)
+      : node_(node), path_(std::move(path)), ctx_(ctx) {}
+
+  void Get(const char* key, bool& out) {
+    ParseScalar(key, "true or false", [&](const std::string& s) { return ParseBool(s, &out); });
+  }
+  void Get(const char* key, double& out) {
+    ParseScalar(key, "a number", [&](const std::string& s) { return ParseDouble(s, &out); });
+  }
+  void Get(const char* key, std::string& out) {
+    ParseScalar(key, "a string", [&](const std::string& s) {
+      out = s;
+      return true;
+    });
+  }
+  void Get(const char* key, int64_t& out) { GetInteger(key, out); }
+  void Get(const char* key, uint16_t& out) { GetInteger(key, out); }
+
+  template <size_t N>
+  void Get(const char* key, std::array<double, N>& out) {
+    const YAML::Node value = Take(key);
+    if (!value) return;
+    std::array<double, N> parsed{};
+    bool ok = value.IsSequence() && value.size() == N;
+    for (size_t i = 0; ok && i < N; ++i) {
+      ok = value[i].IsScalar() && ParseDouble(value[i].Scalar(), &parsed[i]);
+    }
+    if (!ok) {
+      ctx_->Error(value.Mark(), Path(key),
+                  "expected a list of " + std::to_string(N) + " numbers, got " + Describe(value));
+      return;
+    }
+    out = parsed;
+  }
+
+  /// A nested mapping; absent → an empty section (all defaults).
+  Section Child(const char* key) {
+    const YAML::Node value = Take(key);
+    if (value && !value.IsMap()) {
+      ctx_->Error(value.Mark(), Path(key), "expected a mapping of keys, got " + Describe(value));
+      return Section(YAML::Node(), Path(key), ctx_);
+    }
+    return Section(value ? value : YAML::Node(), Path(key), ctx_);
+  }
+
+  /// Reports keys that no Get()/Child() took, and duplicated keys.
+  void Finish() {
+    if (!node_.IsMap()) return;
+    std::set<std::string> seen;
+    for (const auto& entry : node_) {
+      const YAML::Node& k = entry.first;
+      const std::string name = k.IsScalar() ? k.Scalar() : Describe(k);
+      if (!seen.insert(name).second) {
+        ctx_->Error(k.Mark(), Path(name.c_str()), "duplicate key");
+      } else if (std::find(known_.begin(), known_.end(), name) == known_.end()) {
+        ctx_->Error(k.Mark(), Path(name.c_str()), "unknown key" + Suggestion(name));
+      }
+    }
+  }
+
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string Path(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
+
+  /// The value under `key` (or a null handle), remembering that the key is known.
+  YAML::Node Take(const char* key) {
+    known_.emplace_back(key);
+    if (!node_.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+    for (const auto& entry : node_) {
+      if (entry.first.IsScalar() && entry.first.Scalar() == key) {
+        ctx_->marks[Path(key)] = entry.first.Mark();
+        return entry.second;
+      }
+    }
+    return YAML::Node(YAML::NodeType::Undefined);
+  }
+
+  template <typename Parse>
+  void ParseScalar(const char* key, const char* expected, Parse parse) {
+    const YAML::Node value = Take(key);
+    if (!value) return;
+    if (!value.IsScalar() || !parse(value.Scalar())) {
+      ctx_->Error(value.Mark(), Path(key),
+                  std::string("expected ") + expected + ", got " + Describe(value));
+    }
+  }
+
+  template <typename Int>
+  void GetInteger(const char* key, Int& out) {
+    const YAML::Node value = Take(key);
+    if (!value) return;
+    int64_t v = 0;
+    constexpr auto kMin = static_cast<int64_t>(std::numeric_limits<Int>::min());
+    constexpr auto kMax = static_cast<int64_t>(std::numeric_limits<Int>::max());
+    if (!value.IsScalar() || !ParseInt(value.Scalar(), &v) || v < kMin || v > kMax) {
+      ctx_->Error(value.Mark(), Path(key),
+                  "expected an integer in [" + std::to_string(kMin) + ", " + std::to_string(kMax) +
+                      "], got " + Describe(value));
+      return;
+    }
+    out = static_cast<Int>(v);
+  }
+
+  std::string Suggestion(const std::string& name) const {
+    std::string best;
+    size_t best_distance = 4;  // only close matches are worth suggesting
+    for (const auto& k : known_) {
+      const size_t d = Levenshtein(name, k);
+      if (d < best_distance) {
+        best_distance = d;
+        best = k;
+      }
+    }
+    return best.empty() ? "" : " (did you mean '" + best + "'?)";
+  }
+
+  YAML::Node node_;
+  std::string path_;
+  Context* ctx_;
+  std::vector<std::string> known_;
+};
+
+void Bind(Section s, drivers::LidarConfig& c) {
+  s.Get("model", c.model);
+  s.Get("bind_address", c.bind_address);
+  s.Get("msop_port", c.msop_port);
+  s.Get("difop_port", c.difop_port);
+  s.Get("cut_angle_deg", c.cut_angle_deg);
+  s.Get("min_range_m", c.min_range_m);
+  s.Get("max_range_m", c.max_range_m);
+  s.Get("rcvbuf_bytes", c.rcvbuf_bytes);
+  s.Get("vertical_angles_deg", c.vertical_angles_deg);
+  s.Get("rpm", c.rpm);
+  s.Finish();
+}
+
+void Bind(Section s, drivers::ImuConfig& c) {
+  s.Get("device", c.device);
+  s.Get("baud", c.baud);
+  s.Get("output_rate_hz", c.output_rate_hz);
+  s.Get("configure_on_start", c.configure_on_start);
+  s.Get("reply_timeout_ms", c.reply_timeout_ms);
+  s.Get("configure_retries", c.configure_retries);
+  s.Finish();
+}
+
+void Bind(Section s, drivers::CanConfig& c) {
+  s.Get("enabled", c.enabled);
+  s.Get("interface", c.interface);
+  s.Finish();
+}
+
+void Bind(Section s, estimator::ImuNoiseConfig& c) {
+  s.Get("acc_noise_density_mps2_per_sqrthz", c.acc_noise_density_mps2_per_sqrthz);
+  s.Get("gyro_noise_density_radps_per_sqrthz", c.gyro_noise_density_radps_per_sqrthz);
+  s.Get("acc_bias_random_walk_mps3_per_sqrthz", c.acc_bias_random_walk_mps3_per_sqrthz);
+  s.Get("gyro_bias_random_walk_radps2_per_sqrthz", c.gyro_bias_random_walk_radps2_per_sqrthz);
+  s.Finish();
+}
+
+void Bind(Section s, estimator::ExtrinsicConfig& c) {
+  s.Get("translation_m", c.translation_m);
+  s.Get("rotation_rpy_deg", c.rotation_rpy_deg);
+  s.Get("estimate_online", c.estimate_online);
+  s.Finish();
+}
+
+void Bind(Section s, estimator::EstimatorConfig& c) {
+  s.Get("mode", c.mode);
+  Bind(s.Child("imu_noise"), c.imu_noise);
+  Bind(s.Child("extrinsic_imu_lidar"), c.extrinsic_imu_lidar);
+  s.Get("gravity_mps2", c.gravity_mps2);
+  s.Get("init_static_duration_s", c.init_static_duration_s);
+  s.Get("window_size", c.window_size);
+  s.Get("max_iterations", c.max_iterations);
+  s.Get("plane_voxel_m", c.plane_voxel_m);
+  s.Get("edge_voxel_m", c.edge_voxel_m);
+  s.Get("local_map_radius_m", c.local_map_radius_m);
+  s.Get("num_threads", c.num_threads);
+  s.Finish();
+}
+
+void Bind(Section s, ipc::IpcConfig& c) {
+  s.Get("domain_id", c.domain_id);
+  s.Get("dds_config_file", c.dds_config_file);
+  s.Get("require_loopback", c.require_loopback);
+  s.Get("pose_topic", c.pose_topic);
+  s.Get("odometry_topic", c.odometry_topic);
+  s.Get("health_topic", c.health_topic);
+  s.Get("path_topic", c.path_topic);
+  s.Finish();
+}
+
+void Bind(Section s, LoggingConfig& c) {
+  s.Get("directory", c.directory);
+  s.Get("file_name", c.file_name);
+  s.Get("file_level", c.file_level);
+  s.Get("stderr_level", c.stderr_level);
+  s.Get("max_file_size_mb", c.max_file_size_mb);
+  s.Get("max_files", c.max_files);
+  s.Get("status_period_s", c.status_period_s);
+  s.Finish();
+}
+
+void BindRoot(Section root, DaemonConfig& c, Context& ctx) {
+  c.config_version = -1;
+  root.Get("config_version", c.config_version);
+  if (c.config_version == -1 && ctx.marks.count("config_version") == 0) {
+    ctx.Error(YAML::Mark::null_mark(), "config_version",
+              "missing required key (this build reads config_version: " +
+                  std::to_string(kConfigVersion) + ")");
+    c.config_version = kConfigVersion;  // reported once, not again by Validate()
+  }
+  Bind(root.Child("lidar"), c.lidar);
+  Bind(root.Child("imu"), c.imu);
+  Bind(root.Child("can"), c.can);
+  Bind(root.Child("estimator"), c.estimator);
+  Bind(root.Child("ipc"), c.ipc);
+  Bind(root.Child("logging"), c.logging);
+  root.Finish();
+}
+
+/// Relative paths in the file are relative to the file's directory.
+void ResolvePaths(DaemonConfig& c, const std::filesystem::path& base_dir) {
+  auto resolve = [&](std::string& p) {
+    if (!p.empty() && std::filesystem::path(p).is_relative()) {
+      p = (base_dir / p).lexically_normal().string();
+    }
+  };
+  resolve(c.logging.directory);
+  resolve(c.ipc.dds_config_file);
+}
+
+/// Validate() results carry key names only; add the place of each key in the file.
+void AddValidationErrors(const DaemonConfig& c, Context& ctx) {
+  for (const ConfigIssue& issue : c.Validate()) {
+    auto it = ctx.marks.find(issue.key);
+    if (it != ctx.marks.end()) {
+      ctx.Error(it->second, issue.key, issue.reason);
+    } else {
+      ctx.Error(YAML::Mark::null_mark(), issue.key, issue.reason + " (default value)");
+    }
+  }
+}
+
+}  // namespace
+
+std::string ConfigError::ToString() const {
+  std::ostringstream os;
+  os << file;
+  if (line > 0) os << ':' << line << ':' << column;
+  os << ": ";
+  if (!key.empty()) os << key << ": ";
+  os << reason;
+  return os.str();
+}
+
+std::string LoadedConfig::ErrorReport() const {
+  std::string report;
+  for (const auto& e : errors) report += e.ToString() + "\n";
+  return report;
+}
+
+LoadedConfig LoadConfigText(const std::string& yaml_text,
+                            const std::string& display_name,
+                            const std::filesystem::path& base_dir) {
+  LoadedConfig result;
+  Context ctx{display_name, {}, {}};
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    ctx.Error(e.mark, "", "YAML syntax error: " + e.msg);
+    result.errors = std::move(ctx.errors);
+    return result;
+  }
+  if (!root.IsMap()) {
+    ctx.Error(root.Mark(), "", "expected a mapping of sections at the top, got " + Describe(root));
+    result.errors = std::move(ctx.errors);
+    return result;
+  }
+  BindRoot(Section(root, "", &ctx), result.config, ctx);
+  ResolvePaths(result.config, base_dir);
+  AddValidationErrors(result.config, ctx);
+  std::stable_sort(ctx.errors.begin(), ctx.errors.end(),
+                   [](const ConfigError& a, const ConfigError& b) { return a.line < b.line; });
+  result.errors = std::move(ctx.errors);
+  return result;
+}
+
+LoadedConfig LoadConfigFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    LoadedConfig result;
+    result.errors.push_back({path.string(), 0, 0, "", "cannot open the configuration file"});
+    return result;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::filesystem::path base = std::filesystem::absolute(path).parent_path();
+  return LoadConfigText(text.str(), path.string(), base);
+}
+
+}  // namespace swlio::daemon

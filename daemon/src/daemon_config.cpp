@@ -1,0 +1,43 @@
+#include "swlio/daemon/daemon_config.h"
+
+#include <array>
+
+namespace swlio::daemon {
+
+bool IsLogLevelName(const std::string& level) {
+  constexpr std::array<const char*, 7> kLevels = {"trace", "debug",    "info", "warn",
+                                                  "error", "critical", "off"};
+  for (const char* name : kLevels) {
+    if (level == name) return true;
+  }
+  return false;
+}
+
+ConfigIssues LoggingConfig::Validate() const {
+  ConfigIssues issues;
+  const std::string levels = "must be trace, debug, info, warn, error, critical or off, got '";
+  CheckThat(issues, IsLogLevelName(file_level), "file_level", levels + file_level + "'");
+  CheckThat(issues, IsLogLevelName(stderr_level), "stderr_level", levels + stderr_level + "'");
+  CheckThat(issues, !file_name.empty() && file_name.find('/') == std::string::npos, "file_name",
+            "must be a plain file name");
+  CheckInRange<int64_t>(issues, "max_file_size_mb", max_file_size_mb, 1, 1024);
+  CheckInRange<int64_t>(issues, "max_files", max_files, 1, 1000);
+  CheckInRange(issues, "status_period_s", status_period_s, 0.5, 3600.0);
+  return issues;
+}
+
+ConfigIssues DaemonConfig::Validate() const {
+  ConfigIssues issues;
+  CheckThat(issues, config_version == kConfigVersion, "config_version",
+            "this build reads version " + std::to_string(kConfigVersion) + ", got " +
+                std::to_string(config_version));
+  AppendWithPrefix(issues, "lidar", lidar.Validate());
+  AppendWithPrefix(issues, "imu", imu.Validate());
+  AppendWithPrefix(issues, "can", can.Validate());
+  AppendWithPrefix(issues, "estimator", estimator.Validate());
+  AppendWithPrefix(issues, "ipc", ipc.Validate());
+  AppendWithPrefix(issues, "logging", logging.Validate());
+  return issues;
+}
+
+}  // namespace swlio::daemon

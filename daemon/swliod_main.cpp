@@ -1,0 +1,25 @@
+// swliod: the localization daemon. main() only parses the command line and wires modules.
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "swlio/daemon/config_loader.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"swliod: LiDAR-inertial localization daemon"};
+  std::string check_config;
+  app.add_option("--check-config", check_config,
+                 "Validate a configuration file, print every problem with its line, and exit")
+      ->required();
+  CLI11_PARSE(app, argc, argv);
+
+  const swlio::daemon::LoadedConfig loaded = swlio::daemon::LoadConfigFile(check_config);
+  if (!loaded.ok()) {
+    std::cerr << loaded.ErrorReport();
+    std::cerr << check_config << ": " << loaded.errors.size() << " error(s)\n";
+    return 1;
+  }
+  std::cout << check_config << ": OK\n";
+  return 0;
+}

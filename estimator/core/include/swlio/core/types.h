@@ -1,0 +1,50 @@
+#pragma once
+/// @file
+/// Core sample and state types shared by drivers, estimator, ipc and daemon.
+///
+/// Frames: `T_a_b` maps points from frame b to frame a, so `T_a_c = T_a_b * T_b_c`.
+/// World: gravity-aligned (z up), origin at the first IMU pose after initialization.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+namespace swlio {
+
+/// One inertial measurement in the IMU frame.
+struct ImuSample {
+  int64_t t_ns = 0;                                      ///< host time (CLOCK_MONOTONIC ns)
+  Eigen::Vector3d acc_mps2 = Eigen::Vector3d::Zero();    ///< specific force, m/s²
+  Eigen::Vector3d gyro_radps = Eigen::Vector3d::Zero();  ///< angular rate, rad/s
+};
+
+/// One LiDAR return in the LiDAR frame of its scan.
+struct LidarPoint {
+  Eigen::Vector3f xyz_m = Eigen::Vector3f::Zero();  ///< position, metres, LiDAR frame
+  float intensity = 0.0f;                           ///< reflectivity as reported (0–255)
+  uint16_t ring = 0;                                ///< laser channel, 0 = lowest elevation
+  int64_t dt_ns = 0;  ///< time of this firing after the scan's `t_start_ns`, ≥ 0
+};
+
+/// One LiDAR sweep. Every point carries its own time: `t_start_ns + dt_ns`.
+/// Convention (stated once): a scan's time is its first firing, `t_start_ns`; `t_end_ns` is
+/// its last firing. Both are host time.
+struct Scan {
+  int64_t t_start_ns = 0;
+  int64_t t_end_ns = 0;
+  uint64_t seq = 0;      ///< scan counter from the assembler
+  bool partial = false;  ///< true when packets are missing or the sweep is incomplete
+  std::vector<LidarPoint> points;
+};
+
+/// Navigation state of the IMU body frame.
+struct State {
+  int64_t t_ns = 0;
+  Eigen::Isometry3d T_world_imu = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d vel_world = Eigen::Vector3d::Zero();  ///< m/s, world frame
+  Eigen::Vector3d bias_acc = Eigen::Vector3d::Zero();   ///< m/s², IMU frame
+  Eigen::Vector3d bias_gyro = Eigen::Vector3d::Zero();  ///< rad/s, IMU frame
+};
+
+}  // namespace swlio

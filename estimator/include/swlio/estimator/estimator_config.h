@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// Configuration of the LiDAR-inertial estimator. Plain structs with documented defaults;
+/// loaded by the daemon, validated here.
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "swlio/core/config_issue.h"
+
+namespace swlio::estimator {
+
+/// Continuous-time IMU noise model (the units are those of the datasheets).
+/// Defaults: Xsens MTi-G-710 (MTi 100-series) datasheet noise densities, gyro 0.01 °/s/√Hz and
+/// accelerometer 60 µg/√Hz; the bias random walks are inflated over the datasheet's in-run
+/// stability to cover temperature and vibration on a robot.
+struct ImuNoiseConfig {
+  double acc_noise_density_mps2_per_sqrthz = 60e-6 * 9.80665;
+  double gyro_noise_density_radps_per_sqrthz = 0.01 * 3.14159265358979323846 / 180.0;
+  double acc_bias_random_walk_mps3_per_sqrthz = 1e-4;
+  double gyro_bias_random_walk_radps2_per_sqrthz = 1e-5;
+
+  ConfigIssues Validate() const;
+};
+
+/// Extrinsic `T_imu_lidar` (maps LiDAR-frame points into the IMU frame).
+/// Rotation R = Rz(yaw)·Ry(pitch)·Rx(roll).
+struct ExtrinsicConfig {
+  std::array<double, 3> translation_m = {0.0, 0.0, 0.0};
+  std::array<double, 3> rotation_rpy_deg = {0.0, 0.0, 0.0};
+  bool estimate_online = true;  ///< refine inside the window optimization
+
+  ConfigIssues Validate() const;
+};
+
+struct EstimatorConfig {
+  /// "tightly-coupled" (default) or "lidar-only" (the baseline: IMU for prediction/de-skew only).
+  std::string mode = "tightly-coupled";
+  ImuNoiseConfig imu_noise;
+  ExtrinsicConfig extrinsic_imu_lidar;
+  double gravity_mps2 = 9.80665;
+  /// The robot must stand still this long before the static initialization completes.
+  double init_static_duration_s = 1.0;
+  int64_t window_size = 10;          ///< frames in the sliding window
+  int64_t max_iterations = 5;        ///< solver iterations per scan
+  double plane_voxel_m = 0.4;        ///< down-sampling of planar features
+  double edge_voxel_m = 0.2;         ///< down-sampling of edge features
+  double local_map_radius_m = 80.0;  ///< local map kept around the robot
+  int64_t num_threads = 1;           ///< solver threads (1 = serial, deterministic)
+
+  ConfigIssues Validate() const;
+};
+
+}  // namespace swlio::estimator

@@ -1,0 +1,28 @@
+#pragma once
+/// @file
+/// DDS publishing configuration. Topic names are ROS 2 names (without the leading "rt/",
+/// which ipc adds), so a ROS 2 node subscribes to "/swlio/pose" directly.
+
+#include <cstdint>
+#include <string>
+
+#include "swlio/core/config_issue.h"
+
+namespace swlio::ipc {
+
+struct IpcConfig {
+  int64_t domain_id = 0;  ///< DDS domain (ROS_DOMAIN_ID)
+  /// Cyclone DDS XML used to create the domain. A relative path is taken from the directory of
+  /// the configuration file that names it.
+  std::string dds_config_file = "cyclonedds-loopback.xml";
+  /// Refuse to start unless the DDS configuration keeps all traffic on loopback.
+  bool require_loopback = true;
+  std::string pose_topic = "swlio/pose";          ///< IMU-rate pose
+  std::string odometry_topic = "swlio/odometry";  ///< scan-rate odometry with covariance
+  std::string health_topic = "diagnostics";       ///< 1 Hz health (ROS 2 /diagnostics)
+  std::string path_topic = "swlio/path";          ///< keyframe path
+
+  ConfigIssues Validate() const;
+};
+
+}  // namespace swlio::ipc

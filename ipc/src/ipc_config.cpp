@@ -1,0 +1,39 @@
+#include "swlio/ipc/ipc_config.h"
+
+#include <cctype>
+
+namespace swlio::ipc {
+namespace {
+
+/// ROS 2 topic names: [A-Za-z0-9_/], not starting with a digit or '/', no "//".
+bool IsValidTopic(const std::string& name) {
+  if (name.empty() || name.front() == '/' || name.back() == '/') return false;
+  if (std::isdigit(static_cast<unsigned char>(name.front())) != 0) return false;
+  if (name.find("//") != std::string::npos) return false;
+  for (const char c : name) {
+    if (std::isalnum(static_cast<unsigned char>(c)) == 0 && c != '_' && c != '/') return false;
+  }
+  return true;
+}
+
+void CheckTopic(ConfigIssues& issues, const char* key, const std::string& name) {
+  CheckThat(issues, IsValidTopic(name), key,
+            "must be a ROS 2 topic name without leading '/' (letters, digits, '_', '/'), got '" +
+                name + "'");
+}
+
+}  // namespace
+
+ConfigIssues IpcConfig::Validate() const {
+  ConfigIssues issues;
+  // DDS domain ids map onto UDP ports; 232 is the largest that fits (DDSI-RTPS 2.2 §9.6.1.1).
+  CheckInRange<int64_t>(issues, "domain_id", domain_id, 0, 232);
+  CheckThat(issues, !dds_config_file.empty(), "dds_config_file", "must name a DDS XML file");
+  CheckTopic(issues, "pose_topic", pose_topic);
+  CheckTopic(issues, "odometry_topic", odometry_topic);
+  CheckTopic(issues, "health_topic", health_topic);
+  CheckTopic(issues, "path_topic", path_topic);
+  return issues;
+}
+
+}  // namespace swlio::ipc

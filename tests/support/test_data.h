@@ -1,0 +1,32 @@
+#pragma once
+/// @file
+/// Where tests find real captures and the source tree.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace swlio::test {
+
+/// `$SWLIO_DATA_DIR`, else `../shared/data` beside the checkout. May not exist.
+std::filesystem::path DataDir();
+
+/// Path of `relative` under DataDir(), or empty when it does not exist.
+std::filesystem::path DataFile(const std::string& relative);
+
+/// The checkout's root (for config/ and other checked-in files).
+std::filesystem::path SourceDir();
+
+/// A fresh empty directory under the system temp dir, unique per call.
+std::filesystem::path MakeTempDir(const std::string& tag);
+
+}  // namespace swlio::test
+
+/// Skips the current test with a clear message when a real-data file is absent.
+#define SWLIO_REQUIRE_DATA(var, relative)                                                   \
+  const std::filesystem::path var = ::swlio::test::DataFile(relative);                      \
+  if (var.empty()) {                                                                        \
+    GTEST_SKIP() << "real data '" << (relative) << "' not found under "                     \
+                 << ::swlio::test::DataDir() << " (set SWLIO_DATA_DIR to the shared data)"; \
+  }
