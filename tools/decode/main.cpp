@@ -1,0 +1,22 @@
+// swlio-decode: decode captured sensor data (pcap, raw Xbus bytes, candump logs) into JSON
+// summaries and CSV files. Each format is a subcommand in its own file.
+
+#include "decode_command.h"
+
+namespace swlio::tools {
+
+std::vector<DecodeCommandFactory>& DecodeCommands() {
+  static std::vector<DecodeCommandFactory> commands;
+  return commands;
+}
+
+}  // namespace swlio::tools
+
+int main(int argc, char** argv) {
+  CLI::App app{"swlio-decode: decode captured LiDAR, Xsens and CAN data"};
+  app.require_subcommand(1);
+  int exit_code = 0;
+  for (const auto& add : swlio::tools::DecodeCommands()) add(app, &exit_code);
+  CLI11_PARSE(app, argc, argv);
+  return exit_code;
+}
