@@ -1,0 +1,213 @@
+#include "swlio/daemon/config_loader.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "test_data.h"
+
+namespace swlio::daemon {
+namespace {
+
+using ::testing::HasSubstr;
+
+LoadedConfig Load(const std::string& text) {
+  return LoadConfigText(text, "test.yaml", "/etc/swlio");
+}
+
+/// The single error of a load, or a failure when there is not exactly one.
+ConfigError OnlyError(const LoadedConfig& loaded) {
+  EXPECT_EQ(loaded.errors.size(), 1u) << loaded.ErrorReport();
+  return loaded.errors.empty() ? ConfigError{} : loaded.errors.front();
+}
+
+TEST(ConfigLoader, ShippedConfigIsValid) {
+  const auto path = test::SourceDir() / "config" / "swlio.yaml";
+  const LoadedConfig loaded = LoadConfigFile(path);
+  ASSERT_TRUE(loaded.ok()) << loaded.ErrorReport();
+  EXPECT_EQ(loaded.config.lidar.model, "rs16");
+  EXPECT_EQ(loaded.config.lidar.msop_port, 6699);
+  EXPECT_EQ(loaded.config.imu.baud, 921600);
+  EXPECT_EQ(loaded.config.estimator.window_size, 10);
+  // Relative paths are resolved against the file's directory.
+  EXPECT_EQ(loaded.config.ipc.dds_config_file,
+            (std::filesystem::absolute(path).parent_path() / "cyclonedds-loopback.xml")
+                .lexically_normal()
+                .string());
+}
+
+TEST(ConfigLoader, MinimalFileGivesDefaults) {
+  const LoadedConfig loaded = Load("config_version: 1\n");
+  ASSERT_TRUE(loaded.ok()) << loaded.ErrorReport();
+  const DaemonConfig defaults;
+  EXPECT_EQ(loaded.config.lidar.max_range_m, defaults.lidar.max_range_m);
+  EXPECT_EQ(loaded.config.lidar.vertical_angles_deg, defaults.lidar.vertical_angles_deg);
+  EXPECT_EQ(loaded.config.estimator.mode, "tightly-coupled");
+  EXPECT_EQ(loaded.config.logging.directory, "/var/log/swlio");
+  EXPECT_EQ(loaded.config.ipc.dds_config_file, "/etc/swlio/cyclonedds-loopback.xml");
+}
+
+TEST(ConfigLoader, GoodValuesAreStored) {
+  const LoadedConfig loaded = Load(R"(config_version: 1
+lidar:
+  msop_port: 2244
+  cut_angle_deg: 90.5
+  vertical_angles_deg: [-15, -14, -13, -12, -11, -10, -9, -8, -7, -6, -5, -4, -3, -2, -1, 0]
+imu:
+  configure_on_start: no
+estimator:
+  extrinsic_imu_lidar:
+    translation_m: [0.1, -0.02, 0.3]
+logging:
+  directory: logs
+)");
+  ASSERT_TRUE(loaded.ok()) << loaded.ErrorReport();
+  EXPECT_EQ(loaded.config.lidar.msop_port, 2244);
+  EXPECT_DOUBLE_EQ(loaded.config.lidar.cut_angle_deg, 90.5);
+  EXPECT_EQ(loaded.config.lidar.vertical_angles_deg[1], -14.0);
+  EXPECT_FALSE(loaded.config.imu.configure_on_start);
+  EXPECT_DOUBLE_EQ(loaded.config.estimator.extrinsic_imu_lidar.translation_m[2], 0.3);
+  EXPECT_EQ(loaded.config.logging.directory, "/etc/swlio/logs");
+}
+
+TEST(ConfigLoader, MissingVersionIsAnError) {
+  const ConfigError e = OnlyError(Load("lidar:\n  msop_port: 2244\n"));
+  EXPECT_EQ(e.key, "config_version");
+  EXPECT_THAT(e.reason, HasSubstr("missing required key"));
+}
+
+TEST(ConfigLoader, WrongVersionNamesKeyAndLine) {
+  const ConfigError e = OnlyError(Load("# comment\nconfig_version: 7\n"));
+  EXPECT_EQ(e.key, "config_version");
+  EXPECT_EQ(e.line, 2);
+}
+
+TEST(ConfigLoader, MistypedValueNamesKeyAndLine) {
+  const ConfigError e = OnlyError(Load("config_version: 1\nlidar:\n  msop_port: fast\n"));
+  EXPECT_EQ(e.key, "lidar.msop_port");
+  EXPECT_EQ(e.line, 3);
+  EXPECT_EQ(e.column, 14);
+  EXPECT_THAT(e.reason, HasSubstr("expected an integer in [0, 65535], got 'fast'"));
+  EXPECT_EQ(e.ToString(),
+            "test.yaml:3:14: lidar.msop_port: expected an integer in [0, 65535], got 'fast'");
+}
+
+TEST(ConfigLoader, MistypedKindsAreReported) {
+  const LoadedConfig loaded = Load(R"(config_version: 1
+lidar:
+  msop_port: 70000
+  max_range_m: [1, 2]
+  vertical_angles_deg: [1, 2, 3]
+imu:
+  configure_on_start: maybe
+  baud: 9600.5
+can: 5
+)");
+  ASSERT_EQ(loaded.errors.size(), 6u) << loaded.ErrorReport();
+  EXPECT_EQ(loaded.errors[0].key, "lidar.msop_port");
+  EXPECT_EQ(loaded.errors[1].key, "lidar.max_range_m");
+  EXPECT_THAT(loaded.errors[1].reason, HasSubstr("got a list"));
+  EXPECT_EQ(loaded.errors[2].key, "lidar.vertical_angles_deg");
+  EXPECT_THAT(loaded.errors[2].reason, HasSubstr("list of 16 numbers"));
+  EXPECT_EQ(loaded.errors[3].key, "imu.configure_on_start");
+  EXPECT_EQ(loaded.errors[4].key, "imu.baud");
+  EXPECT_EQ(loaded.errors[5].key, "can");
+  EXPECT_EQ(loaded.errors[5].line, 9);
+}
+
+TEST(ConfigLoader, OutOfRangeValueNamesKeyLineAndRule) {
+  const ConfigError e = OnlyError(Load("config_version: 1\nlidar:\n  max_range_m: 500\n"));
+  EXPECT_EQ(e.key, "lidar.max_range_m");
+  EXPECT_EQ(e.line, 3);
+  EXPECT_THAT(e.reason, HasSubstr("must be in [1, 300], got 500"));
+}
+
+TEST(ConfigLoader, UnknownKeysAreErrorsWithSuggestions) {
+  const LoadedConfig loaded = Load(R"(config_version: 1
+lidar:
+  max_rang_m: 100
+estimator:
+  imu_noise:
+    gyro_noise: 0.1
+lidars: {}
+)");
+  ASSERT_EQ(loaded.errors.size(), 3u) << loaded.ErrorReport();
+  EXPECT_EQ(loaded.errors[0].key, "lidar.max_rang_m");
+  EXPECT_EQ(loaded.errors[0].line, 3);
+  EXPECT_THAT(loaded.errors[0].reason, HasSubstr("unknown key (did you mean 'max_range_m'?)"));
+  EXPECT_EQ(loaded.errors[1].key, "estimator.imu_noise.gyro_noise");
+  EXPECT_EQ(loaded.errors[1].line, 6);
+  EXPECT_EQ(loaded.errors[2].key, "lidars");
+  EXPECT_THAT(loaded.errors[2].reason, HasSubstr("did you mean 'lidar'"));
+}
+
+TEST(ConfigLoader, CrossFieldRulesAndEveryErrorAreReported) {
+  const LoadedConfig loaded = Load(R"(config_version: 1
+lidar:
+  msop_port: 7788
+  min_range_m: 5
+  max_range_m: 4
+estimator:
+  mode: fast
+  window_size: 1
+logging:
+  file_level: verbose
+)");
+  ASSERT_EQ(loaded.errors.size(), 5u) << loaded.ErrorReport();
+  EXPECT_EQ(loaded.errors[0].key, "lidar.difop_port");  // default value clashes
+  EXPECT_EQ(loaded.errors[0].line, 0);
+  EXPECT_THAT(loaded.errors[0].reason, HasSubstr("(default value)"));
+  EXPECT_EQ(loaded.errors[1].key, "lidar.max_range_m");
+  EXPECT_EQ(loaded.errors[1].line, 5);
+  EXPECT_EQ(loaded.errors[2].key, "estimator.mode");
+  EXPECT_EQ(loaded.errors[3].key, "estimator.window_size");
+  EXPECT_EQ(loaded.errors[4].key, "logging.file_level");
+  EXPECT_EQ(loaded.errors[4].line, 10);
+}
+
+TEST(ConfigLoader, DuplicateKeyIsAnError) {
+  const LoadedConfig loaded = Load("config_version: 1\nimu:\n  baud: 9600\n  baud: 115200\n");
+  ASSERT_FALSE(loaded.ok());
+  EXPECT_EQ(loaded.errors[0].key, "imu.baud");
+  EXPECT_EQ(loaded.errors[0].line, 4);
+  EXPECT_THAT(loaded.errors[0].reason, HasSubstr("duplicate"));
+}
+
+TEST(ConfigLoader, SyntaxErrorGivesLine) {
+  const ConfigError e = OnlyError(Load("config_version: 1\nlidar:\n  msop_port: [1, 2\n"));
+  EXPECT_GT(e.line, 0);
+  EXPECT_THAT(e.reason, HasSubstr("YAML syntax error"));
+}
+
+TEST(ConfigLoader, NonMappingTopLevelAndMissingFile) {
+  EXPECT_THAT(OnlyError(Load("- a\n- b\n")).reason, HasSubstr("expected a mapping"));
+  EXPECT_THAT(OnlyError(Load("")).reason, HasSubstr("expected a mapping"));
+  const LoadedConfig missing = LoadConfigFile("/nonexistent/swlio.yaml");
+  EXPECT_THAT(OnlyError(missing).ToString(),
+              HasSubstr("/nonexistent/swlio.yaml: cannot open the configuration file"));
+}
+
+TEST(ConfigLoader, NullValueIsAnError) {
+  const ConfigError e = OnlyError(Load("config_version: 1\nimu:\n  device:\n"));
+  EXPECT_EQ(e.key, "imu.device");
+  EXPECT_THAT(e.reason, HasSubstr("got nothing"));
+}
+
+TEST(CheckConfigCommand, BrokenConfigPrintsKeyAndLine) {
+  const auto dir = test::MakeTempDir("checkcfg");
+  const auto file = dir / "broken.yaml";
+  std::ofstream(file) << "config_version: 1\nlidar:\n  max_range_m: -1\n";
+  const std::string cmd = std::string(SWLIOD_PATH) + " --check-config " + file.string() + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buf[512];
+  while (fgets(buf, sizeof buf, pipe) != nullptr) output += buf;
+  const int status = pclose(pipe);
+  EXPECT_NE(status, 0);
+  EXPECT_THAT(output, HasSubstr("broken.yaml:3:3: lidar.max_range_m: must be in [1, 300], got -1"));
+}
+
+}  // namespace
+}  // namespace swlio::daemon
