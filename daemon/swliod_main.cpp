@@ -6,7 +6,9 @@
 
 #include "swlio/daemon/config_loader.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int Run(int argc, char** argv) {
   CLI::App app{"swliod: LiDAR-inertial localization daemon"};
   std::string check_config;
   app.add_option("--check-config", check_config,
@@ -22,4 +24,15 @@ int main(int argc, char** argv) {
   }
   std::cout << check_config << ": OK\n";
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "swliod: " << e.what() << "\n";
+    return 2;
+  }
 }

@@ -22,7 +22,7 @@ struct LidarConfig {
   double min_range_m = 0.4;    ///< returns closer than this are dropped (robot body)
   double max_range_m = 150.0;  ///< RS-LiDAR-16 datasheet range: 150 m
   /// Requested SO_RCVBUF; the granted size is reported at start-up.
-  int64_t rcvbuf_bytes = 8 * 1024 * 1024;
+  int64_t rcvbuf_bytes = int64_t{8} * 1024 * 1024;
   /// Used until a DIFOP packet supplies the unit's own calibration (RS16 nominal: −15°…+15°
   /// in 2° steps, ring 0 lowest).
   std::array<double, 16> vertical_angles_deg = {-15, -13, -11, -9, -7, -5, -3, -1,
