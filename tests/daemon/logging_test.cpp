@@ -29,7 +29,7 @@ TEST(Logging, WritesFileWithLevelFilter) {
   logger->debug("this is below the file level");
   logger->flush();
   const std::string text = ReadFile(std::filesystem::path(config.directory) / "swliod.log");
-  EXPECT_NE(text.find("info  [") , std::string::npos) << text;
+  EXPECT_NE(text.find("info  ["), std::string::npos) << text;
   EXPECT_NE(text.find("lidar packets=7500 drops=0"), std::string::npos);
   EXPECT_EQ(text.find("below the file level"), std::string::npos);
 }

@@ -34,8 +34,8 @@ TEST(LoopbackConfig, RejectsEveryWayOfLeavingLoopback) {
   std::string why;
   EXPECT_FALSE(IsLoopbackOnlyConfig(Replace(xml, "name=\"lo\"", "name=\"eth0\""), &why));
   EXPECT_NE(why.find("not loopback"), std::string::npos);
-  EXPECT_FALSE(IsLoopbackOnlyConfig(
-      Replace(xml, "<AllowMulticast>false", "<AllowMulticast>true"), &why));
+  EXPECT_FALSE(
+      IsLoopbackOnlyConfig(Replace(xml, "<AllowMulticast>false", "<AllowMulticast>true"), &why));
   EXPECT_NE(why.find("AllowMulticast"), std::string::npos);
   EXPECT_FALSE(IsLoopbackOnlyConfig(Replace(xml, "<NetworkInterface name=\"lo\"/>", ""), &why));
   EXPECT_NE(why.find("no NetworkInterface"), std::string::npos);
