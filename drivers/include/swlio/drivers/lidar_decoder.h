@@ -36,12 +36,12 @@ enum class ReturnMode : uint8_t { kStrongest, kLast, kDual, kUnknown };
 
 /// What one data packet held, besides its returns.
 struct LidarPacketSummary {
-  int64_t t_sensor_ns = 0;          ///< packet time on the sensor clock
-  float first_azimuth_deg = 0.0f;   ///< azimuth of the packet's first block
-  float last_azimuth_deg = 0.0f;    ///< azimuth of the packet's last block
+  int64_t t_sensor_ns = 0;         ///< packet time on the sensor clock
+  float first_azimuth_deg = 0.0f;  ///< azimuth of the packet's first block
+  float last_azimuth_deg = 0.0f;   ///< azimuth of the packet's last block
   ReturnMode return_mode = ReturnMode::kUnknown;
-  uint32_t returns = 0;             ///< returns written (valid ranges only)
-  uint32_t no_returns = 0;          ///< channel slots with "no return" / out-of-range values
+  uint32_t returns = 0;     ///< returns written (valid ranges only)
+  uint32_t no_returns = 0;  ///< channel slots with "no return" / out-of-range values
 };
 
 enum class DecodeStatus : uint8_t {
