@@ -1,0 +1,26 @@
+#pragma once
+/// @file
+/// Built-in scenarios: each is fully determined by its name and a seed.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "trajectory.h"
+
+namespace swlio::sim {
+
+struct Scenario {
+  std::string name;
+  std::string description;
+  RouteSpec route;
+};
+
+/// Names of the built-in scenarios: short, loop943, degenerate, aggressive.
+std::vector<std::string> ScenarioNames();
+
+/// The scenario called `name`, or nothing when there is none.
+std::optional<Scenario> MakeScenario(const std::string& name);
+
+}  // namespace swlio::sim
