@@ -70,6 +70,7 @@ std::string AlignmentNote(eval::Alignment alignment) {
 }
 
 int Report(const eval::Evaluation& result, const CommonArgs& a, const std::string& title) {
+  const std::string label = eval::Describe(eval::ParsePoseRelation(a.relation));
   if (a.json) {
     PrintStatisticsJson(std::cout, result.stats);
   } else {
@@ -77,7 +78,7 @@ int Report(const eval::Evaluation& result, const CommonArgs& a, const std::strin
   }
   if (!a.plot_path.empty()) {
     std::string error;
-    if (!DrawPlot(a.plot_path, result, title, &error)) {
+    if (!DrawPlot(a.plot_path, result, title, label, &error)) {
       std::cerr << "swlio-eval: " << error << '\n';
       return 1;
     }

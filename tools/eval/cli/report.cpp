@@ -110,6 +110,7 @@ void WritePlotCsv(const std::filesystem::path& csv_path, const eval::Evaluation&
 bool DrawPlot(const std::filesystem::path& png,
               const eval::Evaluation& evaluation,
               const std::string& title,
+              const std::string& error_label,
               std::string* error) {
   std::filesystem::path csv = png;
   csv.replace_extension(".csv");
@@ -119,8 +120,9 @@ bool DrawPlot(const std::filesystem::path& png,
     *error = "plot script not found: " + script.string() + " (set SWLIO_EVAL_PLOT_SCRIPT)";
     return false;
   }
-  const int status = RunProgram({"/usr/bin/python3", script.string(), csv.string(), png.string(),
-                                 title, evaluation.data.ref.HasStamps() ? "t" : "index"});
+  const int status =
+      RunProgram({"/usr/bin/python3", script.string(), csv.string(), png.string(), title,
+                  evaluation.data.ref.HasStamps() ? "t" : "index", error_label});
   if (status != 0) {
     *error =
         "plot script failed (exit " + std::to_string(status) + "); data left in " + csv.string();

@@ -30,6 +30,7 @@ void WritePlotCsv(const std::filesystem::path& csv_path, const eval::Evaluation&
 bool DrawPlot(const std::filesystem::path& png,
               const eval::Evaluation& evaluation,
               const std::string& title,
+              const std::string& error_label,
               std::string* error);
 
 }  // namespace swlio::tools
