@@ -2,6 +2,7 @@
 
 #include "swlio/eval/association.h"
 #include "swlio/eval/evaluate.h"
+#include "swlio/eval/json.h"
 #include "swlio/eval/trajectory.h"
 #include "test_data.h"
 
@@ -10,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <numeric>
 #include <random>
@@ -173,6 +175,30 @@ TEST(EvalAssociation, KittiPairingNeedsEqualCounts) {
   b.poses.assign(2, Pose::Identity());
   EXPECT_EQ(ErrorOf([&] { Pair(a, b, Format::kKitti); }),
             "KITTI trajectories must have the same number of poses (reference 3, estimate 2)");
+}
+
+TEST(EvalJson, StatisticsRoundTripExactlyWithTheIssueKeys) {
+  Statistics s;
+  s.n = 3;
+  s.max = 1.0 / 3.0;
+  s.mean = 0.1;
+  s.median = 2.0 / 7.0;
+  s.min = 1e-300;
+  s.rmse = 12345.678901234567;
+  s.sse = 7715.0734402916314;
+  s.std = 0.6002822693967811;
+  const std::string json = ToJson(s);
+  const std::vector<std::pair<std::string, double>> expected = {
+      {"max", s.max},   {"mean", s.mean}, {"median", s.median}, {"min", s.min},
+      {"rmse", s.rmse}, {"sse", s.sse},   {"std", s.std}};
+  EXPECT_EQ(json.rfind("{\"n\": 3, \"max\": ", 0), 0u) << json;
+  for (const auto& [key, value] : expected) {
+    const std::string tag = "\"" + key + "\": ";
+    const auto at = json.find(tag);
+    ASSERT_NE(at, std::string::npos) << key;
+    EXPECT_EQ(std::strtod(json.c_str() + at + tag.size(), nullptr), value) << key;
+  }
+  EXPECT_EQ(json.back(), '}');
 }
 
 }  // namespace

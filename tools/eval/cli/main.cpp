@@ -10,6 +10,8 @@
 
 #include "report.h"
 
+#include "swlio/eval/json.h"
+
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -72,7 +74,7 @@ std::string AlignmentNote(eval::Alignment alignment) {
 int Report(const eval::Evaluation& result, const CommonArgs& a, const std::string& title) {
   const std::string label = eval::Describe(eval::ParsePoseRelation(a.relation));
   if (a.json) {
-    PrintStatisticsJson(std::cout, result.stats);
+    std::cout << eval::ToJson(result.stats) << '\n';
   } else {
     PrintStatisticsTable(std::cout, title, result.stats);
   }
@@ -121,7 +123,7 @@ int RunKitti(const CommonArgs& a, std::size_t step) {
   options.step_frames = step;
   const eval::KittiResult result = eval::KittiOdometryMetric(gt, est, options);
   if (a.json) {
-    PrintKittiJson(std::cout, result);
+    std::cout << eval::ToJson(result) << '\n';
   } else {
     PrintKittiTable(std::cout, result);
   }

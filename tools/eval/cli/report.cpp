@@ -2,6 +2,8 @@
 
 #include "report.h"
 
+#include "swlio/eval/json.h"
+
 #include <spawn.h>
 #include <sys/wait.h>
 
@@ -15,11 +17,7 @@ extern char** environ;
 namespace swlio::tools {
 namespace {
 
-std::string Num(double value) {
-  char buf[40];
-  std::snprintf(buf, sizeof(buf), "%.17g", value);
-  return buf;
-}
+std::string Num(double value) { return eval::FormatExact(value); }
 
 std::filesystem::path PlotScript() {
   if (const char* env = std::getenv("SWLIO_EVAL_PLOT_SCRIPT"); env != nullptr && *env != '\0') {
@@ -42,13 +40,6 @@ int RunProgram(const std::vector<std::string>& args) {
 
 }  // namespace
 
-void PrintStatisticsJson(std::ostream& out, const eval::Statistics& s) {
-  out << "{\"n\": " << s.n << ", \"max\": " << Num(s.max) << ", \"mean\": " << Num(s.mean)
-      << ", \"median\": " << Num(s.median) << ", \"min\": " << Num(s.min)
-      << ", \"rmse\": " << Num(s.rmse) << ", \"sse\": " << Num(s.sse) << ", \"std\": " << Num(s.std)
-      << "}\n";
-}
-
 void PrintStatisticsTable(std::ostream& out, const std::string& title, const eval::Statistics& s) {
   char buf[200];
   out << title << "\n\n";
@@ -59,18 +50,6 @@ void PrintStatisticsTable(std::ostream& out, const std::string& title, const eva
   out << buf;
   std::snprintf(buf, sizeof(buf), "%10s\t%.12g\n%10s\t%.12g\n", "sse", s.sse, "std", s.std);
   out << buf;
-}
-
-void PrintKittiJson(std::ostream& out, const eval::KittiResult& r) {
-  out << "{\"n_segments\": " << r.segments.size() << ", \"t_err_percent\": " << Num(r.t_err_percent)
-      << ", \"r_err_deg_per_100m\": " << Num(r.r_err_deg_per_100m) << ", \"per_length\": [";
-  for (std::size_t i = 0; i < r.per_length.size(); ++i) {
-    const auto& l = r.per_length[i];
-    out << (i ? ", " : "") << "{\"length_m\": " << Num(l.length_m) << ", \"n\": " << l.n
-        << ", \"t_err_percent\": " << Num(l.t_err_percent)
-        << ", \"r_err_deg_per_100m\": " << Num(l.r_err_deg_per_100m) << "}";
-  }
-  out << "]}\n";
 }
 
 void PrintKittiTable(std::ostream& out, const eval::KittiResult& r) {

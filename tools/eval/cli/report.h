@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// Output of swlio-eval: human-readable tables, one-line JSON, and the plot (a CSV written here,
-/// drawn by scripts/eval_plot.py with Debian's python3-matplotlib).
+/// Output of swlio-eval: human-readable tables (JSON is swlio/eval/json.h) and the plot (a CSV
+/// written here, drawn by scripts/eval_plot.py with Debian's python3-matplotlib).
 
 #include "swlio/eval/evaluate.h"
 #include "swlio/eval/kitti_metric.h"
@@ -12,13 +12,9 @@
 
 namespace swlio::tools {
 
-/// `{"n": …, "max": …, "mean": …, "median": …, "min": …, "rmse": …, "sse": …, "std": …}` with
-/// every double printed by "%.17g" (round-trips exactly).
-void PrintStatisticsJson(std::ostream& out, const eval::Statistics& stats);
 /// evo-like table: one "name\tvalue" line per statistic.
 void PrintStatisticsTable(std::ostream& out, const std::string& title, const eval::Statistics& s);
 
-void PrintKittiJson(std::ostream& out, const eval::KittiResult& result);
 void PrintKittiTable(std::ostream& out, const eval::KittiResult& result);
 
 /// Writes the plot data: one row per pose, `t_s,ref_x,ref_y,ref_z,est_x,est_y,est_z,error`
