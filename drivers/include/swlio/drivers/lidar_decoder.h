@@ -16,7 +16,10 @@
 namespace swlio::drivers {
 
 /// One return decoded from a data packet, before scan assembly.
-/// Frame: the vendor manual's sensor frame (RoboSense and Velodyne: x forward, y left, z up).
+/// Frame: the vendor manual's sensor frame. RoboSense (RS-LiDAR-16 User Manual §8.1) and
+/// Velodyne manuals both use x = r·cos(ω)·sin(α), y = r·cos(ω)·cos(α), z = r·sin(ω): y forward
+/// (azimuth 0), x right, z up, azimuth clockwise seen from above. (ROS drivers rotate this to
+/// x forward, y left.)
 struct LidarReturn {
   float x_m = 0.0f;
   float y_m = 0.0f;
@@ -26,6 +29,7 @@ struct LidarReturn {
   float intensity = 0.0f;    ///< reflectivity as reported, 0–255
   uint16_t ring = 0;         ///< laser channel sorted by elevation, 0 = lowest
   uint8_t return_index = 0;  ///< 0: strongest or only return; 1: second return of a dual pair
+  uint16_t slot = 0;  ///< position in its packet: block × slots-per-block + slot (for encoders)
   /// Firing time on the sensor's own clock, ns (header time + firing offset). Not host time:
   /// the clock model maps it. May wrap (VLP-16: µs past the hour).
   int64_t t_sensor_ns = 0;
@@ -36,12 +40,12 @@ enum class ReturnMode : uint8_t { kStrongest, kLast, kDual, kUnknown };
 
 /// What one data packet held, besides its returns.
 struct LidarPacketSummary {
-  int64_t t_sensor_ns = 0;          ///< packet time on the sensor clock
-  float first_azimuth_deg = 0.0f;   ///< azimuth of the packet's first block
-  float last_azimuth_deg = 0.0f;    ///< azimuth of the packet's last block
+  int64_t t_sensor_ns = 0;         ///< packet time on the sensor clock
+  float first_azimuth_deg = 0.0f;  ///< azimuth of the packet's first block
+  float last_azimuth_deg = 0.0f;   ///< azimuth of the packet's last block
   ReturnMode return_mode = ReturnMode::kUnknown;
-  uint32_t returns = 0;             ///< returns written (valid ranges only)
-  uint32_t no_returns = 0;          ///< channel slots with "no return" / out-of-range values
+  uint32_t returns = 0;     ///< returns written (valid ranges only)
+  uint32_t no_returns = 0;  ///< channel slots with "no return" / out-of-range values
 };
 
 enum class DecodeStatus : uint8_t {
