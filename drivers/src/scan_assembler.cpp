@@ -23,7 +23,7 @@ ScanAssembler::ScanAssembler(const ScanAssemblerConfig& config) : config_(config
 
 void ScanAssembler::SetNominal(double packets_per_revolution, int64_t revolution_period_ns) {
   config_.packets_per_revolution = packets_per_revolution > 0.0 ? packets_per_revolution : 1.0;
-  config_.revolution_period_ns = revolution_period_ns > 0 ? revolution_period_ns : 1;
+  config_.revolution_period_ns = std::max<int64_t>(revolution_period_ns, 0);
 }
 
 double ScanAssembler::RelativeAzimuth(float azimuth_deg) const {
@@ -44,7 +44,8 @@ void ScanAssembler::CheckContinuity(const LidarPacketSummary& summary) {
       static_cast<double>(config_.revolution_period_ns) / config_.packets_per_revolution;
   const double packet_deg = 360.0 / config_.packets_per_revolution;
   const double tolerance = config_.gap_tolerance_packets;
-  if (dt_ns <= 0 || 2 * dt_ns >= config_.revolution_period_ns) {
+  const bool time_known = config_.revolution_period_ns > 0;
+  if (dt_ns <= 0 || (time_known && 2 * dt_ns >= config_.revolution_period_ns)) {
     ++stats_.discontinuities;
     if (dt_ns > 0) {  // a long forward jump: count what the time says is missing
       const double missing = std::round(static_cast<double>(dt_ns) / packet_ns) - 1.0;
@@ -55,7 +56,7 @@ void ScanAssembler::CheckContinuity(const LidarPacketSummary& summary) {
     return;
   }
   double missing = 0.0;
-  if (static_cast<double>(dt_ns) > tolerance * packet_ns) {
+  if (time_known && static_cast<double>(dt_ns) > tolerance * packet_ns) {
     missing = std::round(static_cast<double>(dt_ns) / packet_ns) - 1.0;
   }
   if (az_step > tolerance * packet_deg) {
@@ -149,8 +150,7 @@ void ScanAssembler::CloseCurrent(bool ended_at_cut) {
     return;
   }
   current_.ended_at_cut = ended_at_cut;
-  current_.scan.partial =
-      !current_.started_at_cut || !ended_at_cut || current_.missing_packets > 0;
+  current_.scan.partial = !current_.started_at_cut || !ended_at_cut || current_.missing_packets > 0;
   current_.scan.seq = next_seq_++;
   ++stats_.scans;
   if (current_.scan.partial) ++stats_.partial_scans;

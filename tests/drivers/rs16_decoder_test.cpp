@@ -171,7 +171,7 @@ TEST(Rs16Decoder, DifopSetsDualModeCalibrationRpmAndPorts) {
   Packet difop(1248);
   ASSERT_TRUE(EncodeRs16Difop(info, difop));
   ASSERT_EQ(d.DecodeInfo(difop), DecodeStatus::kOk);
-  EXPECT_EQ(d.rpm(), 1200.0);
+  EXPECT_EQ(d.Rpm(), 1200.0);
   EXPECT_EQ(d.return_mode(), ReturnMode::kDual);
   EXPECT_EQ(d.difop().msop_dst_port, 2244);
   EXPECT_EQ(d.difop().difop_dst_port, 7788);
@@ -199,7 +199,7 @@ TEST(Rs16Decoder, BlankDifopCalibrationKeepsConfigAngles) {
   bytes::WriteU16Be(&difop[8], 0);  // rpm 0: keep the configured speed
   ASSERT_EQ(d.DecodeInfo(difop), DecodeStatus::kOk);
   EXPECT_FALSE(d.difop().has_vertical_calibration);
-  EXPECT_EQ(d.rpm(), 600.0);
+  EXPECT_EQ(d.Rpm(), 600.0);
   EXPECT_EQ(d.vertical_deg_by_channel()[8], 15.0);
   EXPECT_EQ(d.vertical_deg_by_channel()[15], 1.0);
   difop[0] = 0;

@@ -172,7 +172,7 @@ TEST(Rs16RealCapture, ScansFollowTheCutAngleWithoutFalseGaps) {
     ScanAssemblerConfig config;
     config.cut_angle_deg = cut_deg;
     config.packets_per_revolution = decoder.PacketsPerRevolution();
-    config.revolution_period_ns = static_cast<int64_t>(60e9 / decoder.rpm());
+    config.revolution_period_ns = static_cast<int64_t>(60e9 / decoder.Rpm());
     ScanAssembler assembler(config);
     LidarPacketDecoder::ReturnBuffer buf;
     std::vector<AssembledScan> scans;

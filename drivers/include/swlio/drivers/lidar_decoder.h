@@ -40,12 +40,12 @@ enum class ReturnMode : uint8_t { kStrongest, kLast, kDual, kUnknown };
 
 /// What one data packet held, besides its returns.
 struct LidarPacketSummary {
-  int64_t t_sensor_ns = 0;         ///< packet time on the sensor clock
-  float first_azimuth_deg = 0.0f;  ///< azimuth of the packet's first block
-  float last_azimuth_deg = 0.0f;   ///< azimuth of the packet's last block
+  int64_t t_sensor_ns = 0;          ///< packet time on the sensor clock
+  float first_azimuth_deg = 0.0f;   ///< azimuth of the packet's first block
+  float last_azimuth_deg = 0.0f;    ///< azimuth of the packet's last block
   ReturnMode return_mode = ReturnMode::kUnknown;
-  uint32_t returns = 0;     ///< returns written (valid ranges only)
-  uint32_t no_returns = 0;  ///< channel slots with "no return" / out-of-range values
+  uint32_t returns = 0;             ///< returns written (valid ranges only)
+  uint32_t no_returns = 0;          ///< channel slots with "no return" / out-of-range values
 };
 
 enum class DecodeStatus : uint8_t {
@@ -76,6 +76,11 @@ class LidarPacketDecoder {
 
   /// Nominal number of data packets per revolution at the current rpm and return mode.
   virtual double PacketsPerRevolution() const = 0;
+
+  /// Motor speed the decoder currently assumes (config, then info packets), rpm; 0 if unknown.
+  /// Added for the scan assembler's time-based gap detection; the default keeps older decoders
+  /// compiling.
+  virtual double Rpm() const { return 0.0; }
 
   /// Model name ("rs16", "helios16p", "vlp16").
   virtual std::string Model() const = 0;

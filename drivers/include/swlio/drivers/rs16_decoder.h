@@ -68,6 +68,7 @@ class Rs16Decoder final : public LidarPacketDecoder {
   /// Adopts rpm (when in 60…2400), return mode and vertical calibration (when present).
   DecodeStatus DecodeInfo(std::span<const uint8_t> packet) override;
   double PacketsPerRevolution() const override;
+  double Rpm() const override { return rpm_; }
   std::string Model() const override { return "rs16"; }
 
   /// Replaces the per-channel calibration (degrees, by laser channel as transmitted).
@@ -76,7 +77,6 @@ class Rs16Decoder final : public LidarPacketDecoder {
 
   bool has_difop() const { return has_difop_; }
   const Rs16DifopInfo& difop() const { return difop_; }
-  double rpm() const { return rpm_; }
   ReturnMode return_mode() const { return return_mode_; }
   const std::array<double, 16>& vertical_deg_by_channel() const { return vertical_deg_; }
   /// Ring (0 = lowest elevation) of each laser channel.

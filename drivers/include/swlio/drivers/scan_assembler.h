@@ -30,9 +30,11 @@
 namespace swlio::drivers {
 
 struct ScanAssemblerConfig {
-  double cut_angle_deg = 0.0;              ///< [0, 360)
-  double packets_per_revolution = 75.0;    ///< from LidarPacketDecoder::PacketsPerRevolution()
-  int64_t revolution_period_ns = 100'000'000;  ///< 60e9 / rpm
+  double cut_angle_deg = 0.0;            ///< [0, 360)
+  double packets_per_revolution = 75.0;  ///< from LidarPacketDecoder::PacketsPerRevolution()
+  /// 60e9 / rpm; 0 when unknown: then only backward time steps are checked, gaps come from
+  /// the azimuth alone.
+  int64_t revolution_period_ns = 100'000'000;
   /// A step larger than this many nominal packet steps is a gap.
   double gap_tolerance_packets = 1.5;
   /// Points reserved per sweep at start-up (RS16 single return: 16 × ~1800 firings).
@@ -99,9 +101,9 @@ class ScanAssembler {
   AssembledScan current_;
   bool current_open_ = false;
   double previous_relative_deg_ = 0.0;  ///< relative azimuth of the last sample
-  double unwrapped_deg_ = 0.0;  ///< relative azimuth accumulated since the sweep began
-  uint32_t pending_missing_ = 0;  ///< missing packets to charge to the next sweep
-  uint64_t packet_id_ = 0;        ///< id of the packet being added
+  double unwrapped_deg_ = 0.0;          ///< relative azimuth accumulated since the sweep began
+  uint32_t pending_missing_ = 0;        ///< missing packets to charge to the next sweep
+  uint64_t packet_id_ = 0;              ///< id of the packet being added
   uint64_t current_last_packet_id_ = 0;
   bool have_previous_ = false;
   int64_t previous_t_ns_ = 0;
