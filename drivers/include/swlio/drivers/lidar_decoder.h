@@ -16,7 +16,10 @@
 namespace swlio::drivers {
 
 /// One return decoded from a data packet, before scan assembly.
-/// Frame: the vendor manual's sensor frame (RoboSense and Velodyne: x forward, y left, z up).
+/// Frame: the vendor manual's sensor frame. RoboSense (RS-LiDAR-16 User Manual §8.1) and
+/// Velodyne manuals both use x = r·cos(ω)·sin(α), y = r·cos(ω)·cos(α), z = r·sin(ω): y forward
+/// (azimuth 0), x right, z up, azimuth clockwise seen from above. (ROS drivers rotate this to
+/// x forward, y left.)
 struct LidarReturn {
   float x_m = 0.0f;
   float y_m = 0.0f;
@@ -26,6 +29,7 @@ struct LidarReturn {
   float intensity = 0.0f;    ///< reflectivity as reported, 0–255
   uint16_t ring = 0;         ///< laser channel sorted by elevation, 0 = lowest
   uint8_t return_index = 0;  ///< 0: strongest or only return; 1: second return of a dual pair
+  uint16_t slot = 0;  ///< position in its packet: block × slots-per-block + slot (for encoders)
   /// Firing time on the sensor's own clock, ns (header time + firing offset). Not host time:
   /// the clock model maps it. May wrap (VLP-16: µs past the hour).
   int64_t t_sensor_ns = 0;
@@ -72,6 +76,11 @@ class LidarPacketDecoder {
 
   /// Nominal number of data packets per revolution at the current rpm and return mode.
   virtual double PacketsPerRevolution() const = 0;
+
+  /// Motor speed the decoder currently assumes (config, then info packets), rpm; 0 if unknown.
+  /// Added for the scan assembler's time-based gap detection; the default keeps older decoders
+  /// compiling.
+  virtual double Rpm() const { return 0.0; }
 
   /// Model name ("rs16", "helios16p", "vlp16").
   virtual std::string Model() const = 0;

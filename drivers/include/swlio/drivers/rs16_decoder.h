@@ -1,0 +1,106 @@
+#pragma once
+/// @file
+/// RS-LiDAR-16 MSOP/DIFOP decoder (layout and sources in rs16_protocol.h).
+///
+/// Geometry per return (RS-LiDAR-16 User Manual §8.1): x = r·cos ω·sin α, y = r·cos ω·cos α,
+/// z = r·sin ω, with ω the laser's vertical angle and α the firing's azimuth after horizontal
+/// calibration. Single return (strongest or last): a block holds two firing sequences of 55.5 µs
+/// (slots 0–15, then 16–31); dual return: one firing sequence, slots 16–31 are the second return
+/// (rs_driver Rs16SingleReturnBlockIterator / Rs16DualReturnBlockIterator). Each slot's azimuth
+/// is interpolated between its block's azimuth and the next block's by its firing time; the
+/// last block reuses the step before it, and a step above twice the nominal one (a jump, e.g.
+/// the FOV edge) is replaced by the nominal step from the motor speed.
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "swlio/drivers/lidar_config.h"
+#include "swlio/drivers/lidar_decoder.h"
+#include "swlio/drivers/rs16_protocol.h"
+
+namespace swlio::drivers {
+
+/// Everything a DIFOP packet tells about the unit.
+struct Rs16DifopInfo {
+  double rpm = 0.0;  ///< motor speed as reported (0 on some units while spinning up)
+  std::array<uint8_t, 4> lidar_ip{};
+  std::array<uint8_t, 4> host_ip{};
+  std::array<uint8_t, 6> mac{};
+  uint16_t msop_src_port = 0;   ///< port the LiDAR sends MSOP from
+  uint16_t msop_dst_port = 0;   ///< port the host receives MSOP on
+  uint16_t difop_src_port = 0;  ///< port the LiDAR sends DIFOP from
+  uint16_t difop_dst_port = 0;  ///< port the host receives DIFOP on
+  double fov_start_deg = 0.0;
+  double fov_end_deg = 0.0;
+  ReturnMode return_mode = ReturnMode::kUnknown;
+  bool time_valid = false;
+  int64_t t_sensor_ns = 0;  ///< DIFOP header time (YMD), sensor clock
+  /// false when pitch_cali is blank (all 0x00/0xFF, as rs_driver checks) or out of range.
+  bool has_vertical_calibration = false;
+  std::array<double, 16> vertical_angles_deg{};  ///< by laser channel as transmitted, not ring
+};
+
+/// Parses a DIFOP packet. Returns kWrongSize / kBadHeader without touching `info`.
+DecodeStatus ParseRs16Difop(std::span<const uint8_t> packet, Rs16DifopInfo* info);
+
+struct Rs16DecoderOptions {
+  rs16::TimeFormat time_format = rs16::TimeFormat::kAuto;
+  /// Used until a DIFOP packet reports the unit's return mode.
+  ReturnMode initial_return_mode = ReturnMode::kStrongest;
+};
+
+class Rs16Decoder final : public LidarPacketDecoder {
+ public:
+  /// Uses `config.vertical_angles_deg` (indexed by ring, nominal RS16 channel order assumed),
+  /// `config.rpm`, `config.min_range_m` and `config.max_range_m` until a DIFOP supplies more.
+  explicit Rs16Decoder(const LidarConfig& config, Rs16DecoderOptions options = {});
+
+  LidarPacketKind Classify(std::span<const uint8_t> packet) const override;
+  /// Needs room for every slot (kBlocks × kSlotsPerBlock = 384 returns) in `out`. Rejects the
+  /// whole packet (kBadHeader) when a block flag, a block azimuth (≥ 360°) or the header time
+  /// is invalid. Distances 0 and 0xFFFF are "no return"; ranges outside [min, max] are dropped;
+  /// both are counted in `summary->no_returns`.
+  DecodeStatus DecodeData(std::span<const uint8_t> packet,
+                          std::span<LidarReturn> out,
+                          LidarPacketSummary* summary) const override;
+  /// Adopts rpm (when in 60…2400), return mode and vertical calibration (when present).
+  DecodeStatus DecodeInfo(std::span<const uint8_t> packet) override;
+  double PacketsPerRevolution() const override;
+  double Rpm() const override { return rpm_; }
+  std::string Model() const override { return "rs16"; }
+
+  /// Replaces the per-channel calibration (degrees, by laser channel as transmitted).
+  void SetCalibration(const std::array<double, 16>& vertical_deg_by_channel,
+                      const std::array<double, 16>& horizontal_deg_by_channel);
+
+  bool has_difop() const { return has_difop_; }
+  const Rs16DifopInfo& difop() const { return difop_; }
+  ReturnMode return_mode() const { return return_mode_; }
+  const std::array<double, 16>& vertical_deg_by_channel() const { return vertical_deg_; }
+  /// Ring (0 = lowest elevation) of each laser channel.
+  const std::array<uint16_t, 16>& ring_of_channel() const { return ring_; }
+  /// Duration of one block: 111 µs in single-return mode, 55.5 µs in dual.
+  int64_t BlockPeriodNs() const;
+
+ private:
+  void UpdateLaserTables();
+
+  Rs16DecoderOptions options_;
+  double rpm_;
+  ReturnMode return_mode_;
+  uint16_t min_raw_;  ///< smallest accepted distance code (≥ 1)
+  uint16_t max_raw_;  ///< largest accepted distance code (≤ 0xFFFE)
+  bool has_difop_ = false;
+  Rs16DifopInfo difop_;
+  std::array<double, 16> vertical_deg_{};
+  std::array<double, 16> horizontal_deg_{};
+  std::array<uint16_t, 16> ring_{};
+  std::array<double, 16> cos_vert_{};
+  std::array<double, 16> sin_vert_{};
+  std::array<double, 16> cos_horiz_{};
+  std::array<double, 16> sin_horiz_{};
+};
+
+}  // namespace swlio::drivers
