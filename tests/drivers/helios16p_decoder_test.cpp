@@ -97,6 +97,30 @@ TEST(Helios16pDecoder, SyntheticReturnGeometryAndTime) {
   EXPECT_EQ(r.t_sensor_ns, s.t_sensor_ns + 3 * 55560 + 30925);  // 61.85 µs / 2
 }
 
+TEST(Helios16pDecoder, DualReturnModeFromDifop) {
+  Helios16pDecoder dec;
+  std::vector<uint8_t> d(Helios16pDecoder::kPacketBytes, 0);
+  const uint8_t id[8] = {0xA5, 0xFF, 0x00, 0x5A, 0x11, 0x11, 0x55, 0x55};
+  std::copy(id, id + 8, d.begin());
+  d[300] = 0x00;  // dual return; all angles 0° (valid)
+  ASSERT_EQ(dec.DecodeInfo(d), DecodeStatus::kOk);
+  EXPECT_EQ(dec.Mode(), ReturnMode::kDual);
+  EXPECT_TRUE(dec.Info().calibration_from_difop);
+  auto p = SyntheticMsop(0, 20);
+  bytes::WriteU16Be(p.data() + 42 + 4 + 3 * 4, 800);    // laser 4, first return 2 m
+  bytes::WriteU16Be(p.data() + 42 + 4 + 3 * 20, 1200);  // laser 4, second return 3 m
+  LidarPacketDecoder::ReturnBuffer buf;
+  LidarPacketSummary s;
+  ASSERT_EQ(dec.DecodeData(p, buf, &s), DecodeStatus::kOk);
+  ASSERT_EQ(s.returns, 2u);
+  EXPECT_EQ(s.return_mode, ReturnMode::kDual);
+  EXPECT_EQ(buf[0].return_index, 0);
+  EXPECT_EQ(buf[1].return_index, 1);
+  EXPECT_EQ(buf[0].t_sensor_ns, buf[1].t_sensor_ns);
+  EXPECT_EQ(buf[0].azimuth_deg, buf[1].azimuth_deg);
+  EXPECT_FLOAT_EQ(buf[1].range_m, 3.0f);
+}
+
 TEST(Helios16pDecoder, DifopWithUncalibratedAnglesKeepsFallback) {
   Helios16pDecoder dec;
   std::vector<uint8_t> d(Helios16pDecoder::kPacketBytes, 0xFF);
