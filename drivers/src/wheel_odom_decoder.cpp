@@ -96,34 +96,35 @@ std::optional<WheelOdomDecoder> WheelOdomDecoder::Create(const CanConfig& config
 
 std::optional<WheelOdomSample> WheelOdomDecoder::Decode(const CanFrame& frame, int64_t t_ns) {
   ++counters_.frames;
-  bool matched = false;
-  bool used = false;
-  bool bad_dlc = false;
+  std::array<bool, 2> match{};
   for (size_t k = 0; k < signals_.size(); ++k) {
     const CompiledCanSignal& s = signals_[k];
-    if (frame.error || s.id != frame.id || s.extended != frame.extended) continue;
-    matched = true;
-    if (frame.remote) continue;
-    if (frame.dlc > 8 || frame.dlc < s.min_dlc || (s.exact_dlc != 0 && frame.dlc != s.exact_dlc)) {
-      bad_dlc = true;
-      continue;
-    }
-    if (fresh_[k]) ++counters_.unpaired_dropped;  // the partner never came
-    value_[k] = ExtractCanSignal(s, frame);
-    value_t_ns_[k] = t_ns;
-    fresh_[k] = true;
-    used = true;
+    match[k] = !frame.error && s.id == frame.id && s.extended == frame.extended;
   }
-  if (frame.error || (matched && frame.remote)) {
+  if (frame.error || ((match[0] || match[1]) && frame.remote)) {
     ++counters_.remote_or_error;
     return std::nullopt;
   }
-  if (!matched) {
+  if (!match[0] && !match[1]) {
     ++counters_.unknown_id;
     return std::nullopt;
   }
-  if (bad_dlc) ++counters_.bad_dlc;
-  if (!used) return std::nullopt;
+  // A frame too short for any of its signals is malformed as a whole: none of it is used.
+  for (size_t k = 0; k < signals_.size(); ++k) {
+    const CompiledCanSignal& s = signals_[k];
+    if (match[k] && (frame.dlc > 8 || frame.dlc < s.min_dlc ||
+                     (s.exact_dlc != 0 && frame.dlc != s.exact_dlc))) {
+      ++counters_.bad_dlc;
+      return std::nullopt;
+    }
+  }
+  for (size_t k = 0; k < signals_.size(); ++k) {
+    if (!match[k]) continue;
+    if (fresh_[k]) ++counters_.unpaired_dropped;  // the partner never came
+    value_[k] = ExtractCanSignal(signals_[k], frame);
+    value_t_ns_[k] = t_ns;
+    fresh_[k] = true;
+  }
   ++counters_.frames_used;
   return MakeSample(t_ns);
 }

@@ -234,6 +234,18 @@ TEST(WheelOdomDecoder, CountsFramesItCannotUse) {
   EXPECT_TRUE(d->Decode(Frame(0x201, {1, 0, 2, 0, 0, 0, 0, 0}), 0));
 }
 
+TEST(WheelOdomDecoder, AFrameTooShortForOneSignalIsNotUsedAtAll) {
+  auto d = WheelOdomDecoder::Create(WheelLayout(0x201, 0x201));  // needs 2 and 4 bytes
+  ASSERT_TRUE(d);
+  EXPECT_FALSE(d->Decode(Frame(0x201, {0x10, 0x00}), 1));
+  EXPECT_EQ(d->counters().bad_dlc, 1u);
+  EXPECT_EQ(d->counters().frames_used, 0u);
+  const auto s = d->Decode(Frame(0x201, {0x01, 0x00, 0x02, 0x00}), 2);
+  ASSERT_TRUE(s);
+  EXPECT_DOUBLE_EQ(s->left_wheel_mps, 0.001);  // not the 0x10 of the short frame
+  EXPECT_EQ(d->counters().unpaired_dropped, 0u);
+}
+
 TEST(WheelOdomDecoder, TwistModeAndExtendedIds) {
   CanConfig c;
   c.mode = "twist";
