@@ -13,7 +13,8 @@ namespace swlio::drivers {
 namespace {
 
 constexpr uint32_t kCanErrFlag = 0x20000000;
-constexpr int kMaxSecondsDigits = 11;  // keeps seconds · 1e9 far inside int64
+constexpr int kMaxSecondsDigits = 10;
+constexpr int64_t kMaxSeconds = 9'000'000'000;  // keeps seconds · 1e9 inside int64 (year 2255)
 
 int HexValue(char c) {
   if (c >= '0' && c <= '9') return c - '0';
@@ -49,6 +50,7 @@ bool ParseTime(std::string_view& s, int64_t* t_ns) {
     if (c < '0' || c > '9') return false;
     seconds = seconds * 10 + (c - '0');
   }
+  if (seconds > kMaxSeconds) return false;
   int64_t ns = 0;
   for (size_t i = 0; i < 9; ++i) {
     const char c = i < frac.size() ? frac[i] : '0';
@@ -139,7 +141,11 @@ CandumpLineStatus ParseCandumpLine(std::string_view line, CandumpRecord* out) {
   CandumpRecord r;
   if (!ParseTime(line, &r.t_ns)) return CandumpLineStatus::kMalformed;
   const std::string_view iface = NextToken(line);
-  if (iface.empty() || iface.size() >= r.interface.size()) return CandumpLineStatus::kMalformed;
+  const bool printable =
+      std::all_of(iface.begin(), iface.end(), [](char c) { return c > ' ' && c < 0x7F; });
+  if (iface.empty() || iface.size() >= r.interface.size() || !printable) {
+    return CandumpLineStatus::kMalformed;
+  }
   std::copy(iface.begin(), iface.end(), r.interface.begin());
   const std::string_view frame = NextToken(line);
   const std::string_view flag = NextToken(line);

@@ -59,23 +59,25 @@ TEST(CandumpLine, ClassifiesEverythingElse) {
   EXPECT_EQ(ParseCandumpLine("   \r\n", &r), CandumpLineStatus::kBlank);
   EXPECT_EQ(ParseCandumpLine("# recorded on the chassis", &r), CandumpLineStatus::kBlank);
   EXPECT_EQ(ParseCandumpLine("(1.0) can0 123##1DEADBEEF", &r), CandumpLineStatus::kCanFd);
-  for (const char* bad : {
-           "(1.0) can0 800#00",                  // standard id > 0x7FF
-           "(1.0) can0 12#00",                   // 2-digit id
-           "(1.0) can0 1234#00",                 // 4-digit id
-           "(1.0) can0 40000000#00",             // RTR flag bit in an 8-digit id
-           "(1.0) can0 123#0",                   // half a byte
-           "(1.0) can0 123#001122334455667788",  // 9 bytes
-           "(1.0) can0 123#GG",                  // not hex
-           "(1.0) can0 123#R9",                  // remote DLC > 8
-           "(1.0) can0 123",                     // no '#'
-           "(1.0) can0",                         // no frame
-           "1.0 can0 123#00",                    // no parentheses
-           "(1.) can0 123#00",                   // no fraction
-           "(.5) can0 123#00",                   // no seconds
-           "(1.0000000001) can0 123#00",         // 10 fraction digits
-           "(99999999999999.0) can0 123#00",     // seconds would overflow
-           "(1.0 can0 123#00",                   // unclosed
+  for (std::string_view bad : std::initializer_list<std::string_view>{
+           "(1.0) can0 800#00",                            // standard id > 0x7FF
+           "(1.0) can0 12#00",                             // 2-digit id
+           "(1.0) can0 1234#00",                           // 4-digit id
+           "(1.0) can0 40000000#00",                       // RTR flag bit in an 8-digit id
+           "(1.0) can0 123#0",                             // half a byte
+           "(1.0) can0 123#001122334455667788",            // 9 bytes
+           "(1.0) can0 123#GG",                            // not hex
+           "(1.0) can0 123#R9",                            // remote DLC > 8
+           "(1.0) can0 123",                               // no '#'
+           "(1.0) can0",                                   // no frame
+           "1.0 can0 123#00",                              // no parentheses
+           "(1.) can0 123#00",                             // no fraction
+           "(.5) can0 123#00",                             // no seconds
+           "(1.0000000001) can0 123#00",                   // 10 fraction digits
+           "(99999999999999.0) can0 123#00",               // seconds would overflow
+           "(9999999999.0) can0 123#00",                   // 10 digits, still past int64 ns
+           "(1.0 can0 123#00",                             // unclosed
+           std::string_view("(1.0) \0\ncan0 123#00", 20),  // control characters in the name
            "(1.0) averyveryverylongifname 123#00",
            "(1.0) can0 123#00 X",  // unknown trailing flag
            "(1.0) can0 123#00 T extra",

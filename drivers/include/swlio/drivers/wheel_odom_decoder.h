@@ -74,7 +74,9 @@ class WheelOdomDecoder {
   const WheelOdomCounters& counters() const { return counters_; }
   /// The (up to two) distinct identifiers the layout uses, for receive filters.
   int NumIds() const { return num_ids_; }
-  const CompiledCanSignal& IdSignal(int i) const { return signals_[static_cast<size_t>(ids_[i])]; }
+  const CompiledCanSignal& IdSignal(int i) const {
+    return signals_[static_cast<size_t>(ids_[static_cast<size_t>(i)])];
+  }
 
  private:
   WheelOdomDecoder() = default;
