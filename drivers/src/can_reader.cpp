@@ -38,9 +38,9 @@ bool SetKernelFilters(int fd, std::span<const CanIdFilter> filters) {
   can_filter kf[kMaxFilters] = {};
   for (size_t i = 0; i < filters.size(); ++i) {
     kf[i].can_id = FilterKey(filters[i].id, filters[i].extended);
-    // Matching the EFF flag as well keeps standard and extended ids apart.
-    kf[i].can_mask = (filters[i].mask & CAN_EFF_MASK) | CAN_EFF_FLAG | CAN_RTR_FLAG;
-    kf[i].can_id &= ~CAN_RTR_FLAG;
+    // Matching the EFF flag as well keeps standard and extended ids apart; RTR is not in the
+    // mask, so remote frames pass as in the user-space filter (the decoder counts them).
+    kf[i].can_mask = (filters[i].mask & CAN_EFF_MASK) | CAN_EFF_FLAG;
   }
   const auto bytes = static_cast<socklen_t>(filters.size() * sizeof(can_filter));
   return setsockopt(fd, SOL_CAN_RAW, CAN_RAW_FILTER, kf, bytes) == 0;
