@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "swlio/drivers/rx_timestamp.h"
+#include "swlio/drivers/wheel_odom_decoder.h"
 
 namespace swlio::drivers {
 namespace {
@@ -62,7 +63,7 @@ TEST_F(CanReaderTest, ReadsFramesWithKernelTimestampsOnTheMonotonicClock) {
   EXPECT_TRUE(out[2].frame.remote);
   EXPECT_EQ(out[2].frame.dlc, 4);
   EXPECT_EQ(out[2].frame.data[0], 0);  // a remote frame carries no data
-  for (int i = 0; i < 3; ++i) {
+  for (size_t i = 0; i < 3; ++i) {
     EXPECT_EQ(out[i].kernel_stamp, reader.kernel_timestamps());
     // The stamp is taken when the kernel queues the frame: after `before`, and (allowing the
     // microseconds of the realtime→monotonic conversion) not after the send returned.
@@ -144,6 +145,55 @@ TEST(SocketCanConversion, RoundTripsFlagsAndData) {
   EXPECT_EQ(back.id, f.id);
   EXPECT_TRUE(back.extended);
   EXPECT_EQ(back.data, f.data);
+}
+
+}  // namespace
+}  // namespace swlio::drivers
+
+namespace swlio::drivers {
+namespace {
+
+TEST_F(CanReaderTest, FeedsTheDecoderThroughFiltersBuiltFromItsLayout) {
+  CanConfig layout;
+  for (const char* role : {"left_wheel_speed", "right_wheel_speed"}) {
+    CanSignalConfig s;
+    s.role = role;
+    s.can_id = layout.signals.empty() ? 0x301 : 0x302;
+    s.byte_offset = 0;
+    s.length_bits = 16;
+    s.scale = 0.001;
+    layout.signals.push_back(s);
+  }
+  auto decoder = WheelOdomDecoder::Create(layout);
+  ASSERT_TRUE(decoder);
+  std::vector<CanIdFilter> filters;
+  for (int i = 0; i < decoder->NumIds(); ++i) {
+    filters.push_back({decoder->IdSignal(i).id, decoder->IdSignal(i).extended, kCanMaxExtendedId});
+  }
+  ASSERT_EQ(filters.size(), 2u);
+  CanReader reader(fds_[0], filters);
+  for (int k = 0; k < 5; ++k) {
+    Send(Frame(0x100, false, 0xEE));  // chassis chatter the filter removes
+    Send(Frame(0x301, false, static_cast<uint8_t>(10 + k)));
+    Send(Frame(0x302, false, static_cast<uint8_t>(20 + k)));
+  }
+  std::array<CanRxFrame, 16> out{};
+  std::vector<WheelOdomSample> samples;
+  for (int round = 0; round < 5 && samples.size() < 5; ++round) {
+    const int n = reader.Read(out, 200);
+    for (int i = 0; i < n; ++i) {
+      const CanRxFrame& rx = out[static_cast<size_t>(i)];
+      if (auto s = decoder->Decode(rx.frame, rx.t_ns)) samples.push_back(*s);
+    }
+  }
+  ASSERT_EQ(samples.size(), 5u);
+  for (size_t k = 0; k < 5; ++k) {
+    // Frame() puts 0xAB in byte 1: raw = 0xAB00 + first byte, signed → negative.
+    EXPECT_DOUBLE_EQ(samples[k].left_wheel_mps, (static_cast<int16_t>(0xAB00 + 10 + k)) * 0.001);
+    EXPECT_DOUBLE_EQ(samples[k].right_wheel_mps, (static_cast<int16_t>(0xAB00 + 20 + k)) * 0.001);
+  }
+  EXPECT_EQ(reader.counters().filtered_out, 5u);
+  EXPECT_EQ(decoder->counters().unknown_id, 0u);
 }
 
 }  // namespace
