@@ -54,10 +54,13 @@ size_t Levenshtein(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
+/// Decimal, or hexadecimal with a 0x prefix (CAN identifiers are written in hex).
 bool ParseInt(const std::string& text, int64_t* out) {
+  const bool hex = text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
+  const char* begin = text.data() + (hex ? 2 : 0);
   const char* end = text.data() + text.size();
-  auto [ptr, ec] = std::from_chars(text.data(), end, *out);
-  return ec == std::errc() && ptr == end;
+  auto [ptr, ec] = std::from_chars(begin, end, *out, hex ? 16 : 10);
+  return ec == std::errc() && ptr == end && !(hex && *begin == '-');
 }
 
 bool ParseDouble(const std::string& text, double* out) {
@@ -125,6 +128,28 @@ class Section {
       return Section(YAML::Node(), Path(key), ctx_);
     }
     return Section(value ? value : YAML::Node(), Path(key), ctx_);
+  }
+
+  /// A list of mappings: calls `each(Section)` for every item, whose path is "key[i]";
+  /// absent → no call. Items that are not mappings are reported.
+  template <typename Each>
+  void ForEachChild(const char* key, Each each) {
+    const YAML::Node value = Take(key);
+    if (!value) return;
+    if (!value.IsSequence()) {
+      ctx_->Error(value.Mark(), Path(key), "expected a list of mappings, got " + Describe(value));
+      return;
+    }
+    for (size_t i = 0; i < value.size(); ++i) {
+      const std::string item_path = Path(key) + "[" + std::to_string(i) + "]";
+      const YAML::Node item = value[i];
+      if (!item.IsMap()) {
+        ctx_->Error(item.Mark(), item_path, "expected a mapping of keys, got " + Describe(item));
+        continue;
+      }
+      ctx_->marks[item_path] = item.Mark();
+      each(Section(item, item_path, ctx_));
+    }
   }
 
   /// Reports keys that no Get()/Child() took, and duplicated keys.
@@ -229,9 +254,30 @@ void Bind(Section s, drivers::ImuConfig& c) {
   s.Finish();
 }
 
+void Bind(Section s, drivers::CanSignalConfig& c) {
+  s.Get("role", c.role);
+  s.Get("can_id", c.can_id);
+  s.Get("extended", c.extended);
+  s.Get("start_bit", c.start_bit);
+  s.Get("byte_offset", c.byte_offset);
+  s.Get("length_bits", c.length_bits);
+  s.Get("byte_order", c.byte_order);
+  s.Get("signed", c.is_signed);
+  s.Get("scale", c.scale);
+  s.Get("offset", c.offset);
+  s.Get("dlc", c.dlc);
+  s.Finish();
+}
+
 void Bind(Section s, drivers::CanConfig& c) {
   s.Get("enabled", c.enabled);
   s.Get("interface", c.interface);
+  s.Get("mode", c.mode);
+  s.Get("wheel_speed_unit", c.wheel_speed_unit);
+  s.Get("wheel_radius_m", c.wheel_radius_m);
+  s.Get("track_width_m", c.track_width_m);
+  s.Get("max_pair_skew_s", c.max_pair_skew_s);
+  s.ForEachChild("signals", [&](Section item) { Bind(item, c.signals.emplace_back()); });
   s.Finish();
 }
 

@@ -1,0 +1,41 @@
+#include "swlio/drivers/rx_timestamp.h"
+
+#include <gtest/gtest.h>
+
+#include "swlio/core/time.h"
+
+namespace swlio::drivers {
+namespace {
+
+timespec RealtimeNow() {
+  timespec ts{};
+  clock_gettime(CLOCK_REALTIME, &ts);
+  return ts;
+}
+
+timespec Shift(timespec ts, int64_t ns) {
+  const int64_t total = static_cast<int64_t>(ts.tv_sec) * kNsPerSec + ts.tv_nsec + ns;
+  return {static_cast<time_t>(total / kNsPerSec), static_cast<long>(total % kNsPerSec)};
+}
+
+TEST(RealtimeToMonotonic, MapsARecentRealtimeStampToMonotonicTime) {
+  const timespec stamp = Shift(RealtimeNow(), -2 * kNsPerMs);  // "received" 2 ms ago
+  const int64_t mono_now = MonotonicNowNs();
+  const RealtimeToMonotonic clock = RealtimeToMonotonic::Measure();
+  const std::optional<int64_t> t = clock.Convert(stamp);
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(static_cast<double>(*t), static_cast<double>(mono_now - 2 * kNsPerMs), 1e6);
+  EXPECT_LE(*t, clock.read_mono_ns);
+}
+
+TEST(RealtimeToMonotonic, RejectsImplausibleStamps) {
+  const RealtimeToMonotonic clock = RealtimeToMonotonic::Measure();
+  const timespec now = RealtimeNow();
+  EXPECT_FALSE(clock.Convert(Shift(now, 50 * kNsPerMs)));                // in the future
+  EXPECT_FALSE(clock.Convert(Shift(now, -kMaxStampAgeNs - kNsPerSec)));  // far too old
+  EXPECT_FALSE(clock.Convert(timespec{0, 0}));                           // no stamp
+  EXPECT_TRUE(clock.Convert(Shift(now, -kMaxStampAgeNs + kNsPerSec)));
+}
+
+}  // namespace
+}  // namespace swlio::drivers
