@@ -120,7 +120,9 @@ bool DecodeSatInfo(std::span<const uint8_t> d, MtData2Sample* s) {
 bool DecodeFixed(uint16_t id, std::span<const uint8_t> d, MtData2Sample* s, bool* known) {
   *known = true;
   const size_t n = d.size();
-  switch (id) {
+  // Format bits mean nothing for these integer items; some firmware sets them anyway (the
+  // MTi-300 capture sends BaroPressure as 0x3013), so they are matched on the type alone.
+  switch (id & xdi::kTypeMask) {
     case xdi::kPacketCounter:
       if (n != 2) return false;
       s->packet_counter = ReadU16Be(d.data());

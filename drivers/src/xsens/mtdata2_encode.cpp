@@ -91,8 +91,8 @@ void WritePvt(uint8_t* p, const XsensGnssPvt& g) {
   for (size_t i = 0; i < 7; ++i) WriteU16Be(p + 80 + 2 * i, dops[i]);
 }
 
-bool PutSatInfo(std::span<uint8_t> out, size_t* pos, const XsensGnssSatInfo& s) {
-  uint8_t* p = Begin(out, pos, xdi::kGnssSatInfo, 8 + 4 * size_t{s.stored});
+bool PutSatInfo(std::span<uint8_t> out, size_t* pos, uint16_t id, const XsensGnssSatInfo& s) {
+  uint8_t* p = Begin(out, pos, id, 8 + 4 * size_t{s.stored});
   if (p == nullptr) return false;
   WriteU32Be(p, s.itow_ms);
   p[4] = s.num_svs;
@@ -108,12 +108,13 @@ bool PutSatInfo(std::span<uint8_t> out, size_t* pos, const XsensGnssSatInfo& s) 
 }
 
 /// Encodes the item of type `type` when present. Returns false only when out of space.
-bool PutItem(const MtData2Sample& s, uint16_t type, std::span<uint8_t> out, size_t* pos) {
+bool PutItem(const MtData2Sample& s, uint16_t id, std::span<uint8_t> out, size_t* pos) {
+  const auto type = static_cast<uint16_t>(id & xdi::kTypeMask);
   uint8_t* p = nullptr;
   switch (type) {
     case xdi::kPacketCounter:
       if (!s.packet_counter) return true;
-      if ((p = Begin(out, pos, type, 2))) WriteU16Be(p, *s.packet_counter);
+      if ((p = Begin(out, pos, id, 2))) WriteU16Be(p, *s.packet_counter);
       return p != nullptr;
     case xdi::kSampleTimeFine:
     case xdi::kSampleTimeCoarse:
@@ -124,17 +125,17 @@ bool PutItem(const MtData2Sample& s, uint16_t type, std::span<uint8_t> out, size
                                          : type == xdi::kBaroPressure     ? s.baro_pressure_pa
                                                                           : s.status_word;
       if (!v) return true;
-      if ((p = Begin(out, pos, type, 4))) WriteU32Be(p, *v);
+      if ((p = Begin(out, pos, id, 4))) WriteU32Be(p, *v);
       return p != nullptr;
     }
     case xdi::kStatusByte:
       if (!s.status_byte) return true;
-      if ((p = Begin(out, pos, type, 1))) p[0] = *s.status_byte;
+      if ((p = Begin(out, pos, id, 1))) p[0] = *s.status_byte;
       return p != nullptr;
     case xdi::kUtcTime: {
       if (!s.utc_time) return true;
       const XsensUtcTime& t = *s.utc_time;
-      if (!(p = Begin(out, pos, type, 12))) return false;
+      if (!(p = Begin(out, pos, id, 12))) return false;
       WriteU32Be(p, t.nanoseconds);
       WriteU16Be(p + 4, t.year);
       const uint8_t b[] = {t.month, t.day, t.hour, t.minute, t.second, t.flags};
@@ -143,10 +144,10 @@ bool PutItem(const MtData2Sample& s, uint16_t type, std::span<uint8_t> out, size
     }
     case xdi::kGnssPvtData:
       if (!s.gnss_pvt) return true;
-      if ((p = Begin(out, pos, type, kGnssPvtSize))) WritePvt(p, *s.gnss_pvt);
+      if ((p = Begin(out, pos, id, kGnssPvtSize))) WritePvt(p, *s.gnss_pvt);
       return p != nullptr;
     case xdi::kGnssSatInfo:
-      return !s.gnss_sat_info || PutSatInfo(out, pos, *s.gnss_sat_info);
+      return !s.gnss_sat_info || PutSatInfo(out, pos, id, *s.gnss_sat_info);
     default:
       break;
   }
@@ -170,7 +171,7 @@ size_t EncodeMtData2(const MtData2Sample& sample, std::span<uint8_t> out) {
   size_t pos = 0;
   if (sample.item_count > 0) {
     for (size_t i = 0; i < sample.item_count; ++i) {
-      if (!PutItem(sample, sample.item_ids[i] & xdi::kTypeMask, out, &pos)) return 0;
+      if (!PutItem(sample, sample.item_ids[i], out, &pos)) return 0;
     }
     return pos;
   }
