@@ -104,7 +104,7 @@ TEST(XbusFramer, FalsePreambleAnnouncingLongFrameDoesNotSwallowRealFrames) {
   stream.resize(stream.size() + 100, 0x00);
   const auto frames = CollectFrames(stream, 5);
   ASSERT_EQ(frames.size(), 20u);
-  for (int i = 0; i < 20; ++i) EXPECT_EQ(frames[i].payload[0], i);
+  for (size_t i = 0; i < 20; ++i) EXPECT_EQ(frames[i].payload[0], i);
 }
 
 class EinrideStream : public ::testing::Test {
