@@ -121,9 +121,11 @@ void Account(const xs::MtData2Sample& s, XsensTotals* t) {
   if (xs::ToImuSample(s, 0)) ++t->imu_samples;
   if (!s.packet_counter) return;
   const uint16_t c = *s.packet_counter;
-  if (t->last_counter && c != static_cast<uint16_t>(*t->last_counter + 1)) {
-    ++t->counter_gaps;
-    t->missing_packets += static_cast<uint16_t>(c - *t->last_counter - 1);
+  if (t->last_counter) {
+    const auto step = static_cast<uint16_t>(c - *t->last_counter);
+    if (step != 1) ++t->counter_gaps;
+    // Forward jumps count as losses; repeats and backward jumps (device reset) do not.
+    if (step > 1 && step < 0x8000) t->missing_packets += step - 1u;
   }
   if (!t->first_counter) t->first_counter = c;
   t->last_counter = c;
