@@ -126,6 +126,16 @@ TEST(MtData2Decode, UnknownAndIllSizedItemsAreSkippedAndCounted) {
   EXPECT_EQ(s.item_count, 2);
 }
 
+TEST(MtData2Decode, RepeatedTypeKeepsTheLastValue) {
+  // Devices never repeat a type in one message; if one does, the last value wins and both
+  // occurrences stay listed (found by the fuzzer: such messages cannot re-encode identically).
+  const std::vector<uint8_t> payload = {0x10, 0x20, 0x02, 0x00, 0x01, 0x10, 0x20, 0x02, 0x00, 0x02};
+  MtData2Sample s;
+  ASSERT_EQ(DecodeMtData2(payload, &s), MtData2Status::kOk);
+  EXPECT_EQ(s.packet_counter, 2);
+  EXPECT_EQ(s.item_count, 2);
+}
+
 TEST(MtData2Decode, TruncatedItemKeepsEarlierItems) {
   const std::vector<uint8_t> payload = {0x10, 0x20, 0x02, 0x00, 0x07, 0x40, 0x20, 0x0C, 0x01};
   MtData2Sample s;

@@ -30,6 +30,13 @@ void OnFrame(const xs::XbusFrame& frame, xs::XsensConfigurator* config, int64_t 
   static std::array<uint8_t, xs::kXbusMaxPayload + 64> out;
   const size_t n = xs::EncodeMtData2(sample, out);
   if (status != xs::MtData2Status::kOk || sample.item_count >= xs::MtData2Sample::kMaxItems) return;
+  // The sample holds one value per type (the last one sent), so a message repeating a type
+  // cannot round-trip; real devices never repeat one.
+  for (size_t i = 0; i < sample.item_count; ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      if ((sample.item_ids[i] & 0xFFF0) == (sample.item_ids[j] & 0xFFF0)) return;
+    }
+  }
   // Known items re-encode into at most the original size and decode to the same items.
   Check(n <= frame.payload.size());
   Check(xs::DecodeMtData2({out.data(), n}, &again) == xs::MtData2Status::kOk);
