@@ -22,6 +22,15 @@ namespace {
 namespace fs = std::filesystem;
 constexpr int64_t kMs = 1'000'000;
 
+/// False where the system offers no pseudo-terminals (then the test is skipped).
+bool PtyAvailable() {
+  int m = -1, s = -1;
+  if (::openpty(&m, &s, nullptr, nullptr, nullptr) != 0) return false;
+  ::close(m);
+  ::close(s);
+  return true;
+}
+
 /// A pty pair whose slave is reachable through `link` (a symlink, like /dev/serial/by-id).
 struct FakeDevice {
   int master = -1;
@@ -86,6 +95,7 @@ std::vector<uint16_t> ReadFrames(SerialPort& port, size_t want, int64_t budget_n
 }
 
 TEST(SerialPort, RawBytesArriveIntactOverPty) {
+  if (!PtyAvailable()) GTEST_SKIP() << "no pseudo-terminals (openpty failed)";
   const fs::path dir = test::MakeTempDir("serial");
   FakeDevice dev(dir / "ttyMTI");
   SerialPort port({(dir / "ttyMTI").string(), 921600, 20 * kMs});
@@ -113,6 +123,7 @@ TEST(SerialPort, RawBytesArriveIntactOverPty) {
 }
 
 TEST(SerialPort, ReopensWhenTheDeviceVanishesAndComesBack) {
+  if (!PtyAvailable()) GTEST_SKIP() << "no pseudo-terminals (openpty failed)";
   const fs::path dir = test::MakeTempDir("serial");
   const fs::path link = dir / "ttyMTI";
   auto dev = std::make_unique<FakeDevice>(link);
@@ -148,6 +159,7 @@ TEST(SerialPort, ReopensWhenTheDeviceVanishesAndComesBack) {
 }
 
 TEST(SerialPort, BaudRates) {
+  if (!PtyAvailable()) GTEST_SKIP() << "no pseudo-terminals (openpty failed)";
   const fs::path dir = test::MakeTempDir("serial");
   FakeDevice dev(dir / "tty");
   for (int64_t baud : {9600, 115200, 460800, 921600, 2000000}) {
@@ -164,6 +176,7 @@ TEST(SerialPort, BaudRates) {
 }
 
 TEST(SerialPort, WriteReachesTheDevice) {
+  if (!PtyAvailable()) GTEST_SKIP() << "no pseudo-terminals (openpty failed)";
   const fs::path dir = test::MakeTempDir("serial");
   FakeDevice dev(dir / "tty");
   SerialPort port({(dir / "tty").string(), 921600, 20 * kMs});
