@@ -56,12 +56,6 @@ std::string Errno(const char* what, int err) {
 
 }  // namespace
 
-int64_t MonotonicNowNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
 bool IsSupportedSerialBaud(int64_t baud) { return SpeedFor(baud).has_value(); }
 
 SerialPort::SerialPort(SerialPortOptions options) : options_(std::move(options)) {}

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -47,6 +48,8 @@ class Trajectory {
   Trajectory(const RouteSpec& spec, const Terrain* terrain);
 
   double duration_s() const { return duration_s_; }
+  /// Ends the timeline early (the robot simply stops being simulated at `duration_s`).
+  void Truncate(double duration_s) { duration_s_ = std::min(duration_s_, duration_s); }
   double length_m() const { return length_m_; }
   Kinematics At(double t_s) const;
 

@@ -15,10 +15,9 @@
 #include <span>
 #include <string>
 
-namespace swlio::drivers {
+#include "swlio/drivers/rx_timestamp.h"  // MonotonicNowNs(): the host clock
 
-/// Host time: CLOCK_MONOTONIC in ns.
-int64_t MonotonicNowNs();
+namespace swlio::drivers {
 
 struct SerialPortOptions {
   std::string device;                        ///< path, e.g. /dev/ttyUSB0 or a by-id symlink

@@ -1,0 +1,145 @@
+#include "sim_live.h"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <pty.h>
+#include <sys/socket.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <vector>
+
+#include "sim_recording.h"
+#include "swlio/core/time.h"
+
+namespace swlio::sim {
+namespace {
+
+int64_t MonotonicNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec * kNsPerSec + ts.tv_nsec;
+}
+
+void SleepUntil(int64_t t_ns) {
+  timespec ts{static_cast<time_t>(t_ns / kNsPerSec), static_cast<long>(t_ns % kNsPerSec)};
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+}
+
+struct Endpoints {
+  int udp = -1;
+  int pty_master = -1;
+  int pty_slave = -1;  ///< kept open so the line never hangs up before the reader opens it
+  ~Endpoints() {
+    for (int fd : {udp, pty_master, pty_slave}) {
+      if (fd >= 0) close(fd);
+    }
+  }
+};
+
+bool OpenEndpoints(const LiveOptions& options, Endpoints* ep, std::string* error) {
+  ep->udp = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  char name[128] = {};
+  if (ep->udp < 0 || openpty(&ep->pty_master, &ep->pty_slave, name, nullptr, nullptr) != 0) {
+    *error = "cannot open the UDP socket or a pseudo-terminal";
+    return false;
+  }
+  termios tio{};
+  tcgetattr(ep->pty_slave, &tio);
+  cfmakeraw(&tio);  // binary Xbus bytes must pass untouched until the reader sets its mode
+  tcsetattr(ep->pty_slave, TCSANOW, &tio);
+  fcntl(ep->pty_master, F_SETFL, fcntl(ep->pty_master, F_GETFL) | O_NONBLOCK);
+  if (!options.pty_link.empty()) {
+    std::filesystem::remove(options.pty_link);
+    std::error_code ec;
+    std::filesystem::create_symlink(name, options.pty_link, ec);
+    if (ec) {
+      *error = "cannot create " + options.pty_link + ": " + ec.message();
+      return false;
+    }
+  }
+  std::printf("pty: %s\n", name);
+  std::fflush(stdout);
+  return true;
+}
+
+void SendUdp(int fd, uint16_t port, std::span<const uint8_t> bytes, LiveStats* stats) {
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(port);
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);  // never anywhere else
+  const ssize_t n = sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to),
+                           sizeof to);
+  (n == static_cast<ssize_t>(bytes.size()) ? stats->udp_sent : stats->udp_errors)++;
+}
+
+void WritePty(int fd, std::span<const uint8_t> bytes, LiveStats* stats) {
+  const ssize_t n = write(fd, bytes.data(), bytes.size());
+  const size_t written = n > 0 ? static_cast<size_t>(n) : 0;
+  stats->imu_bytes += written;
+  stats->imu_bytes_dropped += bytes.size() - written;
+}
+
+}  // namespace
+
+bool RunLive(const SimSetup& setup, const LiveOptions& options, const volatile bool* stop,
+             LiveStats* stats, std::string* error) {
+  Endpoints ep;
+  if (!OpenEndpoints(options, &ep, error)) return false;
+  if (options.start_delay_s > 0.0) SleepUntil(MonotonicNs() + SecToNs(options.start_delay_s));
+  const std::vector<SimImuSample> imu = SimulateImu(*setup.trajectory, setup.imu, setup.seed);
+  LidarSimulator lidar(setup.world.get(), setup.trajectory.get(), setup.lidar, setup.seed);
+  const int64_t start_ns = MonotonicNs();
+  auto host_ns = [&](int64_t sim_ns) {
+    return start_ns + static_cast<int64_t>(static_cast<double>(sim_ns) / options.speed);
+  };
+  SimPacket packet;
+  bool have_packet = lidar.Next(&packet);
+  size_t i = 0;
+  std::vector<uint8_t> burst;
+  std::array<uint8_t, 512> frame{};
+  while (!*stop && (have_packet || i < imu.size())) {
+    const bool lidar_first = have_packet && (i >= imu.size() || packet.t_rx_ns <= imu[i].t_rx_ns);
+    const int64_t due = host_ns(lidar_first ? packet.t_rx_ns : imu[i].t_rx_ns);
+    SleepUntil(due);
+    stats->max_lateness_ms =
+        std::max(stats->max_lateness_ms, static_cast<double>(MonotonicNs() - due) * 1e-6);
+    if (lidar_first) {
+      SendUdp(ep.udp, packet.dst_port == setup.lidar.msop_port ? options.msop_port
+                                                                : options.difop_port,
+              packet.bytes, stats);
+      have_packet = lidar.Next(&packet);
+      continue;
+    }
+    burst.clear();
+    for (const int64_t t = imu[i].t_rx_ns; i < imu.size() && imu[i].t_rx_ns == t; ++i) {
+      const size_t n = EncodeImuFrame(imu[i], frame);
+      burst.insert(burst.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(n));
+    }
+    WritePty(ep.pty_master, burst, stats);
+  }
+  if (!options.out_dir.empty()) {
+    std::filesystem::create_directories(options.out_dir);
+    std::ofstream gt(options.out_dir / "groundtruth.tum");
+    gt << "# timestamp tx ty tz qx qy qz qw  (IMU body frame, host CLOCK_MONOTONIC s)\n";
+    for (int64_t k = 0; static_cast<double>(k) / setup.gt_rate_hz <= SimDuration(setup); ++k) {
+      const double t = static_cast<double>(k) / setup.gt_rate_hz;
+      gt << TumLine(setup, t, start_ns + SecToNs(t / options.speed)) << '\n';
+    }
+    RecordingStats rs;
+    rs.msop_packets = lidar.msop_packets();
+    rs.difop_packets = lidar.difop_packets();
+    rs.imu_frames = imu.size();
+    std::ofstream(options.out_dir / "manifest.yaml") << ManifestYaml(setup, rs, start_ns, "live");
+  }
+  return true;
+}
+
+}  // namespace swlio::sim

@@ -1,0 +1,37 @@
+#pragma once
+/// @file
+/// Live mode: the simulated streams in (N×) real time, LiDAR packets as UDP datagrams to
+/// 127.0.0.1 and IMU bytes on a pseudo-terminal, each sent at its simulated receive time.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "sim_setup.h"
+
+namespace swlio::sim {
+
+struct LiveOptions {
+  uint16_t msop_port = 6699;
+  uint16_t difop_port = 7788;
+  double speed = 1.0;             ///< 2.0 = twice real time
+  std::string pty_link;           ///< if set, a symlink to the pty's slave device
+  std::filesystem::path out_dir;  ///< groundtruth.tum and manifest.yaml (host times) go here
+  double start_delay_s = 0.0;     ///< wait after opening the pty before streaming
+};
+
+struct LiveStats {
+  uint64_t udp_sent = 0;
+  uint64_t udp_errors = 0;
+  uint64_t imu_bytes = 0;
+  uint64_t imu_bytes_dropped = 0;  ///< pty buffer full (nobody reading)
+  double max_lateness_ms = 0.0;    ///< how late the worst send was against its schedule
+};
+
+/// Runs until the route ends or `stop` becomes true. Destinations are always 127.0.0.1.
+/// Prints the pty slave path to stdout as "pty: /dev/pts/N". Returns false with `error` on a
+/// set-up failure.
+bool RunLive(const SimSetup& setup, const LiveOptions& options, const volatile bool* stop,
+             LiveStats* stats, std::string* error);
+
+}  // namespace swlio::sim

@@ -1,0 +1,38 @@
+#pragma once
+/// @file
+/// Everything a simulated run is made of, derived from (scenario name, seed): the world, the
+/// route, the sensor models with their clocks and the true IMU-LiDAR extrinsic. Shared by the
+/// file writer, the live sender and tests.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "imu_sim.h"
+#include "lidar_sim.h"
+#include "scenarios.h"
+#include "trajectory.h"
+#include "world.h"
+
+namespace swlio::sim {
+
+struct SimSetup {
+  Scenario scenario;
+  uint64_t seed = 0;
+  std::unique_ptr<World> world;            ///< heap: the trajectory points into its terrain
+  std::unique_ptr<Trajectory> trajectory;
+  ImuSimConfig imu;
+  LidarSimConfig lidar;       ///< includes T_imu_lidar and the LiDAR clock
+  double gt_rate_hz = 200.0;  ///< ground-truth pose rate
+};
+
+/// Builds the setup; `duration_s` (when given) shortens the route's timeline. Returns nothing
+/// for an unknown scenario.
+std::optional<SimSetup> MakeSimSetup(const std::string& scenario, uint64_t seed,
+                                     std::optional<double> duration_s = std::nullopt);
+
+/// Trajectory duration after the optional cut.
+double SimDuration(const SimSetup& setup);
+
+}  // namespace swlio::sim
