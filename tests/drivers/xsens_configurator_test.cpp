@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "swlio/drivers/xsens/configurator.h"
 #include "swlio/drivers/xsens/mtdata2.h"
 #include "xsens_test_util.h"
@@ -147,6 +149,20 @@ TEST(XsensConfigurator, OutputConfigurationMismatchFails) {
   c.OnFrame(echo.frame, 3);
   ASSERT_TRUE(c.failed());
   EXPECT_EQ(c.failure(), XsensConfigFailure::kOutputMismatch);
+}
+
+TEST(XsensConfigurator, OutputConfigurationEchoInAnotherOrderIsAccepted) {
+  XsensConfigurator c(Options());
+  c.Start(0);
+  const Reply go(mid::kGoToConfigAck, {});
+  c.OnFrame(go.frame, 1);
+  const Reply did(mid::kDeviceId, {0, 0, 0, 1});
+  c.OnFrame(did.frame, 2);
+  auto req = Sent(c);
+  std::rotate(req.payload.begin(), req.payload.begin() + 4, req.payload.end());  // first → last
+  const Reply echo(mid::kOutputConfiguration, req.payload);
+  c.OnFrame(echo.frame, 3);
+  EXPECT_EQ(c.step(), XsensConfigStep::kGoToMeasurement);
 }
 
 TEST(XsensConfigurator, OptionalBaudrateStepAndBadBaud) {

@@ -171,9 +171,13 @@ uint8_t XsensConfigurator::ExpectedAck() const {
 bool XsensConfigurator::OutputEchoMatches(std::span<const uint8_t> payload) const {
   std::array<XsensOutputItem, XsensConfiguratorOptions::kMaxOutputs> got;
   const std::optional<size_t> n = ParseOutputConfiguration(payload, got);
-  return n && *n == options_.output_count &&
-         std::equal(got.begin(), got.begin() + static_cast<std::ptrdiff_t>(*n),
-                    options_.outputs.begin());
+  if (!n || *n != options_.output_count) return false;
+  // Order-insensitive: every requested (XDI, rate) must be in the applied configuration.
+  const auto applied_end = got.begin() + static_cast<std::ptrdiff_t>(*n);
+  for (size_t i = 0; i < options_.output_count; ++i) {
+    if (std::find(got.begin(), applied_end, options_.outputs[i]) == applied_end) return false;
+  }
+  return true;
 }
 
 void XsensConfigurator::OnFrame(const XbusFrame& frame, int64_t now_ns) {

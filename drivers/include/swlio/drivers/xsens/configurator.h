@@ -52,7 +52,7 @@ enum class XsensConfigFailure : uint8_t {
   kNone,
   kTimeout,         ///< no acknowledgement after every attempt
   kDeviceError,     ///< Error (0x42) on every attempt
-  kOutputMismatch,  ///< the applied output configuration differs from the request
+  kOutputMismatch,  ///< the applied configuration differs from the request (order ignored)
   kBadRequest,      ///< a request could not be built (e.g. unknown baud rate)
 };
 const char* ToString(XsensConfigFailure failure);

@@ -7,7 +7,9 @@
 ///   PRE(0xFA) BID(0xFF) MID LEN [EXTLEN_HI EXTLEN_LO] DATA… CS
 /// - PRE is always 0xFA; BID is 0xFF ("master device") for every MTi message.
 /// - LEN 0…254 is the data length; LEN = 0xFF announces the extended form, where a 2-byte
-///   big-endian length follows (MT0101P: up to 2048 data bytes in practice).
+///   big-endian length follows (Xsens' XsMessageHeader: "a length of 255 means extended
+///   length is used"). swlio caps the data field at kXbusMaxPayload; a header announcing more
+///   is treated as corrupt (counted as `oversize`).
 /// - CS: all bytes after the preamble, checksum included, sum to 0 modulo 256.
 /// - A request with MID m is acknowledged by MID m+1; MID 0x42 (Error) carries an error code.
 /// All multi-byte fields are big-endian.
@@ -21,7 +23,8 @@ namespace swlio::drivers::xsens {
 inline constexpr uint8_t kXbusPreamble = 0xFA;
 inline constexpr uint8_t kXbusMasterBid = 0xFF;
 inline constexpr uint8_t kXbusExtendedLen = 0xFF;
-/// Largest data field accepted (MT0101P limits extended messages to 2048 data bytes).
+/// Largest data field accepted: swlio's own cap, several times an MTData2 message carrying
+/// every item of the einride captures plus GNSS satellite info for 64 satellites (~600 B).
 inline constexpr size_t kXbusMaxPayload = 2048;
 /// PRE BID MID LEN EXTLEN(2) + data + CS.
 inline constexpr size_t kXbusMaxFrame = 6 + kXbusMaxPayload + 1;
