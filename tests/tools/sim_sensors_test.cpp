@@ -28,7 +28,9 @@ SimSetup MakeSetupOrDie(const std::string& name, uint64_t seed, double duration_
 }
 
 /// Decoded MSOP returns equal the ray-cast truth within the wire format's quantization:
-/// 5 mm in range (rounded) and 0.01° in azimuth; times within 1 µs (header resolution).
+/// 5 mm in range (rounded) and 0.01° per block azimuth, which the decoder's interpolation
+/// between two quantized block azimuths (extrapolation for the last block) can double;
+/// times within 1 µs (header resolution).
 TEST(SimLidar, PacketsDecodeBackToTheRayCastPoints) {
   const SimSetup setup = MakeSetupOrDie("aggressive", 4, 8.0);
   LidarSimulator lidar(setup.world.get(), setup.trajectory.get(), setup.lidar, 4);
@@ -56,7 +58,7 @@ TEST(SimLidar, PacketsDecodeBackToTheRayCastPoints) {
                                                                    std::cos(om) * std::cos(az),
                                                                    std::sin(om));
       const Eigen::Vector3d got(r.x_m, r.y_m, r.z_m);
-      EXPECT_LT((got - expected).norm(), 0.0026 + t.range_m * 0.011 * kDeg) << "slot " << r.slot;
+      EXPECT_LT((got - expected).norm(), 0.0026 + t.range_m * 0.021 * kDeg) << "slot " << r.slot;
       const double t_sensor_s = setup.lidar.clock.ToDevice(NsToSec(t.t_true_ns));
       EXPECT_NEAR(NsToSec(r.t_sensor_ns), t_sensor_s, 1.5e-6);
       ++checked;
@@ -141,7 +143,7 @@ TEST(SimImu, DeviceClockAndSerialBursts) {
     EXPECT_GE(imu[i].t_rx_ns, imu[i - 1].t_rx_ns);
     bursts += imu[i].t_rx_ns != imu[i - 1].t_rx_ns ? 1 : 0;
   }
-  EXPECT_LT(bursts, imu.size() / 1.5) << "frames arrive in bursts, not one by one";
+  EXPECT_LT(bursts * 3, imu.size() * 2) << "frames arrive in bursts, not one by one";
 }
 
 /// Firing times in the decoded packets advance by the RS16 schedule: 2.8 µs between lasers,
