@@ -109,7 +109,7 @@ UdpReceiver::~UdpReceiver() {
   if (fd_ >= 0) close(fd_);
 }
 
-std::span<const UdpDatagram> UdpReceiver::Receive(int timeout_ms) {
+std::span<const ReceivedDatagram> UdpReceiver::Receive(int timeout_ms) {
   pollfd pfd{fd_, POLLIN, 0};
   const int ready = poll(&pfd, 1, timeout_ms);
   if (ready <= 0) {
@@ -138,7 +138,7 @@ std::span<const UdpDatagram> UdpReceiver::Receive(int timeout_ms) {
   const auto count = static_cast<size_t>(got);
   for (size_t i = 0; i < count; ++i) {
     const msghdr& h = msgs_[i].msg_hdr;
-    UdpDatagram& d = out_[i];
+    ReceivedDatagram& d = out_[i];
     d.payload = {storage_.data() + i * max_datagram_bytes_, msgs_[i].msg_len};
     d.truncated = (h.msg_flags & MSG_TRUNC) != 0;
     const std::optional<timespec> stamp = FindRxTimestampNs(h);

@@ -63,7 +63,7 @@ TEST(UdpReceiver, ReceivesBatchesWithKernelTimestampsInOrder) {
   for (int round = 0; round < 10 && got.size() < 20; ++round) {
     const auto batch = rx.Receive(1000);
     EXPECT_LE(batch.size(), 8u);
-    for (const UdpDatagram& d : batch) {
+    for (const ReceivedDatagram& d : batch) {
       got.emplace_back(d.payload.begin(), d.payload.end());
       EXPECT_FALSE(d.truncated);
       EXPECT_EQ(d.source_address, INADDR_LOOPBACK);
@@ -89,7 +89,7 @@ TEST(UdpReceiver, CountsTruncatedDatagrams) {
   size_t seen = 0;
   std::vector<bool> truncated;
   for (int round = 0; round < 5 && seen < 2; ++round) {
-    for (const UdpDatagram& d : rx.Receive(1000)) {
+    for (const ReceivedDatagram& d : rx.Receive(1000)) {
       ++seen;
       truncated.push_back(d.truncated);
       EXPECT_EQ(d.payload.size(), 100u);

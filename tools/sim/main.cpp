@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "scenarios.h"
+#include "sim_dump.h"
 #include "sim_live.h"
 #include "sim_recording.h"
 
@@ -46,12 +47,14 @@ int Run(int argc, char** argv) {
   std::string out;
   double duration = 0.0;
   bool live = false, list = false;
+  std::string dump_dir;
   swlio::sim::LiveOptions live_opts;
   app.add_option("--scenario", scenario, "short | loop943 | degenerate | aggressive");
   app.add_option("--seed", seed, "world and noise seed");
   app.add_option("--out", out, "output folder");
   app.add_option("--duration", duration, "cut the drive after this many seconds");
   app.add_flag("--list", list, "list the scenarios and exit");
+  app.add_option("--dump-world", dump_dir, "write world.csv and route.csv to this folder, exit");
   app.add_flag("--live", live, "stream in real time: UDP to 127.0.0.1 and a pseudo-terminal");
   app.add_option("--speed", live_opts.speed, "live: N× real time")->check(CLI::Range(0.1, 50.0));
   app.add_option("--msop-port", live_opts.msop_port, "live: UDP port for MSOP");
@@ -71,6 +74,14 @@ int Run(int argc, char** argv) {
   if (!setup) {
     std::cerr << "swlio-sim: unknown scenario '" << scenario << "' (see --list)\n";
     return 2;
+  }
+  if (!dump_dir.empty()) {
+    std::string error;
+    if (!swlio::sim::DumpWorldAndRoute(*setup, dump_dir, &error)) {
+      std::cerr << "swlio-sim: " << error << "\n";
+      return 1;
+    }
+    return 0;
   }
   if (!live) {
     if (out.empty()) {

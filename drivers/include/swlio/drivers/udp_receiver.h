@@ -28,7 +28,7 @@ struct UdpReceiverOptions {
 
 /// One received datagram. `payload` points into the receiver's buffers and stays valid until
 /// the next Receive().
-struct UdpDatagram {
+struct ReceivedDatagram {
   std::span<const uint8_t> payload;
   int64_t t_ns = 0;             ///< CLOCK_MONOTONIC ns
   bool kernel_stamp = false;    ///< t_ns came from the kernel's receive timestamp
@@ -58,7 +58,7 @@ class UdpReceiver {
 
   /// Waits up to `timeout_ms` (0 = don't wait, −1 = forever) for data, then takes up to
   /// batch_size datagrams in one recvmmsg. Empty on timeout or error (counted).
-  std::span<const UdpDatagram> Receive(int timeout_ms);
+  std::span<const ReceivedDatagram> Receive(int timeout_ms);
 
   int fd() const { return fd_; }
   uint16_t bound_port() const { return bound_port_; }
@@ -84,7 +84,7 @@ class UdpReceiver {
   std::vector<iovec> iov_;
   std::vector<sockaddr_in> sources_;
   std::vector<mmsghdr> msgs_;
-  std::vector<UdpDatagram> out_;
+  std::vector<ReceivedDatagram> out_;
   UdpReceiverCounters counters_;
 };
 
