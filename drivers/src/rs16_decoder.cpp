@@ -62,6 +62,16 @@ bool ParsePitchCali(const uint8_t* p, std::array<double, 16>* angles_deg) {
   return true;
 }
 
+// Block flags FF EE and azimuths (0.01°, < 36000) of all 12 blocks; false when any is invalid.
+bool ReadBlockAzimuths(const uint8_t* p, std::array<int, kBlocks>* az) {
+  for (size_t b = 0; b < kBlocks; ++b) {
+    const uint8_t* blk = p + kFirstBlockOffset + b * kBlockBytes;
+    (*az)[b] = bytes::ReadU16Be(blk + 2);
+    if (blk[0] != kBlockFlag0 || blk[1] != kBlockFlag1 || (*az)[b] >= kCdegPerTurn) return false;
+  }
+  return true;
+}
+
 // Block azimuth step in 0.01°: to the next block, the previous step for the last block, and
 // the nominal step where the measured one jumps (FOV edge, corrupted azimuth).
 void BlockSteps(const std::array<int, kBlocks>& az,
@@ -161,19 +171,11 @@ DecodeStatus Rs16Decoder::DecodeData(std::span<const uint8_t> packet,
   }
   const uint8_t* p = packet.data();
   std::array<int, kBlocks> az{};
-  for (int b = 0; b < kBlocks; ++b) {
-    const uint8_t* blk = p + kFirstBlockOffset + static_cast<size_t>(b) * kBlockBytes;
-    az[static_cast<size_t>(b)] = bytes::ReadU16Be(blk + 2);
-    if (blk[0] != kBlockFlag0 || blk[1] != kBlockFlag1 ||
-        az[static_cast<size_t>(b)] >= kCdegPerTurn) {
-      return DecodeStatus::kBadHeader;
-    }
-  }
   int64_t t_packet_ns = 0;
-  if (!ParseTime(p + kTimeOffset, options_.time_format, &t_packet_ns)) {
+  if (!ReadBlockAzimuths(p, &az) ||
+      !ParseTime(p + kTimeOffset, options_.time_format, &t_packet_ns)) {
     return DecodeStatus::kBadHeader;
   }
-  const bool dual = return_mode_ == ReturnMode::kDual;
   const int64_t block_ns = BlockPeriodNs();
   // Nominal azimuth step per block, 0.01°: rpm·360/60 °/s × block period.
   const double nominal_step = rpm_ * 6.0 * static_cast<double>(block_ns) * 1e-9 * 100.0;
@@ -184,44 +186,9 @@ DecodeStatus Rs16Decoder::DecodeData(std::span<const uint8_t> packet,
   uint32_t no_returns = 0;
   for (int b = 0; b < kBlocks; ++b) {
     const auto bi = static_cast<size_t>(b);
-    const uint8_t* blk = p + kFirstBlockOffset + bi * kBlockBytes + 4;
-    const double a0 = az[bi] * kCdegToRad;
-    const double sa0 = std::sin(a0), ca0 = std::cos(a0);
-    const int64_t t_block = t_packet_ns + b * block_ns;
-    for (int s = 0; s < kSlotsPerBlock; ++s) {
-      const uint16_t raw = bytes::ReadU16Be(blk + static_cast<size_t>(s) * kSlotBytes);
-      if (raw == kNoReturnZero || raw == kNoReturnMax || raw < min_raw_ || raw > max_raw_) {
-        ++no_returns;
-        continue;
-      }
-      const auto laser = static_cast<size_t>(s % kLasers);
-      const int second = s / kLasers;  // second firing (single) or second return (dual)
-      const int64_t offset_ns =
-          static_cast<int64_t>(laser) * kLaserSpacingNs + (dual ? 0 : second * kFiringPeriodNs);
-      // Interpolated azimuth offset δ (< ~2°): sin/cos by 3rd-order Taylor, error < 1e-8.
-      const double delta_cdeg =
-          step[bi] * static_cast<double>(offset_ns) / static_cast<double>(block_ns);
-      const double d = delta_cdeg * kCdegToRad, d2 = d * d;
-      const double cd = 1.0 - 0.5 * d2 + d2 * d2 / 24.0, sd = d * (1.0 - d2 / 6.0);
-      const double s1 = sa0 * cd + ca0 * sd, c1 = ca0 * cd - sa0 * sd;
-      const double sa = s1 * cos_horiz_[laser] + c1 * sin_horiz_[laser];
-      const double ca = c1 * cos_horiz_[laser] - s1 * sin_horiz_[laser];
-      const double r = raw * kDistanceResolutionM;
-      const double r_xy = r * cos_vert_[laser];
-      LidarReturn& ret = out[n++];
-      ret.x_m = static_cast<float>(r_xy * sa);
-      ret.y_m = static_cast<float>(r_xy * ca);
-      ret.z_m = static_cast<float>(r * sin_vert_[laser]);
-      ret.range_m = static_cast<float>(r);
-      double azimuth_deg = (az[bi] + delta_cdeg) * kAzimuthResolutionDeg + horizontal_deg_[laser];
-      azimuth_deg -= 360.0 * std::floor(azimuth_deg / 360.0);
-      ret.azimuth_deg = azimuth_deg >= 360.0 ? 0.0f : static_cast<float>(azimuth_deg);
-      ret.intensity = blk[static_cast<size_t>(s) * kSlotBytes + 2];
-      ret.ring = ring_[laser];
-      ret.return_index = static_cast<uint8_t>(dual ? second : 0);
-      ret.slot = static_cast<uint16_t>(b * kSlotsPerBlock + s);
-      ret.t_sensor_ns = t_block + offset_ns;
-    }
+    const BlockInput block{p + kFirstBlockOffset + bi * kBlockBytes + 4, b, az[bi], step[bi],
+                           t_packet_ns + b * block_ns};
+    n += DecodeBlock(block, out.data() + n, &no_returns);
   }
   summary->t_sensor_ns = t_packet_ns;
   summary->first_azimuth_deg = static_cast<float>(az[0] * kAzimuthResolutionDeg);
@@ -230,6 +197,52 @@ DecodeStatus Rs16Decoder::DecodeData(std::span<const uint8_t> packet,
   summary->returns = n;
   summary->no_returns = no_returns;
   return DecodeStatus::kOk;
+}
+
+uint32_t Rs16Decoder::DecodeBlock(const BlockInput& block,
+                                  LidarReturn* out,
+                                  uint32_t* no_returns) const {
+  const bool dual = return_mode_ == ReturnMode::kDual;
+  const auto block_ns = static_cast<double>(BlockPeriodNs());
+  const double a0 = block.azimuth_cdeg * kCdegToRad;
+  const double sa0 = std::sin(a0), ca0 = std::cos(a0);
+  uint32_t n = 0;
+  for (int s = 0; s < kSlotsPerBlock; ++s) {
+    const uint8_t* slot = block.slots + static_cast<size_t>(s) * kSlotBytes;
+    const uint16_t raw = bytes::ReadU16Be(slot);
+    if (raw == kNoReturnZero || raw == kNoReturnMax || raw < min_raw_ || raw > max_raw_) {
+      ++*no_returns;
+      continue;
+    }
+    const auto laser = static_cast<size_t>(s % kLasers);
+    const int second = s / kLasers;  // second firing (single) or second return (dual)
+    const int64_t offset_ns =
+        static_cast<int64_t>(laser) * kLaserSpacingNs + (dual ? 0 : second * kFiringPeriodNs);
+    // Interpolated azimuth offset δ (< ~2°): sin/cos by 4th/3rd-order Taylor, error < 1e-8.
+    const double delta_cdeg = block.step_cdeg * static_cast<double>(offset_ns) / block_ns;
+    const double d = delta_cdeg * kCdegToRad, d2 = d * d;
+    const double cd = 1.0 - 0.5 * d2 + d2 * d2 / 24.0, sd = d * (1.0 - d2 / 6.0);
+    const double s1 = sa0 * cd + ca0 * sd, c1 = ca0 * cd - sa0 * sd;
+    const double sa = s1 * cos_horiz_[laser] + c1 * sin_horiz_[laser];
+    const double ca = c1 * cos_horiz_[laser] - s1 * sin_horiz_[laser];
+    const double r = raw * kDistanceResolutionM;
+    const double r_xy = r * cos_vert_[laser];
+    LidarReturn& ret = out[n++];
+    ret.x_m = static_cast<float>(r_xy * sa);
+    ret.y_m = static_cast<float>(r_xy * ca);
+    ret.z_m = static_cast<float>(r * sin_vert_[laser]);
+    ret.range_m = static_cast<float>(r);
+    double azimuth_deg =
+        (block.azimuth_cdeg + delta_cdeg) * kAzimuthResolutionDeg + horizontal_deg_[laser];
+    azimuth_deg -= 360.0 * std::floor(azimuth_deg / 360.0);
+    ret.azimuth_deg = azimuth_deg >= 360.0 ? 0.0f : static_cast<float>(azimuth_deg);
+    ret.intensity = slot[2];
+    ret.ring = ring_[laser];
+    ret.return_index = static_cast<uint8_t>(dual ? second : 0);
+    ret.slot = static_cast<uint16_t>(block.index * kSlotsPerBlock + s);
+    ret.t_sensor_ns = block.t_ns + offset_ns;
+  }
+  return n;
 }
 
 DecodeStatus Rs16Decoder::DecodeInfo(std::span<const uint8_t> packet) {

@@ -85,6 +85,15 @@ class Rs16Decoder final : public LidarPacketDecoder {
   int64_t BlockPeriodNs() const;
 
  private:
+  struct BlockInput {
+    const uint8_t* slots;  ///< first of the block's 32 three-byte slots
+    int index;             ///< block number in the packet, 0–11
+    int azimuth_cdeg;      ///< block azimuth, 0.01°
+    double step_cdeg;      ///< azimuth advance over one block period, 0.01°
+    int64_t t_ns;          ///< time of the block's first firing, sensor clock
+  };
+  /// Decodes one block's valid slots into `out`; returns how many were written.
+  uint32_t DecodeBlock(const BlockInput& block, LidarReturn* out, uint32_t* no_returns) const;
   void UpdateLaserTables();
 
   Rs16DecoderOptions options_;
