@@ -21,6 +21,7 @@ struct Rs16Args {
   double cut_angle_deg = 0.0;
   double min_range_m = 0.0;
   double max_range_m = std::numeric_limits<double>::infinity();
+  bool msop_port_given = false;
   bool summary = false;
   std::string points_csv;
 };
@@ -57,6 +58,11 @@ int Run(const Rs16Args& args) {
   options.info_port = args.difop_port;
   options.cut_angle_deg = args.cut_angle_deg;
   options.points_csv = args.points_csv;
+  // Without --msop-port, use the port the unit's own DIFOP names (the real capture: 2244).
+  if (!args.msop_port_given && AdoptFirstInfoPacket(decoder, options) &&
+      decoder.difop().msop_dst_port != 0) {
+    options.data_port = decoder.difop().msop_dst_port;
+  }
   LidarDecodeResult result;
   std::string error;
   if (!RunLidarDecode(decoder, options, &result, &error)) {
@@ -79,7 +85,8 @@ void AddRs16Command(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<Rs16Args>();
   CLI::App* cmd = app.add_subcommand("rs16", "RS-LiDAR-16 pcap (MSOP/DIFOP)");
   cmd->add_option("file", args->file, "capture file (pcap or pcapng)")->required();
-  cmd->add_option("--msop-port", args->msop_port, "UDP destination port of MSOP packets")
+  cmd->add_option("--msop-port", args->msop_port,
+                  "UDP destination port of MSOP packets (default: as the DIFOP says, else 6699)")
       ->capture_default_str();
   cmd->add_option("--difop-port", args->difop_port, "UDP destination port of DIFOP packets")
       ->capture_default_str();
@@ -91,7 +98,10 @@ void AddRs16Command(CLI::App& app, int* exit_code) {
   cmd->add_option("--max-range", args->max_range_m, "drop returns farther than this, m");
   cmd->add_flag("--summary", args->summary, "print the JSON summary (default without --points)");
   cmd->add_option("--points", args->points_csv, "write every valid point to this CSV file");
-  cmd->callback([args, exit_code] { *exit_code = Run(*args); });
+  cmd->callback([args, cmd, exit_code] {
+    args->msop_port_given = cmd->count("--msop-port") > 0;
+    *exit_code = Run(*args);
+  });
 }
 
 const DecodeCommandRegistrar kRegistrar(AddRs16Command);
