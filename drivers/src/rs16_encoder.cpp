@@ -45,8 +45,8 @@ size_t FillRs16Slots(std::span<const LidarReturn> returns, Rs16MsopContent* cont
     if (r.slot >= kBlocks * kSlotsPerBlock) continue;
     auto& block = content->blocks[r.slot / kSlotsPerBlock];
     block.range_m[r.slot % kSlotsPerBlock] = r.range_m;
-    block.intensity[r.slot % kSlotsPerBlock] =
-        static_cast<uint8_t>(std::clamp(std::lround(r.intensity), 0L, 255L));
+    const float intensity = r.intensity >= 0.0f ? std::min(r.intensity, 255.0f) : 0.0f;  // NaN → 0
+    block.intensity[r.slot % kSlotsPerBlock] = static_cast<uint8_t>(std::lround(intensity));
     ++used;
   }
   return used;
