@@ -225,6 +225,9 @@ TEST(Rs16Time, BothHeaderFormats) {
   int64_t t = 0;
   ASSERT_TRUE(rs16::ParseTime(ymd, rs16::TimeFormat::kAuto, &t));
   EXPECT_EQ(t, kT0);
+  ymd[1] |= 0xF0;  // reserved bits above set_month[3:0] (User Manual B.10) are ignored
+  ASSERT_TRUE(rs16::ParseTime(ymd, rs16::TimeFormat::kYmd, &t));
+  EXPECT_EQ(t, kT0);
   uint8_t utc[10] = {};
   bytes::WriteUBe(utc, 1'700'000'000, 6);
   bytes::WriteU32Be(utc + 6, 999'999);

@@ -7,8 +7,10 @@
 /// 2.8 µs steps plus 55.5 µs for the second firing, pitch_cali as 16 × 24-bit big-endian values
 /// in 0.0001°, negative for channels 0–7, return-mode byte 0 dual / 1 strongest / 2 last),
 /// rs_driver `basic_attr.hpp` (`RSMsopHeaderV1`, `RSEthNetV1`, `RSTimestampYMD`,
-/// `RSTimestampUTC`), and the RS-LiDAR-16 User Manual ch. 8 (coordinate mapping). Every offset
-/// below was checked against the real capture in shared/data/rs16_washing_house.
+/// `RSTimestampUTC`), and the RS-LiDAR-16 User Manual (§5.1.1 header: bytes 21–30 time, 31
+/// model, tail 4 reserved + 00 FF; App. B.7 pitch example 00 27 10 → 1°; App. B.10 time;
+/// §8.1 coordinate mapping). Every offset below was checked against the real capture in
+/// shared/data/rs16_washing_house.
 ///
 /// MSOP (1248 B, all fields big-endian):
 ///   0   8  id 55 AA 05 0A 5A A5 50 A0
