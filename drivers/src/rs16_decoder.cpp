@@ -52,11 +52,11 @@ bool ParsePitchCali(const uint8_t* p, std::array<double, 16>* angles_deg) {
   const bool blank = std::all_of(p, p + 4, [](uint8_t b) { return b == 0x00 || b == 0xFF; });
   if (blank) return false;
   std::array<double, 16> a{};
-  for (int i = 0; i < kLasers; ++i) {
+  for (size_t i = 0; i < a.size(); ++i) {
     const double magnitude =
         static_cast<double>(bytes::ReadUBe(p + 3 * i, 3)) * kPitchCaliResolutionDeg;
     if (magnitude > 90.0) return false;
-    a[static_cast<size_t>(i)] = i < 8 ? -magnitude : magnitude;
+    a[i] = i < 8 ? -magnitude : magnitude;
   }
   *angles_deg = a;
   return true;
@@ -77,11 +77,10 @@ bool ReadBlockAzimuths(const uint8_t* p, std::array<int, kBlocks>* az) {
 void BlockSteps(const std::array<int, kBlocks>& az,
                 double nominal,
                 std::array<double, kBlocks>* s) {
-  for (int b = 0; b + 1 < kBlocks; ++b) {
-    const int diff =
-        (az[static_cast<size_t>(b + 1)] - az[static_cast<size_t>(b)] + kCdegPerTurn) % kCdegPerTurn;
+  for (size_t b = 0; b + 1 < kBlocks; ++b) {
+    const int diff = (az[b + 1] - az[b] + kCdegPerTurn) % kCdegPerTurn;
     const double d = static_cast<double>(diff);
-    (*s)[static_cast<size_t>(b)] = d > std::max(2.0 * nominal, 10.0) ? nominal : d;
+    (*s)[b] = d > std::max(2.0 * nominal, 10.0) ? nominal : d;
   }
   (*s)[kBlocks - 1] = (*s)[kBlocks - 2];
 }
@@ -166,7 +165,7 @@ DecodeStatus Rs16Decoder::DecodeData(std::span<const uint8_t> packet,
                                      LidarPacketSummary* summary) const {
   if (packet.size() != kPacketBytes) return DecodeStatus::kWrongSize;
   if (!HasId(packet, kMsopId)) return DecodeStatus::kBadHeader;
-  if (out.size() < static_cast<size_t>(kBlocks * kSlotsPerBlock)) {
+  if (out.size() < static_cast<size_t>(kBlocks) * kSlotsPerBlock) {
     return DecodeStatus::kBufferTooSmall;
   }
   const uint8_t* p = packet.data();

@@ -40,9 +40,9 @@ constexpr uint64_t kMaxUtcSec = (uint64_t{1} << 33);  // year 2242: beyond that 
 
 bool ParseYmd(const uint8_t* p, int64_t* t_ns) {
   // User Manual B.10: set_month[3:0], set_day[4:0], set_hour[4:0]; the upper bits are reserved.
-  const int month = p[1] & 0x0F, day = p[2] & 0x1F, hour = p[3] & 0x1F;
-  const int minute = p[4], second = p[5];
-  const int ms = bytes::ReadU16Be(p + 6), us = bytes::ReadU16Be(p + 8);
+  const int64_t month = p[1] & 0x0F, day = p[2] & 0x1F, hour = p[3] & 0x1F;
+  const int64_t minute = p[4], second = p[5];
+  const int64_t ms = bytes::ReadU16Be(p + 6), us = bytes::ReadU16Be(p + 8);
   if (month < 1 || month > 12 || day < 1 || day > 31 || hour > 23 || minute > 59 || second > 60 ||
       ms > 999 || us > 999) {
     return false;

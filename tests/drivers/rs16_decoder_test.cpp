@@ -135,7 +135,7 @@ TEST(Rs16Decoder, FiringTimesAndAzimuthInterpolationSingleReturn) {
   for (const LidarReturn& ret : r.returns) {
     const int b = ret.slot / 32, s = ret.slot % 32;
     const int offset = (s % 16) * 2800 + (s / 16) * 55500;
-    EXPECT_EQ(ret.t_sensor_ns, kT0 + b * 111000 + offset) << ret.slot;
+    EXPECT_EQ(ret.t_sensor_ns, kT0 + int64_t{b} * 111000 + offset) << ret.slot;
     // 0.4° per 111 µs block; the last block continues with the previous step.
     EXPECT_NEAR(ret.azimuth_deg, 100.0 + 0.4 * b + 0.4 * offset / 111000.0, 2e-4) << ret.slot;
     EXPECT_NEAR(ret.range_m, 5.0, 1e-6);
@@ -185,7 +185,7 @@ TEST(Rs16Decoder, DifopSetsDualModeCalibrationRpmAndPorts) {
   EXPECT_EQ(first.return_index, 0);
   EXPECT_EQ(second.return_index, 1);
   EXPECT_EQ(first.t_sensor_ns, second.t_sensor_ns);
-  EXPECT_EQ(first.t_sensor_ns, kT0 + 55500 + 3 * 2800);
+  EXPECT_EQ(first.t_sensor_ns, kT0 + 55500 + int64_t{3} * 2800);
   EXPECT_NEAR(first.azimuth_deg, 10.4 + 0.4 * 3 * 2800 / 55500.0, 2e-4);
   EXPECT_NEAR(d.PacketsPerRevolution(), 5e7 / (12 * 55500.0), 1e-9);
 }
@@ -253,7 +253,7 @@ TEST(Rs16Encoder, RoundTripWithinQuantization) {
   Rs16Decoder d(OpenRangeConfig());
   for (int trial = 0; trial < 20; ++trial) {
     Rs16MsopContent c = UniformContent(trial * 17.3, 0.4, 0.0f);
-    c.t_sensor_ns = kT0 + trial * 1'333'000 + 789;
+    c.t_sensor_ns = kT0 + int64_t{trial} * 1'333'000 + 789;
     c.time_format = trial % 2 ? rs16::TimeFormat::kUtc : rs16::TimeFormat::kYmd;
     for (auto& b : c.blocks) {
       for (size_t s = 0; s < 32; ++s) {

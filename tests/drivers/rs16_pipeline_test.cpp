@@ -34,7 +34,7 @@ TEST(Rs16Pipeline, EncodeRecordReplayDecodeAssemble) {
     Rs16DifopContent info;
     info.rpm = 1200;
     for (int k = 0; k < packets; ++k) {
-      const int64_t t = kT0 + k * 12 * 111'000;
+      const int64_t t = kT0 + int64_t{k} * 12 * 111'000;
       if (k % 10 == 0) {
         info.t_sensor_ns = t;
         ASSERT_TRUE(EncodeRs16Difop(info, bytes));
@@ -78,7 +78,8 @@ TEST(Rs16Pipeline, EncodeRecordReplayDecodeAssemble) {
     ASSERT_EQ(decoder.DecodeData(d.payload, buf, &s), DecodeStatus::kOk);
     EXPECT_EQ(s.t_sensor_ns + 500'000, d.t_ns);
     for (uint32_t i = 0; i < s.returns; ++i) {
-      const double block_az = (s.first_azimuth_deg + kStepDeg * (buf[i].slot / 32));
+      const int block = buf[i].slot / 32;
+      const double block_az = s.first_azimuth_deg + kStepDeg * block;
       // 2.5 mm distance quantization + ≤ 0.2 mm from the 0.01° azimuth rounding in the scene.
       ASSERT_NEAR(buf[i].range_m, SceneRange(block_az, buf[i].slot), 0.0027);
     }

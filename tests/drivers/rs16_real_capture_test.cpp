@@ -147,7 +147,7 @@ TEST(Rs16RealCapture, HeaderTimeIsTheLidarClock) {
   ASSERT_EQ(decoder.DecodeData(cap.msop.front(), buf, &first), DecodeStatus::kOk);
   ASSERT_EQ(decoder.DecodeData(cap.msop.back(), buf, &last), DecodeStatus::kOk);
   // README: 2017-01-01 00:03:19.402130 → 00:03:23.400553 (YMD format).
-  const int64_t t0 = (1'483'228'800LL + 3 * 60 + 19) * 1'000'000'000LL + 402'130'000LL;
+  const int64_t t0 = (1'483'228'800LL + 3LL * 60 + 19) * 1'000'000'000LL + 402'130'000LL;
   EXPECT_EQ(first.t_sensor_ns, t0);
   EXPECT_EQ(last.t_sensor_ns - first.t_sensor_ns, 3'998'423'000);
 }
