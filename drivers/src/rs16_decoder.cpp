@@ -24,12 +24,12 @@ bool HasId(std::span<const uint8_t> packet, const std::array<uint8_t, 8>& id) {
 }
 
 // Distance codes accepted by [min_range_m, max_range_m]; codes 0 and 0xFFFF never are.
-uint16_t MinRawDistance(double min_range_m) {
-  const double raw = std::ceil(min_range_m / kDistanceResolutionM);
+uint16_t MinRawDistance(double min_range_m, double resolution_m) {
+  const double raw = std::ceil(min_range_m / resolution_m);
   return static_cast<uint16_t>(std::clamp(std::isfinite(raw) ? raw : 1.0, 1.0, 65534.0));
 }
-uint16_t MaxRawDistance(double max_range_m) {
-  const double raw = std::floor(max_range_m / kDistanceResolutionM);
+uint16_t MaxRawDistance(double max_range_m, double resolution_m) {
+  const double raw = std::floor(max_range_m / resolution_m);
   return static_cast<uint16_t>(std::clamp(std::isnan(raw) ? 0.0 : raw, 0.0, 65534.0));
 }
 
@@ -44,6 +44,14 @@ ReturnMode ModeFromByte(uint8_t b) {
     default:
       return ReturnMode::kUnknown;
   }
+}
+
+// Top-board firmware bytes 41–43 of the units that count distance in 10 mm (ros_rslidar).
+bool IsOldTopFirmware(const uint8_t* b) {
+  constexpr std::array<std::array<uint8_t, 3>, 4> kOld = {
+      {{0x00, 0x00, 0x00}, {0xFF, 0xFF, 0xFF}, {0x55, 0xAA, 0x5A}, {0xE9, 0x01, 0x00}}};
+  return std::any_of(kOld.begin(), kOld.end(),
+                     [b](const auto& v) { return std::equal(v.begin(), v.end(), b); });
 }
 
 // pitch_cali: 16 × 24-bit big-endian magnitudes in 0.0001°, channels 0–7 negative
@@ -102,7 +110,15 @@ DecodeStatus ParseRs16Difop(std::span<const uint8_t> packet, Rs16DifopInfo* info
   d.difop_dst_port = bytes::ReadU16Be(p + kDifopDifopDstPort);
   d.fov_start_deg = bytes::ReadU16Be(p + kDifopFovStart) * kAzimuthResolutionDeg;
   d.fov_end_deg = bytes::ReadU16Be(p + kDifopFovEnd) * kAzimuthResolutionDeg;
-  d.return_mode = ModeFromByte(p[kDifopReturnMode]);
+  std::copy_n(p + kDifopTopFirmware, 5, d.top_firmware.begin());
+  std::copy_n(p + kDifopBottomFirmware, 5, d.bottom_firmware.begin());
+  d.distance_resolution_m =
+      IsOldTopFirmware(p + kDifopTopFirmware + 1) ? kOldDistanceResolutionM : kDistanceResolutionM;
+  const uint8_t* bottom = p + kDifopBottomFirmware;
+  d.supports_dual_return = bottom[0] > 0x08 || (bottom[0] == 0x08 && bottom[1] > 0x02) ||
+                           (bottom[0] == 0x08 && bottom[1] == 0x02 && bottom[2] >= 0x09);
+  d.return_mode =
+      d.supports_dual_return ? ModeFromByte(p[kDifopReturnMode]) : ReturnMode::kStrongest;
   d.time_valid = ParseTime(p + kDifopTime, TimeFormat::kYmd, &d.t_sensor_ns);
   d.has_vertical_calibration = ParsePitchCali(p + kDifopPitchCali, &d.vertical_angles_deg);
   *info = d;
@@ -113,8 +129,10 @@ Rs16Decoder::Rs16Decoder(const LidarConfig& config, Rs16DecoderOptions options)
     : options_(options),
       rpm_(config.rpm > 0.0 ? config.rpm : 600.0),
       return_mode_(options.initial_return_mode),
-      min_raw_(MinRawDistance(config.min_range_m)),
-      max_raw_(MaxRawDistance(config.max_range_m)) {
+      min_range_m_(config.min_range_m),
+      max_range_m_(config.max_range_m) {
+  SetResolution(options.distance_resolution_m > 0.0 ? options.distance_resolution_m
+                                                    : kDistanceResolutionM);
   for (int c = 0; c < kLasers; ++c) {
     const auto i = static_cast<size_t>(c);
     vertical_deg_[i] = config.vertical_angles_deg[kNominalRingOfChannel[i]];
@@ -127,6 +145,12 @@ void Rs16Decoder::SetCalibration(const std::array<double, 16>& vertical_deg_by_c
   vertical_deg_ = vertical_deg_by_channel;
   horizontal_deg_ = horizontal_deg_by_channel;
   UpdateLaserTables();
+}
+
+void Rs16Decoder::SetResolution(double resolution_m) {
+  resolution_m_ = resolution_m;
+  min_raw_ = MinRawDistance(min_range_m_, resolution_m);
+  max_raw_ = MaxRawDistance(max_range_m_, resolution_m);
 }
 
 void Rs16Decoder::UpdateLaserTables() {
@@ -224,7 +248,7 @@ uint32_t Rs16Decoder::DecodeBlock(const BlockInput& block,
     const double s1 = sa0 * cd + ca0 * sd, c1 = ca0 * cd - sa0 * sd;
     const double sa = s1 * cos_horiz_[laser] + c1 * sin_horiz_[laser];
     const double ca = c1 * cos_horiz_[laser] - s1 * sin_horiz_[laser];
-    const double r = raw * kDistanceResolutionM;
+    const double r = raw * resolution_m_;
     const double r_xy = r * cos_vert_[laser];
     LidarReturn& ret = out[n++];
     ret.x_m = static_cast<float>(r_xy * sa);
@@ -250,6 +274,9 @@ DecodeStatus Rs16Decoder::DecodeInfo(std::span<const uint8_t> packet) {
   if (status != DecodeStatus::kOk) return status;
   if (info.rpm >= 60.0 && info.rpm <= 2400.0) rpm_ = info.rpm;
   if (info.return_mode != ReturnMode::kUnknown) return_mode_ = info.return_mode;
+  if (options_.distance_resolution_m <= 0.0 && info.distance_resolution_m != resolution_m_) {
+    SetResolution(info.distance_resolution_m);
+  }
   if (info.has_vertical_calibration && info.vertical_angles_deg != vertical_deg_) {
     vertical_deg_ = info.vertical_angles_deg;
     UpdateLaserTables();

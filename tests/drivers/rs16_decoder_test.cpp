@@ -206,6 +206,31 @@ TEST(Rs16Decoder, BlankDifopCalibrationKeepsConfigAngles) {
   EXPECT_EQ(d.DecodeInfo(difop), DecodeStatus::kBadHeader);
 }
 
+TEST(Rs16Decoder, OldFirmwareDistanceResolutionAndSingleReturn) {
+  Rs16Decoder d(OpenRangeConfig());
+  Rs16DifopContent info;
+  info.top_firmware = {0x00, 0xFF, 0xFF, 0xFF, 0x00};     // 10 mm per code (ros_rslidar)
+  info.bottom_firmware = {0x08, 0x02, 0x08, 0x00, 0x00};  // < 08 02 09: no dual return
+  info.return_mode = ReturnMode::kDual;
+  Packet difop(1248);
+  ASSERT_TRUE(EncodeRs16Difop(info, difop));
+  ASSERT_EQ(d.DecodeInfo(difop), DecodeStatus::kOk);
+  EXPECT_FALSE(d.difop().supports_dual_return);
+  EXPECT_EQ(d.return_mode(), ReturnMode::kStrongest);
+  EXPECT_EQ(d.distance_resolution_m(), 0.01);
+  Rs16MsopContent c = UniformContent(0.0, 0.4, 12.34f);
+  c.distance_resolution_m = 0.01;
+  const Decoded r = Decode(d, Encode(c));
+  ASSERT_EQ(r.returns.size(), 384u);
+  EXPECT_NEAR(r.returns[7].range_m, 12.34, 0.005 + 1e-6);
+
+  Rs16DecoderOptions fixed;
+  fixed.distance_resolution_m = 0.005;  // configured: the DIFOP does not override it
+  Rs16Decoder f(OpenRangeConfig(), fixed);
+  ASSERT_EQ(f.DecodeInfo(difop), DecodeStatus::kOk);
+  EXPECT_EQ(f.distance_resolution_m(), 0.005);
+}
+
 TEST(Rs16Decoder, HorizontalCalibrationRotatesAzimuth) {
   Rs16Decoder d(OpenRangeConfig());
   std::array<double, 16> horizontal{};

@@ -38,6 +38,8 @@ void WriteDifop(const drivers::Rs16Decoder& decoder, JsonWriter& json) {
              : info.return_mode == drivers::ReturnMode::kLast      ? "last"
              : info.return_mode == drivers::ReturnMode::kStrongest ? "strongest"
                                                                    : "unknown");
+  json.Key("supports_dual_return").Value(info.supports_dual_return);
+  json.Key("distance_resolution_m").Value(decoder.distance_resolution_m());
   json.Key("has_vertical_calibration").Value(info.has_vertical_calibration);
   // Angles in use, by laser channel as transmitted (DIFOP calibration, else config defaults).
   json.Key("vertical_angles_deg").Array(std::span<const double>(decoder.vertical_deg_by_channel()));

@@ -21,7 +21,9 @@
 ///   1242 4  packet index (unused here); 1246 2 tail 00 FF
 /// DIFOP (1248 B): 0 id A5 FF 00 5A 11 11 55 55; 8 rpm u16; 10 lidar IP; 14 host IP; 18 MAC;
 ///   24/26 MSOP source/destination port; 28/30 DIFOP source/destination port; 32/34 FOV start/end
-///   (0.01°); 300 return mode; 303 time (YMD); 1165 pitch_cali 48 B.
+///   (0.01°); 40 top-board firmware 5 B; 45 bottom-board firmware 5 B; 300 return mode (honoured
+///   only when the bottom firmware is ≥ 08 02 09, ros_rslidar processDifop); 303 time (YMD);
+///   1165 pitch_cali 48 B.
 
 #include <array>
 #include <cstddef>
@@ -45,7 +47,11 @@ inline constexpr size_t kBlockBytes = 100;
 inline constexpr size_t kSlotBytes = 3;
 inline constexpr size_t kTailOffset = 1242;
 
-inline constexpr double kDistanceResolutionM = 0.005;  ///< rs_driver RS16 DISTANCE_RES
+/// Distance per code: 5 mm (rs_driver RS16 DISTANCE_RES); units whose top-board firmware
+/// (DIFOP bytes 41–43) reads 00 00 00, FF FF FF, 55 AA 5A or E9 01 00 use 10 mm (RoboSense
+/// ros_rslidar rawdata.cc processDifop, "dis_resolution_mode").
+inline constexpr double kDistanceResolutionM = 0.005;
+inline constexpr double kOldDistanceResolutionM = 0.01;
 inline constexpr double kAzimuthResolutionDeg = 0.01;
 inline constexpr uint16_t kNoReturnZero = 0x0000;
 inline constexpr uint16_t kNoReturnMax = 0xFFFF;
@@ -64,6 +70,8 @@ inline constexpr size_t kDifopDifopSrcPort = 28;
 inline constexpr size_t kDifopDifopDstPort = 30;
 inline constexpr size_t kDifopFovStart = 32;
 inline constexpr size_t kDifopFovEnd = 34;
+inline constexpr size_t kDifopTopFirmware = 40;     ///< 5 bytes
+inline constexpr size_t kDifopBottomFirmware = 45;  ///< 5 bytes
 inline constexpr size_t kDifopReturnMode = 300;
 inline constexpr size_t kDifopTime = 303;
 inline constexpr size_t kDifopPitchCali = 1165;
