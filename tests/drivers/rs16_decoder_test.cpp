@@ -206,6 +206,23 @@ TEST(Rs16Decoder, BlankDifopCalibrationKeepsConfigAngles) {
   EXPECT_EQ(d.DecodeInfo(difop), DecodeStatus::kBadHeader);
 }
 
+TEST(Rs16Decoder, LensOffsetAlongTheFiringAzimuth) {
+  Rs16DecoderOptions options;
+  options.lens_offset_m = 0.03825;
+  Rs16Decoder d(OpenRangeConfig(), options);
+  std::array<double, 16> horizontal{};
+  horizontal[0] = 1.0;  // the range term follows the calibrated azimuth, the offset does not
+  d.SetCalibration(d.vertical_deg_by_channel(), horizontal);
+  Rs16MsopContent c = UniformContent(0.0, 0.0, 0.0f);
+  c.blocks[0].range_m[0] = 10.0f;
+  const Decoded r = Decode(d, Encode(c));
+  ASSERT_EQ(r.returns.size(), 1u);
+  const double rxy = 10.0 * std::cos(15.0 * kPi / 180);
+  EXPECT_NEAR(r.returns[0].x_m, rxy * std::sin(kPi / 180), 1e-5);
+  EXPECT_NEAR(r.returns[0].y_m, rxy * std::cos(kPi / 180) + 0.03825, 1e-5);
+  EXPECT_FLOAT_EQ(r.returns[0].range_m, 10.0f);
+}
+
 TEST(Rs16Decoder, OldFirmwareDistanceResolutionAndSingleReturn) {
   Rs16Decoder d(OpenRangeConfig());
   Rs16DifopContent info;

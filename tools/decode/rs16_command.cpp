@@ -21,6 +21,7 @@ struct Rs16Args {
   double cut_angle_deg = 0.0;
   double min_range_m = 0.0;
   double max_range_m = std::numeric_limits<double>::infinity();
+  double lens_offset_m = 0.0;
   bool msop_port_given = false;
   bool summary = false;
   std::string points_csv;
@@ -53,7 +54,9 @@ int Run(const Rs16Args& args) {
   config.difop_port = args.difop_port;
   config.min_range_m = args.min_range_m;
   config.max_range_m = args.max_range_m;
-  drivers::Rs16Decoder decoder(config);
+  drivers::Rs16DecoderOptions decoder_options;
+  decoder_options.lens_offset_m = args.lens_offset_m;
+  drivers::Rs16Decoder decoder(config, decoder_options);
   LidarDecodeOptions options;
   options.pcap_path = args.file;
   options.data_port = args.msop_port;
@@ -98,6 +101,9 @@ void AddRs16Command(CLI::App& app, int* exit_code) {
   cmd->add_option("--min-range", args->min_range_m, "drop returns closer than this, m")
       ->capture_default_str();
   cmd->add_option("--max-range", args->max_range_m, "drop returns farther than this, m");
+  cmd->add_option("--lens-offset", args->lens_offset_m,
+                  "optical-centre offset along the firing azimuth, m (rs_driver: 0.03825)")
+      ->capture_default_str();
   cmd->add_flag("--summary", args->summary, "print the JSON summary (default without --points)");
   cmd->add_option("--points", args->points_csv, "write every valid point to this CSV file");
   cmd->callback([args, cmd, exit_code] {

@@ -57,6 +57,10 @@ struct Rs16DecoderOptions {
   ReturnMode initial_return_mode = ReturnMode::kStrongest;
   /// Metres per distance code: 0 = 5 mm until a DIFOP names old (10 mm) firmware; else fixed.
   double distance_resolution_m = 0.0;
+  /// Horizontal distance of the optical centre from the rotation axis, along the firing
+  /// azimuth. 0 follows the manual's formula (§8.1); RoboSense's drivers add 0.03825 m for RS16
+  /// (rs_driver decoder_RS16.hpp RX, ros_rslidar Rx_). `range_m` stays the measured range.
+  double lens_offset_m = 0.0;
 };
 
 class Rs16Decoder final : public LidarPacketDecoder {
