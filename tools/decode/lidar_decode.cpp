@@ -127,8 +127,9 @@ void WriteLidarSummary(const LidarDecodeResult& r, JsonWriter& json) {
   json.Key("points").Value(r.points);
   json.Key("no_returns").Value(r.no_returns);
   json.Key("points_per_ring").Array(r.points_per_ring);
-  json.Key("gaps").Value(r.gaps);
-  json.Key("missing_packets").Value(r.missing_packets);
+  // Issue 3: "gaps" is the number of missing packets detected; gap_events counts the gaps.
+  json.Key("gaps").Value(r.missing_packets);
+  json.Key("gap_events").Value(r.gaps);
   json.Key("discontinuities").Value(r.discontinuities);
   json.Key("pcap").BeginObject();
   json.Key("records").Value(r.pcap.records);
