@@ -30,16 +30,15 @@ struct Packets {
 
 Packets LoadPackets() {
   Packets p;
-  const char* env = std::getenv("SWLIO_DATA_DIR");
+  const char* env = std::getenv("SWLIO_DATA_DIR");  // NOLINT(concurrency-mt-unsafe): single thread
   const std::filesystem::path dir = env != nullptr ? env : "../shared/data";
   const auto file = dir / "rs16_washing_house/rs16_msop2244_difop7788.repackaged.pcap";
   std::string error;
   if (auto reader = swlio::drivers::PcapReader::Open(file.string(), {}, &error)) {
     swlio::drivers::UdpDatagram d;
     while (reader->Next(&d)) {
-      std::vector<uint8_t> bytes(d.payload.begin(), d.payload.end());
-      if (d.dst_port == 2244) p.msop.push_back(std::move(bytes));
-      if (d.dst_port == 7788 && p.difop.empty()) p.difop = std::move(bytes);
+      if (d.dst_port == 2244) p.msop.emplace_back(d.payload.begin(), d.payload.end());
+      if (d.dst_port == 7788 && p.difop.empty()) p.difop.assign(d.payload.begin(), d.payload.end());
     }
     p.real = !p.msop.empty();
   }

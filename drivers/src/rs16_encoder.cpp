@@ -12,8 +12,8 @@ namespace {
 
 using namespace rs16;  // NOLINT: the protocol constants are this file's vocabulary
 
-uint16_t RawDistance(float range_m) {
-  const double raw = std::round(static_cast<double>(range_m) / kDistanceResolutionM);
+uint16_t RawDistance(float range_m, double resolution_m) {
+  const double raw = std::round(static_cast<double>(range_m) / resolution_m);
   if (!(raw >= 1.0)) return kNoReturnZero;
   return static_cast<uint16_t>(std::min(raw, 65534.0));
 }
@@ -45,8 +45,8 @@ size_t FillRs16Slots(std::span<const LidarReturn> returns, Rs16MsopContent* cont
     if (r.slot >= kBlocks * kSlotsPerBlock) continue;
     auto& block = content->blocks[r.slot / kSlotsPerBlock];
     block.range_m[r.slot % kSlotsPerBlock] = r.range_m;
-    block.intensity[r.slot % kSlotsPerBlock] =
-        static_cast<uint8_t>(std::clamp(std::lround(r.intensity), 0L, 255L));
+    const float intensity = r.intensity >= 0.0f ? std::min(r.intensity, 255.0f) : 0.0f;  // NaN → 0
+    block.intensity[r.slot % kSlotsPerBlock] = static_cast<uint8_t>(std::lround(intensity));
     ++used;
   }
   return used;
@@ -57,7 +57,7 @@ float RangeOfPoint(float x_m, float y_m, float z_m) {
 }
 
 bool EncodeRs16Msop(const Rs16MsopContent& content, std::span<uint8_t> out) {
-  if (out.size() != kPacketBytes) return false;
+  if (out.size() != kPacketBytes || !(content.distance_resolution_m > 0.0)) return false;
   std::fill(out.begin(), out.end(), uint8_t{0});
   uint8_t* p = out.data();
   std::copy(kMsopId.begin(), kMsopId.end(), p);
@@ -71,7 +71,7 @@ bool EncodeRs16Msop(const Rs16MsopContent& content, std::span<uint8_t> out) {
     bytes::WriteU16Be(blk + 2, RawAzimuth(block.azimuth_deg));
     for (size_t s = 0; s < kSlotsPerBlock; ++s) {
       uint8_t* slot = blk + 4 + s * kSlotBytes;
-      bytes::WriteU16Be(slot, RawDistance(block.range_m[s]));
+      bytes::WriteU16Be(slot, RawDistance(block.range_m[s], content.distance_resolution_m));
       slot[2] = block.intensity[s];
     }
   }
@@ -98,6 +98,9 @@ bool EncodeRs16Difop(const Rs16DifopContent& content, std::span<uint8_t> out) {
   bytes::WriteU16Be(
       p + kDifopFovEnd,
       static_cast<uint16_t>(std::lround(std::clamp(content.fov_end_deg, 0.0, 360.0) * 100)));
+  std::copy(content.top_firmware.begin(), content.top_firmware.end(), p + kDifopTopFirmware);
+  std::copy(content.bottom_firmware.begin(), content.bottom_firmware.end(),
+            p + kDifopBottomFirmware);
   p[kDifopReturnMode] = ModeByte(content.return_mode);
   if (content.t_sensor_ns > 0) WriteTime(p + kDifopTime, TimeFormat::kYmd, content.t_sensor_ns);
   for (size_t i = 0; i < kLasers; ++i) {

@@ -1,7 +1,9 @@
-// RS-LiDAR-16 header time, both layouts in rs_driver basic_attr.hpp: RSTimestampYMD (6 bytes
-// year−2000/month/day/hour/minute/second, then ms and µs as big-endian u16) and RSTimestampUTC
-// (48-bit big-endian seconds since 1970, then 32-bit big-endian µs). Calendar conversion by the
-// days-from-civil algorithm (H. Hinnant, "chrono-compatible low-level date algorithms").
+// RS-LiDAR-16 header time (User Manual Appendix B.10 "UTC_TIME", 10 bytes: year 2000–2255,
+// month, day, hour, min, s, ms, µs), both layouts in rs_driver basic_attr.hpp: RSTimestampYMD (6
+// bytes year−2000/month/day/hour/minute/second, then ms and µs as big-endian u16) and
+// RSTimestampUTC (48-bit big-endian seconds since 1970, then 32-bit big-endian µs). Calendar
+// conversion by the days-from-civil algorithm (H. Hinnant, "chrono-compatible low-level date
+// algorithms").
 
 #include <cstdint>
 
@@ -37,8 +39,10 @@ constexpr int64_t kSecPerDay = 86'400;
 constexpr uint64_t kMaxUtcSec = (uint64_t{1} << 33);  // year 2242: beyond that the ns overflow
 
 bool ParseYmd(const uint8_t* p, int64_t* t_ns) {
-  const int month = p[1], day = p[2], hour = p[3], minute = p[4], second = p[5];
-  const int ms = bytes::ReadU16Be(p + 6), us = bytes::ReadU16Be(p + 8);
+  // User Manual B.10: set_month[3:0], set_day[4:0], set_hour[4:0]; the upper bits are reserved.
+  const int64_t month = p[1] & 0x0F, day = p[2] & 0x1F, hour = p[3] & 0x1F;
+  const int64_t minute = p[4], second = p[5];
+  const int64_t ms = bytes::ReadU16Be(p + 6), us = bytes::ReadU16Be(p + 8);
   if (month < 1 || month > 12 || day < 1 || day > 31 || hour > 23 || minute > 59 || second > 60 ||
       ms > 999 || us > 999) {
     return false;

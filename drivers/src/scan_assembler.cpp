@@ -27,7 +27,9 @@ void ScanAssembler::SetNominal(double packets_per_revolution, int64_t revolution
 }
 
 double ScanAssembler::RelativeAzimuth(float azimuth_deg) const {
-  return Wrap360(static_cast<double>(azimuth_deg) - config_.cut_angle_deg);
+  double rel = static_cast<double>(azimuth_deg) - config_.cut_angle_deg;
+  if (rel < 0.0) rel += 360.0;  // the usual case: both angles in [0, 360)
+  return rel >= 0.0 && rel < 360.0 ? rel : Wrap360(rel);
 }
 
 void ScanAssembler::CheckContinuity(const LidarPacketSummary& summary) {

@@ -100,7 +100,8 @@ TEST(PcapFile, WriterReaderRoundTripWithPortFilter) {
       Bytes payload(static_cast<size_t>(1 + i * 137), static_cast<uint8_t>(i));
       sent.push_back(payload);
       const uint16_t port = i % 3 == 0 ? 7788 : 6699;
-      ASSERT_TRUE(writer->Write(1'600'000'000'123'456'789 + i * 1'000'001, 1000, port, payload));
+      ASSERT_TRUE(
+          writer->Write(1'600'000'000'123'456'789 + int64_t{i} * 1'000'001, 1000, port, payload));
     }
     ASSERT_TRUE(writer->Flush());
   }
@@ -228,8 +229,7 @@ TEST(PcapFile, CountsMalformedNonUdpAndFragments) {
 }
 
 TEST(PcapFile, TruncatedFileEndsWithErrorAfterCompleteRecords) {
-  std::vector<Bytes> records;
-  for (int i = 0; i < 5; ++i) records.push_back(Ethernet(Ipv4Udp(1, 2, Bytes(100, 1))));
+  const std::vector<Bytes> records(5, Ethernet(Ipv4Udp(1, 2, Bytes(100, 1))));
   Bytes file = ClassicPcap(1, records);
   file.resize(file.size() - 60);  // cut inside the last record
   const auto path = test::MakeTempDir("pcap_trunc") / "t.pcap";

@@ -135,7 +135,7 @@ TEST(Rs16Decoder, FiringTimesAndAzimuthInterpolationSingleReturn) {
   for (const LidarReturn& ret : r.returns) {
     const int b = ret.slot / 32, s = ret.slot % 32;
     const int offset = (s % 16) * 2800 + (s / 16) * 55500;
-    EXPECT_EQ(ret.t_sensor_ns, kT0 + b * 111000 + offset) << ret.slot;
+    EXPECT_EQ(ret.t_sensor_ns, kT0 + int64_t{b} * 111000 + offset) << ret.slot;
     // 0.4° per 111 µs block; the last block continues with the previous step.
     EXPECT_NEAR(ret.azimuth_deg, 100.0 + 0.4 * b + 0.4 * offset / 111000.0, 2e-4) << ret.slot;
     EXPECT_NEAR(ret.range_m, 5.0, 1e-6);
@@ -185,7 +185,7 @@ TEST(Rs16Decoder, DifopSetsDualModeCalibrationRpmAndPorts) {
   EXPECT_EQ(first.return_index, 0);
   EXPECT_EQ(second.return_index, 1);
   EXPECT_EQ(first.t_sensor_ns, second.t_sensor_ns);
-  EXPECT_EQ(first.t_sensor_ns, kT0 + 55500 + 3 * 2800);
+  EXPECT_EQ(first.t_sensor_ns, kT0 + 55500 + int64_t{3} * 2800);
   EXPECT_NEAR(first.azimuth_deg, 10.4 + 0.4 * 3 * 2800 / 55500.0, 2e-4);
   EXPECT_NEAR(d.PacketsPerRevolution(), 5e7 / (12 * 55500.0), 1e-9);
 }
@@ -206,6 +206,48 @@ TEST(Rs16Decoder, BlankDifopCalibrationKeepsConfigAngles) {
   EXPECT_EQ(d.DecodeInfo(difop), DecodeStatus::kBadHeader);
 }
 
+TEST(Rs16Decoder, LensOffsetAlongTheFiringAzimuth) {
+  Rs16DecoderOptions options;
+  options.lens_offset_m = 0.03825;
+  Rs16Decoder d(OpenRangeConfig(), options);
+  std::array<double, 16> horizontal{};
+  horizontal[0] = 1.0;  // the range term follows the calibrated azimuth, the offset does not
+  d.SetCalibration(d.vertical_deg_by_channel(), horizontal);
+  Rs16MsopContent c = UniformContent(0.0, 0.0, 0.0f);
+  c.blocks[0].range_m[0] = 10.0f;
+  const Decoded r = Decode(d, Encode(c));
+  ASSERT_EQ(r.returns.size(), 1u);
+  const double rxy = 10.0 * std::cos(15.0 * kPi / 180);
+  EXPECT_NEAR(r.returns[0].x_m, rxy * std::sin(kPi / 180), 1e-5);
+  EXPECT_NEAR(r.returns[0].y_m, rxy * std::cos(kPi / 180) + 0.03825, 1e-5);
+  EXPECT_FLOAT_EQ(r.returns[0].range_m, 10.0f);
+}
+
+TEST(Rs16Decoder, OldFirmwareDistanceResolutionAndSingleReturn) {
+  Rs16Decoder d(OpenRangeConfig());
+  Rs16DifopContent info;
+  info.top_firmware = {0x00, 0xFF, 0xFF, 0xFF, 0x00};     // 10 mm per code (ros_rslidar)
+  info.bottom_firmware = {0x08, 0x02, 0x08, 0x00, 0x00};  // < 08 02 09: no dual return
+  info.return_mode = ReturnMode::kDual;
+  Packet difop(1248);
+  ASSERT_TRUE(EncodeRs16Difop(info, difop));
+  ASSERT_EQ(d.DecodeInfo(difop), DecodeStatus::kOk);
+  EXPECT_FALSE(d.difop().supports_dual_return);
+  EXPECT_EQ(d.return_mode(), ReturnMode::kStrongest);
+  EXPECT_EQ(d.distance_resolution_m(), 0.01);
+  Rs16MsopContent c = UniformContent(0.0, 0.4, 12.34f);
+  c.distance_resolution_m = 0.01;
+  const Decoded r = Decode(d, Encode(c));
+  ASSERT_EQ(r.returns.size(), 384u);
+  EXPECT_NEAR(r.returns[7].range_m, 12.34, 0.005 + 1e-6);
+
+  Rs16DecoderOptions fixed;
+  fixed.distance_resolution_m = 0.005;  // configured: the DIFOP does not override it
+  Rs16Decoder f(OpenRangeConfig(), fixed);
+  ASSERT_EQ(f.DecodeInfo(difop), DecodeStatus::kOk);
+  EXPECT_EQ(f.distance_resolution_m(), 0.005);
+}
+
 TEST(Rs16Decoder, HorizontalCalibrationRotatesAzimuth) {
   Rs16Decoder d(OpenRangeConfig());
   std::array<double, 16> horizontal{};
@@ -224,6 +266,9 @@ TEST(Rs16Time, BothHeaderFormats) {
   uint8_t ymd[10] = {0x11, 0x01, 0x01, 0x00, 0x03, 0x13, 0x01, 0x92, 0x00, 0x82};
   int64_t t = 0;
   ASSERT_TRUE(rs16::ParseTime(ymd, rs16::TimeFormat::kAuto, &t));
+  EXPECT_EQ(t, kT0);
+  ymd[1] |= 0xF0;  // reserved bits above set_month[3:0] (User Manual B.10) are ignored
+  ASSERT_TRUE(rs16::ParseTime(ymd, rs16::TimeFormat::kYmd, &t));
   EXPECT_EQ(t, kT0);
   uint8_t utc[10] = {};
   bytes::WriteUBe(utc, 1'700'000'000, 6);
@@ -250,7 +295,7 @@ TEST(Rs16Encoder, RoundTripWithinQuantization) {
   Rs16Decoder d(OpenRangeConfig());
   for (int trial = 0; trial < 20; ++trial) {
     Rs16MsopContent c = UniformContent(trial * 17.3, 0.4, 0.0f);
-    c.t_sensor_ns = kT0 + trial * 1'333'000 + 789;
+    c.t_sensor_ns = kT0 + int64_t{trial} * 1'333'000 + 789;
     c.time_format = trial % 2 ? rs16::TimeFormat::kUtc : rs16::TimeFormat::kYmd;
     for (auto& b : c.blocks) {
       for (size_t s = 0; s < 32; ++s) {

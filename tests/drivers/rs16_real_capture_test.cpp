@@ -88,6 +88,13 @@ TEST(Rs16RealCapture, DifopFields) {
   EXPECT_EQ(info.host_ip, (std::array<uint8_t, 4>{192, 168, 1, 102}));
   EXPECT_EQ(info.mac, (std::array<uint8_t, 6>{0x40, 0x2C, 0x76, 0x8C, 0x6F, 0x28}));
   EXPECT_EQ(info.return_mode, ReturnMode::kStrongest);
+  // Firmware bytes 40–49 as sent; this unit counts 5 mm per code (its ranges, README: median
+  // 3.10 m, max 43.8 m at 5 mm, confirm it) and can do dual return.
+  const Packet& raw_difop = cap.difop.front();
+  EXPECT_TRUE(std::equal(info.top_firmware.begin(), info.top_firmware.end(), &raw_difop[40]));
+  EXPECT_TRUE(std::equal(info.bottom_firmware.begin(), info.bottom_firmware.end(), &raw_difop[45]));
+  EXPECT_EQ(info.distance_resolution_m, 0.005);
+  EXPECT_TRUE(info.supports_dual_return);
   ASSERT_TRUE(info.has_vertical_calibration);
   const auto raw = RawVerticalAngles(cap.difop.back());
   for (size_t i = 0; i < 16; ++i) EXPECT_DOUBLE_EQ(info.vertical_angles_deg[i], raw[i]) << i;
@@ -147,7 +154,7 @@ TEST(Rs16RealCapture, HeaderTimeIsTheLidarClock) {
   ASSERT_EQ(decoder.DecodeData(cap.msop.front(), buf, &first), DecodeStatus::kOk);
   ASSERT_EQ(decoder.DecodeData(cap.msop.back(), buf, &last), DecodeStatus::kOk);
   // README: 2017-01-01 00:03:19.402130 → 00:03:23.400553 (YMD format).
-  const int64_t t0 = (1'483'228'800LL + 3 * 60 + 19) * 1'000'000'000LL + 402'130'000LL;
+  const int64_t t0 = (1'483'228'800LL + 3LL * 60 + 19) * 1'000'000'000LL + 402'130'000LL;
   EXPECT_EQ(first.t_sensor_ns, t0);
   EXPECT_EQ(last.t_sensor_ns - first.t_sensor_ns, 3'998'423'000);
 }

@@ -12,7 +12,7 @@ namespace {
 
 constexpr int64_t kT0 = 1'500'000'000'000'000'000;
 constexpr double kBlockStepDeg = 0.3996;  // 600 rpm, 111 µs per block
-constexpr int64_t kPacketNs = 12 * 111'000;
+constexpr int64_t kPacketNs = int64_t{12} * 111'000;
 
 // Synthetic RS16 stream at 600 rpm through the real encoder and decoder.
 class Rs16Stream {
@@ -160,7 +160,8 @@ TEST(ScanAssembler, TimeDiscontinuityClosesTheSweep) {
 
 TEST(ScanAssembler, LongForwardJumpCountsMissingAndCloses) {
   const int n = 300;
-  const AssemblyRun run = Assemble(100.0, 0.0, n, {}, 150, 3 * 100'000'000 + 4 * kPacketNs);
+  const AssemblyRun run =
+      Assemble(100.0, 0.0, n, {}, 150, int64_t{3} * 100'000'000 + 4 * kPacketNs);
   EXPECT_EQ(run.stats.discontinuities, 1u);
   EXPECT_EQ(run.stats.gaps, 1u);
   // Time step 1 + 229.225 packets of 1.332 ms → 229 missing.

@@ -37,6 +37,22 @@ void CountScan(const drivers::AssembledScan& s, LidarDecodeResult* r, FILE* csv)
 
 }  // namespace
 
+bool AdoptFirstInfoPacket(drivers::LidarPacketDecoder& decoder, const LidarDecodeOptions& options) {
+  if (options.info_port == 0) return false;
+  drivers::PcapUdpFilter filter;
+  filter.dst_ports = {options.info_port};
+  std::string ignored;
+  auto reader = drivers::PcapReader::Open(options.pcap_path, filter, &ignored);
+  drivers::UdpDatagram d;
+  while (reader && reader->Next(&d)) {
+    if (decoder.Classify(d.payload) == drivers::LidarPacketKind::kInfo &&
+        decoder.DecodeInfo(d.payload) == drivers::DecodeStatus::kOk) {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool RunLidarDecode(drivers::LidarPacketDecoder& decoder,
                     const LidarDecodeOptions& options,
                     LidarDecodeResult* result,
@@ -46,6 +62,7 @@ bool RunLidarDecode(drivers::LidarPacketDecoder& decoder,
   if (options.info_port != 0) filter.dst_ports.push_back(options.info_port);
   auto reader = drivers::PcapReader::Open(options.pcap_path, filter, error);
   if (!reader) return false;
+  AdoptFirstInfoPacket(decoder, options);
   File csv;
   if (!options.points_csv.empty()) {
     csv.reset(std::fopen(options.points_csv.c_str(), "w"));
@@ -110,8 +127,9 @@ void WriteLidarSummary(const LidarDecodeResult& r, JsonWriter& json) {
   json.Key("points").Value(r.points);
   json.Key("no_returns").Value(r.no_returns);
   json.Key("points_per_ring").Array(r.points_per_ring);
-  json.Key("gaps").Value(r.gaps);
-  json.Key("missing_packets").Value(r.missing_packets);
+  // Issue 3: "gaps" is the number of missing packets detected; gap_events counts the gaps.
+  json.Key("gaps").Value(r.missing_packets);
+  json.Key("gap_events").Value(r.gaps);
   json.Key("discontinuities").Value(r.discontinuities);
   json.Key("pcap").BeginObject();
   json.Key("records").Value(r.pcap.records);

@@ -39,7 +39,14 @@ struct LidarDecodeResult {
   std::string pcap_error;  ///< non-empty when the file ended in a read error
 };
 
-/// Runs the pipeline. Returns false (and sets `error`) when the file or CSV cannot be opened.
+/// Offline files allow what a live receiver cannot: adopt the first info packet's calibration
+/// before decoding any data packet, so early packets do not use the config fallback angles.
+/// Returns true when an info packet was found and decoded.
+bool AdoptFirstInfoPacket(drivers::LidarPacketDecoder& decoder, const LidarDecodeOptions& options);
+
+/// Runs the pipeline: adopts the file's first info packet, then decodes in file order.
+/// `packets_info` counts the info packets met in that order. Returns false (and sets `error`) when
+/// the file or CSV cannot be opened.
 bool RunLidarDecode(drivers::LidarPacketDecoder& decoder,
                     const LidarDecodeOptions& options,
                     LidarDecodeResult* result,

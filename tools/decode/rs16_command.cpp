@@ -21,6 +21,8 @@ struct Rs16Args {
   double cut_angle_deg = 0.0;
   double min_range_m = 0.0;
   double max_range_m = std::numeric_limits<double>::infinity();
+  double lens_offset_m = 0.0;
+  bool msop_port_given = false;
   bool summary = false;
   std::string points_csv;
 };
@@ -37,6 +39,8 @@ void WriteDifop(const drivers::Rs16Decoder& decoder, JsonWriter& json) {
              : info.return_mode == drivers::ReturnMode::kLast      ? "last"
              : info.return_mode == drivers::ReturnMode::kStrongest ? "strongest"
                                                                    : "unknown");
+  json.Key("supports_dual_return").Value(info.supports_dual_return);
+  json.Key("distance_resolution_m").Value(decoder.distance_resolution_m());
   json.Key("has_vertical_calibration").Value(info.has_vertical_calibration);
   // Angles in use, by laser channel as transmitted (DIFOP calibration, else config defaults).
   json.Key("vertical_angles_deg").Array(std::span<const double>(decoder.vertical_deg_by_channel()));
@@ -50,13 +54,20 @@ int Run(const Rs16Args& args) {
   config.difop_port = args.difop_port;
   config.min_range_m = args.min_range_m;
   config.max_range_m = args.max_range_m;
-  drivers::Rs16Decoder decoder(config);
+  drivers::Rs16DecoderOptions decoder_options;
+  decoder_options.lens_offset_m = args.lens_offset_m;
+  drivers::Rs16Decoder decoder(config, decoder_options);
   LidarDecodeOptions options;
   options.pcap_path = args.file;
   options.data_port = args.msop_port;
   options.info_port = args.difop_port;
   options.cut_angle_deg = args.cut_angle_deg;
   options.points_csv = args.points_csv;
+  // Without --msop-port, use the port the unit's own DIFOP names (the real capture: 2244).
+  if (!args.msop_port_given && AdoptFirstInfoPacket(decoder, options) &&
+      decoder.difop().msop_dst_port != 0) {
+    options.data_port = decoder.difop().msop_dst_port;
+  }
   LidarDecodeResult result;
   std::string error;
   if (!RunLidarDecode(decoder, options, &result, &error)) {
@@ -79,7 +90,8 @@ void AddRs16Command(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<Rs16Args>();
   CLI::App* cmd = app.add_subcommand("rs16", "RS-LiDAR-16 pcap (MSOP/DIFOP)");
   cmd->add_option("file", args->file, "capture file (pcap or pcapng)")->required();
-  cmd->add_option("--msop-port", args->msop_port, "UDP destination port of MSOP packets")
+  cmd->add_option("--msop-port", args->msop_port,
+                  "UDP destination port of MSOP packets (default: as the DIFOP says, else 6699)")
       ->capture_default_str();
   cmd->add_option("--difop-port", args->difop_port, "UDP destination port of DIFOP packets")
       ->capture_default_str();
@@ -89,11 +101,18 @@ void AddRs16Command(CLI::App& app, int* exit_code) {
   cmd->add_option("--min-range", args->min_range_m, "drop returns closer than this, m")
       ->capture_default_str();
   cmd->add_option("--max-range", args->max_range_m, "drop returns farther than this, m");
+  cmd->add_option("--lens-offset", args->lens_offset_m,
+                  "optical-centre offset along the firing azimuth, m (rs_driver: 0.03825)")
+      ->capture_default_str();
   cmd->add_flag("--summary", args->summary, "print the JSON summary (default without --points)");
   cmd->add_option("--points", args->points_csv, "write every valid point to this CSV file");
-  cmd->callback([args, exit_code] { *exit_code = Run(*args); });
+  cmd->callback([args, cmd, exit_code] {
+    args->msop_port_given = cmd->count("--msop-port") > 0;
+    *exit_code = Run(*args);
+  });
 }
 
+// NOLINTNEXTLINE(cert-err58-cpp): start-up registration; bad_alloc here may terminate.
 const DecodeCommandRegistrar kRegistrar(AddRs16Command);
 
 }  // namespace

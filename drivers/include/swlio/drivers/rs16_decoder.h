@@ -34,7 +34,13 @@ struct Rs16DifopInfo {
   uint16_t difop_dst_port = 0;  ///< port the host receives DIFOP on
   double fov_start_deg = 0.0;
   double fov_end_deg = 0.0;
-  ReturnMode return_mode = ReturnMode::kUnknown;
+  std::array<uint8_t, 5> top_firmware{};
+  std::array<uint8_t, 5> bottom_firmware{};
+  /// 0.005 m, or 0.01 m for the old top-board firmware listed in rs16_protocol.h.
+  double distance_resolution_m = rs16::kDistanceResolutionM;
+  /// Bottom firmware ≥ 08 02 09; older units send strongest return whatever byte 300 says.
+  bool supports_dual_return = false;
+  ReturnMode return_mode = ReturnMode::kUnknown;  ///< kStrongest when !supports_dual_return
   bool time_valid = false;
   int64_t t_sensor_ns = 0;  ///< DIFOP header time (YMD), sensor clock
   /// false when pitch_cali is blank (all 0x00/0xFF, as rs_driver checks) or out of range.
@@ -49,6 +55,12 @@ struct Rs16DecoderOptions {
   rs16::TimeFormat time_format = rs16::TimeFormat::kAuto;
   /// Used until a DIFOP packet reports the unit's return mode.
   ReturnMode initial_return_mode = ReturnMode::kStrongest;
+  /// Metres per distance code: 0 = 5 mm until a DIFOP names old (10 mm) firmware; else fixed.
+  double distance_resolution_m = 0.0;
+  /// Horizontal distance of the optical centre from the rotation axis, along the firing
+  /// azimuth. 0 follows the manual's formula (§8.1); RoboSense's drivers add 0.03825 m for RS16
+  /// (rs_driver decoder_RS16.hpp RX, ros_rslidar Rx_). `range_m` stays the measured range.
+  double lens_offset_m = 0.0;
 };
 
 class Rs16Decoder final : public LidarPacketDecoder {
@@ -65,7 +77,8 @@ class Rs16Decoder final : public LidarPacketDecoder {
   DecodeStatus DecodeData(std::span<const uint8_t> packet,
                           std::span<LidarReturn> out,
                           LidarPacketSummary* summary) const override;
-  /// Adopts rpm (when in 60…2400), return mode and vertical calibration (when present).
+  /// Adopts rpm (when in 60…2400), return mode, distance resolution (unless fixed by the
+  /// options) and vertical calibration (when present).
   DecodeStatus DecodeInfo(std::span<const uint8_t> packet) override;
   double PacketsPerRevolution() const override;
   double Rpm() const override { return rpm_; }
@@ -81,17 +94,31 @@ class Rs16Decoder final : public LidarPacketDecoder {
   const std::array<double, 16>& vertical_deg_by_channel() const { return vertical_deg_; }
   /// Ring (0 = lowest elevation) of each laser channel.
   const std::array<uint16_t, 16>& ring_of_channel() const { return ring_; }
+  double distance_resolution_m() const { return resolution_m_; }
   /// Duration of one block: 111 µs in single-return mode, 55.5 µs in dual.
   int64_t BlockPeriodNs() const;
 
  private:
+  struct BlockInput {
+    const uint8_t* slots;  ///< first of the block's 32 three-byte slots
+    int index;             ///< block number in the packet, 0–11
+    int azimuth_cdeg;      ///< block azimuth, 0.01°
+    double step_cdeg;      ///< azimuth advance over one block period, 0.01°
+    int64_t t_ns;          ///< time of the block's first firing, sensor clock
+  };
+  /// Decodes one block's valid slots into `out`; returns how many were written.
+  uint32_t DecodeBlock(const BlockInput& block, LidarReturn* out, uint32_t* no_returns) const;
   void UpdateLaserTables();
+  void SetResolution(double resolution_m);
 
   Rs16DecoderOptions options_;
   double rpm_;
   ReturnMode return_mode_;
-  uint16_t min_raw_;  ///< smallest accepted distance code (≥ 1)
-  uint16_t max_raw_;  ///< largest accepted distance code (≤ 0xFFFE)
+  double min_range_m_;
+  double max_range_m_;
+  double resolution_m_ = rs16::kDistanceResolutionM;
+  uint16_t min_raw_ = 1;      ///< smallest accepted distance code (≥ 1)
+  uint16_t max_raw_ = 65534;  ///< largest accepted distance code (≤ 0xFFFE)
   bool has_difop_ = false;
   Rs16DifopInfo difop_;
   std::array<double, 16> vertical_deg_{};

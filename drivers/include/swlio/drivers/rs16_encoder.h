@@ -25,6 +25,7 @@ struct Rs16MsopContent {
   int64_t t_sensor_ns = 0;  ///< time of the first firing, sensor clock
   rs16::TimeFormat time_format = rs16::TimeFormat::kYmd;
   uint8_t lidar_type = 0x01;  ///< header byte 30 as sent by the real unit
+  double distance_resolution_m = rs16::kDistanceResolutionM;  ///< 0.01 for old firmware
   std::array<Rs16BlockContent, 12> blocks{};
 };
 
@@ -50,6 +51,9 @@ struct Rs16DifopContent {
   double fov_start_deg = 0.0;
   double fov_end_deg = 360.0;
   ReturnMode return_mode = ReturnMode::kStrongest;
+  /// Firmware versions as the real unit in shared/data sends them (5 mm, dual-capable).
+  std::array<uint8_t, 5> top_firmware = {0x06, 0x30, 0x00, 0x54, 0x00};
+  std::array<uint8_t, 5> bottom_firmware = {0x09, 0x00, 0x0C, 0x02, 0xA0};
   int64_t t_sensor_ns = 0;  ///< DIFOP time (YMD); before 2000 writes a zero time
   /// By laser channel as transmitted; channels 0–7 must be ≤ 0 and 8–15 ≥ 0 (the wire format
   /// carries only magnitudes).

@@ -7,8 +7,10 @@
 /// 2.8 µs steps plus 55.5 µs for the second firing, pitch_cali as 16 × 24-bit big-endian values
 /// in 0.0001°, negative for channels 0–7, return-mode byte 0 dual / 1 strongest / 2 last),
 /// rs_driver `basic_attr.hpp` (`RSMsopHeaderV1`, `RSEthNetV1`, `RSTimestampYMD`,
-/// `RSTimestampUTC`), and the RS-LiDAR-16 User Manual ch. 8 (coordinate mapping). Every offset
-/// below was checked against the real capture in shared/data/rs16_washing_house.
+/// `RSTimestampUTC`), and the RS-LiDAR-16 User Manual (§5.1.1 header: bytes 21–30 time, 31
+/// model, tail 4 reserved + 00 FF; App. B.7 pitch example 00 27 10 → 1°; App. B.10 time;
+/// §8.1 coordinate mapping). Every offset below was checked against the real capture in
+/// shared/data/rs16_washing_house.
 ///
 /// MSOP (1248 B, all fields big-endian):
 ///   0   8  id 55 AA 05 0A 5A A5 50 A0
@@ -19,7 +21,9 @@
 ///   1242 4  packet index (unused here); 1246 2 tail 00 FF
 /// DIFOP (1248 B): 0 id A5 FF 00 5A 11 11 55 55; 8 rpm u16; 10 lidar IP; 14 host IP; 18 MAC;
 ///   24/26 MSOP source/destination port; 28/30 DIFOP source/destination port; 32/34 FOV start/end
-///   (0.01°); 300 return mode; 303 time (YMD); 1165 pitch_cali 48 B.
+///   (0.01°); 40 top-board firmware 5 B; 45 bottom-board firmware 5 B; 300 return mode (honoured
+///   only when the bottom firmware is ≥ 08 02 09, ros_rslidar processDifop); 303 time (YMD);
+///   1165 pitch_cali 48 B.
 
 #include <array>
 #include <cstddef>
@@ -43,7 +47,11 @@ inline constexpr size_t kBlockBytes = 100;
 inline constexpr size_t kSlotBytes = 3;
 inline constexpr size_t kTailOffset = 1242;
 
-inline constexpr double kDistanceResolutionM = 0.005;  ///< rs_driver RS16 DISTANCE_RES
+/// Distance per code: 5 mm (rs_driver RS16 DISTANCE_RES); units whose top-board firmware
+/// (DIFOP bytes 41–43) reads 00 00 00, FF FF FF, 55 AA 5A or E9 01 00 use 10 mm (RoboSense
+/// ros_rslidar rawdata.cc processDifop, "dis_resolution_mode").
+inline constexpr double kDistanceResolutionM = 0.005;
+inline constexpr double kOldDistanceResolutionM = 0.01;
 inline constexpr double kAzimuthResolutionDeg = 0.01;
 inline constexpr uint16_t kNoReturnZero = 0x0000;
 inline constexpr uint16_t kNoReturnMax = 0xFFFF;
@@ -62,6 +70,8 @@ inline constexpr size_t kDifopDifopSrcPort = 28;
 inline constexpr size_t kDifopDifopDstPort = 30;
 inline constexpr size_t kDifopFovStart = 32;
 inline constexpr size_t kDifopFovEnd = 34;
+inline constexpr size_t kDifopTopFirmware = 40;     ///< 5 bytes
+inline constexpr size_t kDifopBottomFirmware = 45;  ///< 5 bytes
 inline constexpr size_t kDifopReturnMode = 300;
 inline constexpr size_t kDifopTime = 303;
 inline constexpr size_t kDifopPitchCali = 1165;
