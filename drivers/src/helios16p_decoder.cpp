@@ -22,10 +22,11 @@
 // channels 0–15 are the first and 16–31 the second return of one firing (rs_driver's
 // Rs16DualReturnBlockIterator); no dual capture was available to check this.
 //
-// Point (RoboSense sensor frame, x forward, y left, z up; azimuth clockwise from x seen from
-// above), with the lens-centre offset RX = 0.03498 m of rs_driver's Helios constants:
+// Point in the RoboSense manual's sensor frame (as for RS16: y forward at azimuth 0, x right,
+// z up; azimuth clockwise seen from above), with the lens-centre offset RX = 0.03498 m of
+// rs_driver's Helios constants:
 //   a = interpolated azimuth, af = a + horizontal calibration of the laser, v = elevation
-//   x = r cos v cos af + RX cos a,  y = −r cos v sin af − RX sin a,  z = r sin v
+//   x = r cos v sin af + RX sin a,  y = r cos v cos af + RX cos a,  z = r sin v
 //
 // DIFOP (1248 bytes, port 7788): id A5 FF 00 5A 11 11 55 55; rpm u16 @8; MSOP port @24,
 // DIFOP port @28; FOV start/end (0.01°) @32/@34; return mode @300; vertical angles @468 and
@@ -203,8 +204,8 @@ void Helios16pDecoder::DecodeBlock(const uint8_t* block,
     const int32_t az_final = az + horiz_cdeg_[laser];
     const float xy = range * cos_vert_[laser];
     LidarReturn& r = out[s->returns++];
-    r.x_m = xy * trig.Cos(az_final) + kLensRxM * trig.Cos(az);
-    r.y_m = -xy * trig.Sin(az_final) - kLensRxM * trig.Sin(az);
+    r.x_m = xy * trig.Sin(az_final) + kLensRxM * trig.Sin(az);
+    r.y_m = xy * trig.Cos(az_final) + kLensRxM * trig.Cos(az);
     r.z_m = range * sin_vert_[laser];
     r.range_m = range;
     r.azimuth_deg = static_cast<float>(detail::CentidegTrig::Wrap(az_final)) * 0.01f;

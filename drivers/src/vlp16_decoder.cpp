@@ -17,10 +17,11 @@
 // the gap being the azimuth advance to the next block (pair); the last block (pair) of a packet
 // reuses the previous gap. Azimuth is rounded to 0.01° for the sine/cosine table.
 //
-// Point (sensor frame x forward, y left, z up; azimuth clockwise from x seen from above):
-//   x = r cos ω cos α,  y = −r cos ω sin α,  z = r sin ω
-// The manual's Y-forward/X-right axes rotated to x forward, y left (as the ROS drivers and
-// nebula do). The manual's per-laser vertical offsets (±11.2 mm) are not applied.
+// Point in the VLP-16 manual's sensor frame (y forward at azimuth 0, x right, z up; azimuth
+// clockwise seen from above), the same convention as the RoboSense decoders:
+//   x = r cos ω sin α,  y = r cos ω cos α,  z = r sin ω
+// (ROS drivers and nebula rotate this to x forward, y left.) The manual's per-laser vertical
+// offsets (±11.2 mm) are not applied.
 
 #include "swlio/drivers/vlp16_decoder.h"
 
@@ -167,8 +168,8 @@ void Vlp16Decoder::DecodeBlock(const uint8_t* packet,
       const int32_t az = detail::CentidegTrig::Wrap(static_cast<int32_t>(std::lround(az_f)));
       const float xy = range * cos_vert_[l];
       LidarReturn& r = out[s->returns++];
-      r.x_m = xy * trig.Cos(az);
-      r.y_m = -xy * trig.Sin(az);
+      r.x_m = xy * trig.Sin(az);
+      r.y_m = xy * trig.Cos(az);
       r.z_m = range * sin_vert_[l];
       r.range_m = range;
       r.azimuth_deg = static_cast<float>(az) * 0.01f;

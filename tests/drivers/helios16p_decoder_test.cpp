@@ -1,8 +1,9 @@
 // RS-Helios-16P decoder: synthetic packets, malformed input, and the real tier4/nebula capture
 // against nebula's decoded reference clouds.
 //
-// Frame conventions: nebula's Helios-16P output uses the same frame as ours (RoboSense sensor
-// frame, x forward, y left, z up, with rs_driver's lens offset RX), so no transform is applied.
+// Frame conventions: ours is the RoboSense manual's sensor frame (y forward, x right, z up);
+// nebula's Helios-16P output uses the ROS frame (x forward, y left, z up), with the same lens
+// offset RX. The test maps nebula's points into ours: x_ours = −y_nebula, y_ours = x_nebula.
 // Differences in how nebula produced the reference, reproduced here in the test (not in the
 // decoder):
 //  - nebula read the angles from its RobosenseHelios16P.csv (config_from_file, the bag's only
@@ -87,8 +88,8 @@ TEST(Helios16pDecoder, SyntheticReturnGeometryAndTime) {
   const double a = (9060 + 11) * 0.01 * std::numbers::pi / 180;
   const double af = (9060 + 11 - 400) * 0.01 * std::numbers::pi / 180;
   const double v = 10.92 * std::numbers::pi / 180;
-  EXPECT_NEAR(r.x_m, 10 * std::cos(v) * std::cos(af) + 0.03498 * std::cos(a), 1e-4);
-  EXPECT_NEAR(r.y_m, -10 * std::cos(v) * std::sin(af) - 0.03498 * std::sin(a), 1e-4);
+  EXPECT_NEAR(r.x_m, 10 * std::cos(v) * std::sin(af) + 0.03498 * std::sin(a), 1e-4);
+  EXPECT_NEAR(r.y_m, 10 * std::cos(v) * std::cos(af) + 0.03498 * std::cos(a), 1e-4);
   EXPECT_NEAR(r.z_m, 10 * std::sin(v), 1e-4);
   EXPECT_FLOAT_EQ(r.range_m, 10.0f);
   EXPECT_NEAR(r.azimuth_deg, 86.71, 1e-3);
@@ -239,7 +240,7 @@ TEST(Helios16pDecoder, ReproducesNebulaReferenceScans) {
     ASSERT_EQ(scan->points.size(), ref.size()) << pcd;
     for (size_t i = 0; i < ref.size(); ++i) {
       const LidarReturn& p = scan->points[i];
-      const double d = std::hypot(p.x_m - ref[i].x, p.y_m - ref[i].y, p.z_m - ref[i].z);
+      const double d = std::hypot(p.x_m + ref[i].y, p.y_m - ref[i].x, p.z_m - ref[i].z);
       worst_m = std::max(worst_m, d);
       ASSERT_LE(d, 0.01) << pcd << " point " << i;
       ASSERT_EQ(p.ring, ref[i].channel) << pcd << " point " << i;

@@ -1,8 +1,9 @@
 // VLP-16 decoder: synthetic packets, malformed input, and the real tier4/nebula dual-return
 // capture against nebula's decoded reference cloud.
 //
-// Frame conventions: nebula's Velodyne output uses the ROS frame (x forward, y left, z up, from
-// the manual's X right / Y forward), the same as ours, so no transform is applied. Differences in
+// Frame conventions: ours is the VLP-16 manual's sensor frame (y forward, x right, z up);
+// nebula's Velodyne output uses the ROS frame (x forward, y left, z up). The test maps nebula's
+// points into ours: x_ours = −y_nebula, y_ours = x_nebula. Differences in
 // how nebula produced the reference, reproduced or bounded here (not in the decoder):
 //  - nebula's test ran with cloud_min_angle 0 / cloud_max_angle 359: it drops points above
 //    359.00° and whole blocks whose packet azimuth is above 359.00°. The test applies both.
@@ -88,8 +89,8 @@ TEST(Vlp16Decoder, SingleReturnGeometryAndTiming) {
   // 110.592 = 11.25 (0.01°) → 0.81° after rounding to 0.01°.
   EXPECT_NEAR(r.azimuth_deg, 0.81, 1e-4);
   const double a = 0.81 * std::numbers::pi / 180, w = 3.0 * std::numbers::pi / 180;
-  EXPECT_NEAR(r.x_m, 10 * std::cos(w) * std::cos(a), 1e-4);
-  EXPECT_NEAR(r.y_m, -10 * std::cos(w) * std::sin(a), 1e-4);
+  EXPECT_NEAR(r.x_m, 10 * std::cos(w) * std::sin(a), 1e-4);
+  EXPECT_NEAR(r.y_m, 10 * std::cos(w) * std::cos(a), 1e-4);
   EXPECT_NEAR(r.z_m, 10 * std::sin(w), 1e-4);
   EXPECT_EQ(r.ring, 9);
   EXPECT_EQ(r.intensity, 42.0f);
@@ -183,7 +184,7 @@ TEST(Vlp16Decoder, ReproducesNebulaReferenceScan) {
     ASSERT_EQ(p.ring, ref[i].channel) << i;
     ASSERT_EQ(p.intensity, ref[i].intensity) << i;
     ASSERT_NEAR(p.range_m, ref[i].distance, 1e-4) << i;
-    if (std::hypot(p.x_m - ref[i].x, p.y_m - ref[i].y, p.z_m - ref[i].z) <= 0.01) {
+    if (std::hypot(p.x_m + ref[i].y, p.y_m - ref[i].x, p.z_m - ref[i].z) <= 0.01) {
       ++direct;
       continue;
     }

@@ -28,7 +28,9 @@ struct LidarReturn {
   float azimuth_deg = 0.0f;  ///< horizontal angle of this firing (after calibration), [0, 360)
   float intensity = 0.0f;    ///< reflectivity as reported, 0–255
   uint16_t ring = 0;         ///< laser channel sorted by elevation, 0 = lowest
-  uint8_t return_index = 0;  ///< 0: strongest or only return; 1: second return of a dual pair
+  /// 0: the only return, or the first of a dual pair in packet order (RS16/Helios: strongest
+  /// or first as rs_driver lays them out; VLP-16: last); 1: the second of a dual pair.
+  uint8_t return_index = 0;
   uint16_t slot = 0;  ///< position in its packet: block × slots-per-block + slot (for encoders)
   /// Firing time on the sensor's own clock, ns (header time + firing offset). Not host time:
   /// the clock model maps it. May wrap (VLP-16: µs past the hour).
