@@ -37,3 +37,36 @@ for n in (1, 3, 6):
     open(os.path.join(out_dir, "pcap", "first%d" % n), "wb").write(blob)
 open(os.path.join(out_dir, "pcap", "cut"), "wb").write(raw[:24] + records[0][0] + records[1][0][:700])
 print("seeds in", out_dir)
+
+
+# --- seeds for the other decoders (added for scripts/fuzz) ---------------------------------
+def udp_payloads(pcap_path):
+    """UDP payloads of a classic pcap with Ethernet/IPv4/UDP records (our repackaged captures)."""
+    data = open(pcap_path, "rb").read()
+    out, pos = [], 24
+    while pos + 16 <= len(data):
+        incl = struct.unpack("<I", data[pos + 8:pos + 12])[0]
+        out.append(data[pos + 16 + 42:pos + 16 + incl])
+        pos += 16 + incl
+    return out
+
+
+def write_seeds(name, blobs):
+    os.makedirs(os.path.join(out_dir, name), exist_ok=True)
+    for i, blob in enumerate(blobs):
+        open(os.path.join(out_dir, name, "seed%d" % i), "wb").write(blob)
+
+
+helios = udp_payloads(os.path.join(data_dir, "rs_helios16p_nebula",
+                                   "helios16p_msop6699_difop7788.repackaged.pcap"))
+write_seeds("helios16p", [p for p in helios if len(p) == 1248][::75][:12])
+vlp = udp_payloads(os.path.join(data_dir, "velodyne_nebula", "vlp16", "vlp16_port2368.repackaged.pcap"))
+write_seeds("vlp16", vlp[::60][:12])
+xbus = [open(os.path.join(data_dir, "xsens_einride_mti-g-710", str(k), "output.bin"), "rb").read()[:3000]
+        for k in range(1, 6)]
+xbus.append(open(os.path.join(data_dir, "xsens_scottapotamas_mti-300", "test_frames_mti-300.bin"), "rb").read())
+write_seeds("xbus", xbus)
+write_seeds("can", [b"\x00(1700000000.123456) can0 201#0A0B0C0D00000000",
+                    b"\x02(1700000000.5) can1 18FF0101#R5",
+                    b"\x01" + bytes(range(12)) + struct.pack("<IBB", 0x201, 0, 8) + bytes(8)])
+print("seeds for helios16p, vlp16, xbus, can in", out_dir)
