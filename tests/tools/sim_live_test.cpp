@@ -17,7 +17,7 @@ namespace swlio::sim {
 namespace {
 
 TEST(SimLive, StreamsEveryPacketAndFrameToLoopbackAndPty) {
-  constexpr double kDuration = 1.5;
+  constexpr double kDuration = 1.0;
   std::string error;
   drivers::UdpReceiverOptions uo;
   uo.bind_address = "127.0.0.1";
@@ -29,7 +29,7 @@ TEST(SimLive, StreamsEveryPacketAndFrameToLoopbackAndPty) {
   LiveOptions options;
   options.msop_port = msop->bound_port();
   options.difop_port = difop->bound_port();
-  options.speed = 3.0;
+  options.speed = 2.0;
   options.pty_link = (dir / "imu.pty").string();
   options.out_dir = dir;
   options.start_delay_s = 0.5;
@@ -63,8 +63,8 @@ TEST(SimLive, StreamsEveryPacketAndFrameToLoopbackAndPty) {
   ASSERT_TRUE(ok) << error;
 
   RecordingStats file_stats;  // the same run written to files, for comparison
-  ASSERT_TRUE(WriteRecording(*MakeSimSetup("short", 11, kDuration), dir / "file", &file_stats,
-                             &error));
+  ASSERT_TRUE(
+      WriteRecording(*MakeSimSetup("short", 11, kDuration), dir / "file", &file_stats, &error));
   EXPECT_EQ(msop_count, file_stats.msop_packets);
   EXPECT_EQ(difop_count, file_stats.difop_packets);
   EXPECT_EQ(imu_bytes, std::filesystem::file_size(dir / "file" / "imu.xbus"));

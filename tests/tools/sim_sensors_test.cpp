@@ -39,7 +39,7 @@ TEST(SimLidar, PacketsDecodeBackToTheRayCastPoints) {
   SimPacket packet;
   std::vector<SimReturn> truth;
   size_t checked = 0, packets = 0;
-  while (lidar.Next(&packet, &truth) && packets < 2000) {
+  while (lidar.Next(&packet, &truth) && packets < 500) {
     if (decoder.Classify(packet.bytes) == drivers::LidarPacketKind::kInfo) {
       ASSERT_EQ(decoder.DecodeInfo(packet.bytes), drivers::DecodeStatus::kOk);
       continue;
@@ -52,11 +52,12 @@ TEST(SimLidar, PacketsDecodeBackToTheRayCastPoints) {
       const SimReturn& t = truth[r.slot];
       ASSERT_GT(t.range_m, 0.0);
       const double az = (setup.lidar.initial_azimuth_deg +
-                         360.0 * setup.lidar.rpm / 60.0 * NsToSec(t.t_true_ns)) * kDeg;
+                         360.0 * setup.lidar.rpm / 60.0 * NsToSec(t.t_true_ns)) *
+                        kDeg;
       const double om = setup.lidar.vertical_angles_deg[t.channel] * kDeg;
-      const Eigen::Vector3d expected = t.range_m * Eigen::Vector3d(std::cos(om) * std::sin(az),
-                                                                   std::cos(om) * std::cos(az),
-                                                                   std::sin(om));
+      const Eigen::Vector3d expected =
+          t.range_m *
+          Eigen::Vector3d(std::cos(om) * std::sin(az), std::cos(om) * std::cos(az), std::sin(om));
       const Eigen::Vector3d got(r.x_m, r.y_m, r.z_m);
       EXPECT_LT((got - expected).norm(), 0.0026 + t.range_m * 0.021 * kDeg) << "slot " << r.slot;
       const double t_sensor_s = setup.lidar.clock.ToDevice(NsToSec(t.t_true_ns));
@@ -67,7 +68,7 @@ TEST(SimLidar, PacketsDecodeBackToTheRayCastPoints) {
     for (const SimReturn& t : truth) valid += t.range_m > 0.0 ? 1 : 0;
     EXPECT_EQ(valid, summary.returns);
   }
-  EXPECT_GT(checked, 200'000u);
+  EXPECT_GT(checked, 50'000u);
 }
 
 /// The noise-free ray-cast hit lies on the world surface it reports, seen from the LiDAR pose
@@ -78,7 +79,7 @@ TEST(SimLidar, HitsAreSeenFromThePoseAtTheirOwnTime) {
   SimPacket packet;
   std::vector<SimReturn> truth;
   size_t ground = 0;
-  for (int p = 0; p < 3000 && lidar.Next(&packet, &truth); ++p) {
+  for (int p = 0; p < 800 && lidar.Next(&packet, &truth); ++p) {
     for (const SimReturn& t : truth) {
       if (t.true_range_m <= 0.0) continue;
       const Kinematics k = setup.trajectory->At(NsToSec(t.t_true_ns));
@@ -93,7 +94,7 @@ TEST(SimLidar, HitsAreSeenFromThePoseAtTheirOwnTime) {
       }
     }
   }
-  EXPECT_GT(ground, 10'000u);
+  EXPECT_GT(ground, 3'000u);
 }
 
 /// Strapdown integration of 1 s of simulated IMU samples (true biases removed) reproduces the
@@ -115,14 +116,16 @@ TEST(SimImu, OneSecondOfSamplesMatchesTheTrueMotion) {
     Eigen::Vector3d v = k0.v_world;
     const size_t n = static_cast<size_t>(setup.imu.rate_hz);
     for (size_t j = i; j < i + n; ++j) {  // midpoint rule between consecutive samples
-      const Eigen::Vector3d w = 0.5 * (imu[j].gyro_radps + imu[j + 1].gyro_radps) - imu[j].bias_gyro;
+      const Eigen::Vector3d w =
+          0.5 * (imu[j].gyro_radps + imu[j + 1].gyro_radps) - imu[j].bias_gyro;
       const Eigen::Vector3d f = 0.5 * (imu[j].acc_mps2 + imu[j + 1].acc_mps2) - imu[j].bias_acc;
       const Eigen::Matrix3d R_mid = R * lie::Exp(0.5 * w * dt);
       v += (R_mid * f + g) * dt;
       R = R * lie::Exp(w * dt);
     }
     const Kinematics k1 = setup.trajectory->At(NsToSec(imu[i + n].t_true_ns));
-    EXPECT_LT(lie::Log(k1.R_world_body.transpose() * R).norm(), 3.0 * sigma_rot * std::sqrt(3.0) + 2e-4)
+    EXPECT_LT(lie::Log(k1.R_world_body.transpose() * R).norm(),
+              3.0 * sigma_rot * std::sqrt(3.0) + 2e-4)
         << "t=" << t_start;
     EXPECT_LT((v - k1.v_world).norm(), 3.0 * sigma_vel * std::sqrt(3.0) + 2e-3) << "t=" << t_start;
   }
@@ -176,7 +179,8 @@ TEST(SimRecording, SameNameAndSeedGiveIdenticalBytes) {
   std::string error;
   ASSERT_TRUE(WriteRecording(MakeSetupOrDie("degenerate", 9, 2.5), a, &stats, &error)) << error;
   ASSERT_TRUE(WriteRecording(MakeSetupOrDie("degenerate", 9, 2.5), b, &stats, &error)) << error;
-  for (const char* f : {"lidar.pcap", "imu.xbus", "imu.rx.csv", "groundtruth.tum", "manifest.yaml"}) {
+  for (const char* f :
+       {"lidar.pcap", "imu.xbus", "imu.rx.csv", "groundtruth.tum", "manifest.yaml"}) {
     const std::string x = ReadAll(a / f), y = ReadAll(b / f);
     EXPECT_FALSE(x.empty()) << f;
     EXPECT_TRUE(x == y) << f << " differs between two runs";

@@ -74,8 +74,7 @@ TEST(SimRoutes, DerivativesAreConsistentAndContinuous) {
     const Kinematics k = traj.At(t), km = traj.At(t - h), kp = traj.At(t + h);
     EXPECT_LT((k.v_world - (kp.p_world - km.p_world) / (2 * h)).norm(), 2e-3) << t;
     EXPECT_LT((k.a_world - (kp.v_world - km.v_world) / (2 * h)).norm(), 2e-2) << t;
-    const Eigen::Vector3d omega =
-        lie::Log(km.R_world_body.transpose() * kp.R_world_body) / (2 * h);
+    const Eigen::Vector3d omega = lie::Log(km.R_world_body.transpose() * kp.R_world_body) / (2 * h);
     EXPECT_LT((k.omega_body - omega).norm(), 2e-3) << t;
   }
   // Continuity: at 1 ms steps the acceleration changes by less than 0.2 m/s² (jerk < 200).

@@ -33,7 +33,8 @@ void AssignDelivery(std::vector<SimImuSample>& samples, const ImuSimConfig& conf
 
 }  // namespace
 
-std::vector<SimImuSample> SimulateImu(const Trajectory& trajectory, const ImuSimConfig& config,
+std::vector<SimImuSample> SimulateImu(const Trajectory& trajectory,
+                                      const ImuSimConfig& config,
                                       uint64_t seed) {
   Rng rng(seed ^ 0x1A2B3C4Dull);
   const ImuNoiseModel& n = config.noise;
@@ -54,8 +55,8 @@ std::vector<SimImuSample> SimulateImu(const Trajectory& trajectory, const ImuSim
     const Kinematics kin = trajectory.At(host_s);
     SimImuSample s;
     s.t_true_ns = SecToNs(host_s);
-    s.sample_time_fine = static_cast<uint32_t>(
-        static_cast<uint64_t>(std::llround(device_s * 1e4)) & 0xFFFFFFFFull);
+    s.sample_time_fine =
+        static_cast<uint32_t>(static_cast<uint64_t>(std::llround(device_s * 1e4)) & 0xFFFFFFFFull);
     s.packet_counter = static_cast<uint16_t>(k & 0xFFFF);
     s.acc_mps2 = kin.R_world_body.transpose() * (kin.a_world + gravity) + bias_acc +
                  NormalVec(rng, acc_sigma);

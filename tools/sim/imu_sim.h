@@ -18,12 +18,12 @@ namespace swlio::sim {
 /// 0.01 °/s/√Hz, accelerometer 60 µg/√Hz, gyro in-run bias stability 10 °/h; random walks chosen
 /// to give that order of drift over minutes.
 struct ImuNoiseModel {
-  double acc_noise_density = 60e-6 * 9.80665;            ///< m/s²/√Hz
-  double gyro_noise_density = 0.01 * std::numbers::pi / 180.0;        ///< rad/s/√Hz
-  double acc_bias_random_walk = 2e-5;                     ///< m/s³/√Hz
-  double gyro_bias_random_walk = 2e-6;                    ///< rad/s²/√Hz
-  double acc_bias_initial_sigma = 0.02;                   ///< m/s², per axis
-  double gyro_bias_initial_sigma = 0.1 * std::numbers::pi / 180.0;    ///< rad/s, per axis
+  double acc_noise_density = 60e-6 * 9.80665;                       ///< m/s²/√Hz
+  double gyro_noise_density = 0.01 * std::numbers::pi / 180.0;      ///< rad/s/√Hz
+  double acc_bias_random_walk = 2e-5;                               ///< m/s³/√Hz
+  double gyro_bias_random_walk = 2e-6;                              ///< rad/s²/√Hz
+  double acc_bias_initial_sigma = 0.02;                             ///< m/s², per axis
+  double gyro_bias_initial_sigma = 0.1 * std::numbers::pi / 180.0;  ///< rad/s, per axis
 };
 
 /// Device clock: device_time = (1 + drift_ppm·1e-6) · host_time + offset.
@@ -65,7 +65,8 @@ struct ImuSimConfig {
 };
 
 /// Samples over [0, duration] host seconds, in order; deterministic for a seed.
-std::vector<SimImuSample> SimulateImu(const Trajectory& trajectory, const ImuSimConfig& config,
+std::vector<SimImuSample> SimulateImu(const Trajectory& trajectory,
+                                      const ImuSimConfig& config,
                                       uint64_t seed);
 
 }  // namespace swlio::sim

@@ -22,8 +22,10 @@ double PacketStartS(uint64_t index) {
 
 }  // namespace
 
-LidarSimulator::LidarSimulator(const World* world, const Trajectory* trajectory,
-                               const LidarSimConfig& config, uint64_t seed)
+LidarSimulator::LidarSimulator(const World* world,
+                               const Trajectory* trajectory,
+                               const LidarSimConfig& config,
+                               uint64_t seed)
     : world_(world), trajectory_(trajectory), config_(config), rng_(seed ^ 0x11DA4ull) {}
 
 Eigen::Isometry3d LidarSimulator::LidarPose(double t_s) const {

@@ -28,8 +28,8 @@ struct LidarSimConfig {
   double max_range_m = 150.0;
   double dropout = 0.002;  ///< probability that a valid hit still gives no return
   Eigen::Isometry3d T_imu_lidar = Eigen::Isometry3d::Identity();
-  DeviceClock clock;                 ///< header time = clock.ToDevice(host time)
-  double latency_s = 0.0003;         ///< last firing of a packet → host receive
+  DeviceClock clock;          ///< header time = clock.ToDevice(host time)
+  double latency_s = 0.0003;  ///< last firing of a packet → host receive
   double latency_jitter_s = 0.0001;
   double initial_azimuth_deg = 0.0;  ///< motor angle at host time 0
   uint16_t msop_port = 6699;
@@ -44,11 +44,11 @@ struct SimPacket {
 
 /// Ground truth of one simulated return, for tests.
 struct SimReturn {
-  int64_t t_true_ns = 0;   ///< host time of the firing
-  uint8_t block = 0;       ///< block index in its packet
-  uint8_t slot = 0;        ///< slot in its block (0–31)
-  uint8_t channel = 0;     ///< laser channel as transmitted
-  double range_m = 0.0;    ///< noisy range written to the packet (0 = no return)
+  int64_t t_true_ns = 0;  ///< host time of the firing
+  uint8_t block = 0;      ///< block index in its packet
+  uint8_t slot = 0;       ///< slot in its block (0–31)
+  uint8_t channel = 0;    ///< laser channel as transmitted
+  double range_m = 0.0;   ///< noisy range written to the packet (0 = no return)
   double true_range_m = 0.0;
   SurfaceClass cls = SurfaceClass::kNone;
   Eigen::Vector3d p_world = Eigen::Vector3d::Zero();  ///< true hit point
@@ -56,7 +56,9 @@ struct SimReturn {
 
 class LidarSimulator {
  public:
-  LidarSimulator(const World* world, const Trajectory* trajectory, const LidarSimConfig& config,
+  LidarSimulator(const World* world,
+                 const Trajectory* trajectory,
+                 const LidarSimConfig& config,
                  uint64_t seed);
 
   /// The next packet in receive order (DIFOP once a second, MSOP otherwise); false at the end

@@ -41,7 +41,8 @@ int RunFile(const swlio::sim::SimSetup& setup, const std::string& out) {
 }
 
 int Run(int argc, char** argv) {
-  CLI::App app{"swlio-sim: simulated substation drives (RS-LiDAR-16 + Xsens MTi) with ground truth"};
+  CLI::App app{
+      "swlio-sim: simulated substation drives (RS-LiDAR-16 + Xsens MTi) with ground truth"};
   std::string scenario = "short";
   uint64_t seed = 1;
   std::string out;
@@ -99,12 +100,13 @@ int Run(int argc, char** argv) {
     std::cerr << "swlio-sim: " << error << "\n";
     return 1;
   }
-  std::printf("{\"udp_sent\": %llu, \"udp_errors\": %llu, \"imu_bytes\": %llu, "
-              "\"imu_bytes_dropped\": %llu, \"max_lateness_ms\": %.3f}\n",
-              static_cast<unsigned long long>(stats.udp_sent),
-              static_cast<unsigned long long>(stats.udp_errors),
-              static_cast<unsigned long long>(stats.imu_bytes),
-              static_cast<unsigned long long>(stats.imu_bytes_dropped), stats.max_lateness_ms);
+  std::printf(
+      "{\"udp_sent\": %llu, \"udp_errors\": %llu, \"imu_bytes\": %llu, "
+      "\"imu_bytes_dropped\": %llu, \"max_lateness_ms\": %.3f}\n",
+      static_cast<unsigned long long>(stats.udp_sent),
+      static_cast<unsigned long long>(stats.udp_errors),
+      static_cast<unsigned long long>(stats.imu_bytes),
+      static_cast<unsigned long long>(stats.imu_bytes_dropped), stats.max_lateness_ms);
   return 0;
 }
 

@@ -18,8 +18,8 @@ RouteSpec Base(double cruise_mps, double radius_m, std::vector<Eigen::Vector2d> 
 
 Scenario Short() {
   Scenario s{"short", "about 60 s: along the south road, a left turn onto the east road", {}};
-  s.route = Base(1.2, 4.0, {{150.0, L::kRoadSouth}, {L::kRoadEast, L::kRoadSouth},
-                            {L::kRoadEast, 35.0}});
+  s.route =
+      Base(1.2, 4.0, {{150.0, L::kRoadSouth}, {L::kRoadEast, L::kRoadSouth}, {L::kRoadEast, 35.0}});
   return s;
 }
 
@@ -47,7 +47,8 @@ Scenario Loop943() {
 
 Scenario Degenerate() {
   Scenario s{"degenerate",
-             "a long stretch across the open yard, then along the west and south fences", {}};
+             "a long stretch across the open yard, then along the west and south fences",
+             {}};
   s.route = Base(1.2, 4.0, {{20.0, 0.0}, {20.0, 85.0}, {-7.0, 85.0}, {-7.0, -3.0}, {35.0, -3.0}});
   return s;
 }
@@ -73,7 +74,9 @@ Scenario Aggressive() {
 
 }  // namespace
 
-std::vector<std::string> ScenarioNames() { return {"short", "loop943", "degenerate", "aggressive"}; }
+std::vector<std::string> ScenarioNames() {
+  return {"short", "loop943", "degenerate", "aggressive"};
+}
 
 std::optional<Scenario> MakeScenario(const std::string& name) {
   if (name == "short") return Short();

@@ -5,7 +5,8 @@
 
 namespace swlio::sim {
 
-bool DumpWorldAndRoute(const SimSetup& setup, const std::filesystem::path& dir,
+bool DumpWorldAndRoute(const SimSetup& setup,
+                       const std::filesystem::path& dir,
                        std::string* error) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -25,8 +26,8 @@ bool DumpWorldAndRoute(const SimSetup& setup, const std::filesystem::path& dir,
               << p.cylinder.b.z() << ',' << p.cylinder.radius_m << '\n';
         break;
       case Primitive::Kind::kSphere:
-        world << "sphere," << cls << ',' << p.sphere.center.x() << ',' << p.sphere.center.y()
-              << ',' << p.sphere.center.z() << ',' << p.sphere.radius_m << ",0,0,0\n";
+        world << "sphere," << cls << ',' << p.sphere.center.x() << ',' << p.sphere.center.y() << ','
+              << p.sphere.center.z() << ',' << p.sphere.radius_m << ",0,0,0\n";
         break;
     }
   }
@@ -35,9 +36,9 @@ bool DumpWorldAndRoute(const SimSetup& setup, const std::filesystem::path& dir,
   for (int64_t k = 0; static_cast<double>(k) * 0.1 <= SimDuration(setup); ++k) {
     const double t = static_cast<double>(k) * 0.1;
     const Kinematics kin = setup.trajectory->At(t);
-    route << t << ',' << kin.p_world.x() << ',' << kin.p_world.y() << ',' << kin.p_world.z()
-          << ',' << std::atan2(kin.R_world_body(1, 0), kin.R_world_body(0, 0)) << ','
-          << kin.v_world.norm() << '\n';
+    route << t << ',' << kin.p_world.x() << ',' << kin.p_world.y() << ',' << kin.p_world.z() << ','
+          << std::atan2(kin.R_world_body(1, 0), kin.R_world_body(0, 0)) << ',' << kin.v_world.norm()
+          << '\n';
   }
   if (!world || !route) {
     *error = "cannot write world.csv / route.csv in " + dir.string();

@@ -12,7 +12,6 @@ namespace swlio::sim {
 /// Writes DIR/world.csv (one primitive per line: kind,class,x,y,z,size1,size2,size3,yaw, with
 /// box half sizes, cylinder end points, sphere radius) and DIR/route.csv (t_s,x,y,z,yaw_rad,
 /// speed_mps at 10 Hz). Returns false with `error` on failure.
-bool DumpWorldAndRoute(const SimSetup& setup, const std::filesystem::path& dir,
-                       std::string* error);
+bool DumpWorldAndRoute(const SimSetup& setup, const std::filesystem::path& dir, std::string* error);
 
 }  // namespace swlio::sim

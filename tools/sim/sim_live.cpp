@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <pty.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <termios.h>
 #include <unistd.h>
@@ -70,13 +71,23 @@ bool OpenEndpoints(const LiveOptions& options, Endpoints* ep, std::string* error
   return true;
 }
 
+/// Waits (up to `timeout_s`) until the reader has taken every byte written to the pty: closing
+/// the master hangs the line up and would discard what is still queued.
+void WaitForPtyDrained(int slave_fd, double timeout_s) {
+  const int64_t deadline = MonotonicNs() + SecToNs(timeout_s);
+  int queued = 0;
+  while (ioctl(slave_fd, FIONREAD, &queued) == 0 && queued > 0 && MonotonicNs() < deadline) {
+    SleepUntil(MonotonicNs() + kNsPerMs);
+  }
+}
+
 void SendUdp(int fd, uint16_t port, std::span<const uint8_t> bytes, LiveStats* stats) {
   sockaddr_in to{};
   to.sin_family = AF_INET;
   to.sin_port = htons(port);
   to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);  // never anywhere else
-  const ssize_t n = sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to),
-                           sizeof to);
+  const ssize_t n =
+      sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
   (n == static_cast<ssize_t>(bytes.size()) ? stats->udp_sent : stats->udp_errors)++;
 }
 
@@ -89,8 +100,11 @@ void WritePty(int fd, std::span<const uint8_t> bytes, LiveStats* stats) {
 
 }  // namespace
 
-bool RunLive(const SimSetup& setup, const LiveOptions& options, const volatile bool* stop,
-             LiveStats* stats, std::string* error) {
+bool RunLive(const SimSetup& setup,
+             const LiveOptions& options,
+             const volatile bool* stop,
+             LiveStats* stats,
+             std::string* error) {
   Endpoints ep;
   if (!OpenEndpoints(options, &ep, error)) return false;
   if (options.start_delay_s > 0.0) SleepUntil(MonotonicNs() + SecToNs(options.start_delay_s));
@@ -112,8 +126,8 @@ bool RunLive(const SimSetup& setup, const LiveOptions& options, const volatile b
     stats->max_lateness_ms =
         std::max(stats->max_lateness_ms, static_cast<double>(MonotonicNs() - due) * 1e-6);
     if (lidar_first) {
-      SendUdp(ep.udp, packet.dst_port == setup.lidar.msop_port ? options.msop_port
-                                                                : options.difop_port,
+      SendUdp(ep.udp,
+              packet.dst_port == setup.lidar.msop_port ? options.msop_port : options.difop_port,
               packet.bytes, stats);
       have_packet = lidar.Next(&packet);
       continue;
@@ -125,6 +139,7 @@ bool RunLive(const SimSetup& setup, const LiveOptions& options, const volatile b
     }
     WritePty(ep.pty_master, burst, stats);
   }
+  WaitForPtyDrained(ep.pty_slave, 2.0);
   if (!options.out_dir.empty()) {
     std::filesystem::create_directories(options.out_dir);
     std::ofstream gt(options.out_dir / "groundtruth.tum");

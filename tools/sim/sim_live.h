@@ -31,7 +31,10 @@ struct LiveStats {
 /// Runs until the route ends or `stop` becomes true. Destinations are always 127.0.0.1.
 /// Prints the pty slave path to stdout as "pty: /dev/pts/N". Returns false with `error` on a
 /// set-up failure.
-bool RunLive(const SimSetup& setup, const LiveOptions& options, const volatile bool* stop,
-             LiveStats* stats, std::string* error);
+bool RunLive(const SimSetup& setup,
+             const LiveOptions& options,
+             const volatile bool* stop,
+             LiveStats* stats,
+             std::string* error);
 
 }  // namespace swlio::sim

@@ -26,8 +26,10 @@ std::string List(const Range& values) {
 
 }  // namespace
 
-std::string ManifestYaml(const SimSetup& setup, const RecordingStats& stats,
-                         int64_t host_start_ns, const std::string& mode) {
+std::string ManifestYaml(const SimSetup& setup,
+                         const RecordingStats& stats,
+                         int64_t host_start_ns,
+                         const std::string& mode) {
   const Eigen::Isometry3d& T = setup.lidar.T_imu_lidar;
   const Eigen::Quaterniond q = lie::PositiveW(Eigen::Quaterniond(T.linear()));
   const Eigen::Vector3d rpy_deg = lie::RpyFromRotation(T.linear()) * 180.0 / 3.14159265358979323846;
@@ -73,7 +75,8 @@ std::string ManifestYaml(const SimSetup& setup, const RecordingStats& stats,
     << "  gyro_bias_random_walk_radps2_per_sqrthz: " << Num(n.gyro_bias_random_walk) << "\n"
     << "  acc_bias_initial_sigma_mps2: " << Num(n.acc_bias_initial_sigma) << "\n"
     << "  gyro_bias_initial_sigma_radps: " << Num(n.gyro_bias_initial_sigma) << "\n"
-    << "  # SampleTimeFine (10 kHz ticks) = (1 + drift_ppm·1e-6)·(host_s − host_start_s) + offset_s\n"
+    << "  # SampleTimeFine (10 kHz ticks) = (1 + drift_ppm·1e-6)·(host_s − host_start_s) + "
+       "offset_s\n"
     << "  clock: {offset_s: " << Num(setup.imu.clock.offset_s)
     << ", drift_ppm: " << Num(setup.imu.clock.drift_ppm) << "}\n"
     << "  serial: {baud: " << Num(setup.imu.baud)

@@ -23,7 +23,8 @@ std::string Format(const char* fmt, auto... args) {
   return buf;
 }
 
-bool WriteGroundTruth(const SimSetup& setup, const std::filesystem::path& path,
+bool WriteGroundTruth(const SimSetup& setup,
+                      const std::filesystem::path& path,
                       RecordingStats* stats) {
   std::ofstream out(path);
   out << "# timestamp tx ty tz qx qy qz qw  (IMU body frame in the world frame, host time s)\n";
@@ -38,8 +39,7 @@ bool WriteGroundTruth(const SimSetup& setup, const std::filesystem::path& path,
 }
 
 bool WriteImu(const SimSetup& setup, const std::filesystem::path& dir, RecordingStats* stats) {
-  const std::vector<SimImuSample> samples =
-      SimulateImu(*setup.trajectory, setup.imu, setup.seed);
+  const std::vector<SimImuSample> samples = SimulateImu(*setup.trajectory, setup.imu, setup.seed);
   std::ofstream bytes(dir / "imu.xbus", std::ios::binary);
   std::ofstream rx(dir / "imu.rx.csv");
   rx << "byte_offset,bytes,t_rx_ns\n";
@@ -55,13 +55,14 @@ bool WriteImu(const SimSetup& setup, const std::filesystem::path& dir, Recording
       offset += n;
       ++stats->imu_frames;
     }
-    rx << burst_start << ',' << (offset - burst_start) << ',' << (t_rx + kFileHostStartNs)
-       << '\n';
+    rx << burst_start << ',' << (offset - burst_start) << ',' << (t_rx + kFileHostStartNs) << '\n';
   }
   return static_cast<bool>(bytes) && static_cast<bool>(rx);
 }
 
-bool WriteLidar(const SimSetup& setup, const std::filesystem::path& path, RecordingStats* stats,
+bool WriteLidar(const SimSetup& setup,
+                const std::filesystem::path& path,
+                RecordingStats* stats,
                 std::string* error) {
   auto writer = drivers::PcapWriter::Create(path.string(), {}, error);
   if (!writer) return false;
@@ -105,12 +106,14 @@ std::string TumLine(const SimSetup& setup, double t_s, int64_t host_ns) {
   const Eigen::Quaterniond q = lie::PositiveW(Eigen::Quaterniond(k.R_world_body));
   const int64_t t_ns = host_ns;
   return Format("%" PRId64 ".%09" PRId64 " %.6f %.6f %.6f %.9f %.9f %.9f %.9f", t_ns / kNsPerSec,
-                t_ns % kNsPerSec, k.p_world.x(), k.p_world.y(), k.p_world.z(), q.x(), q.y(),
-                q.z(), q.w());
+                t_ns % kNsPerSec, k.p_world.x(), k.p_world.y(), k.p_world.z(), q.x(), q.y(), q.z(),
+                q.w());
 }
 
-bool WriteRecording(const SimSetup& setup, const std::filesystem::path& dir,
-                    RecordingStats* stats, std::string* error) {
+bool WriteRecording(const SimSetup& setup,
+                    const std::filesystem::path& dir,
+                    RecordingStats* stats,
+                    std::string* error) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) {

@@ -32,14 +32,18 @@ struct RecordingStats {
 size_t EncodeImuFrame(const SimImuSample& sample, std::span<uint8_t> out);
 
 /// Writes the folder (created if needed). Returns false with `error` on an I/O failure.
-bool WriteRecording(const SimSetup& setup, const std::filesystem::path& dir,
-                    RecordingStats* stats, std::string* error);
+bool WriteRecording(const SimSetup& setup,
+                    const std::filesystem::path& dir,
+                    RecordingStats* stats,
+                    std::string* error);
 
 /// TUM line "t tx ty tz qx qy qz qw" of the IMU pose at sim time `t_s`, stamped `host_ns`.
 std::string TumLine(const SimSetup& setup, double t_s, int64_t host_ns);
 
 /// The manifest text (YAML).
-std::string ManifestYaml(const SimSetup& setup, const RecordingStats& stats,
-                         int64_t host_start_ns, const std::string& mode);
+std::string ManifestYaml(const SimSetup& setup,
+                         const RecordingStats& stats,
+                         int64_t host_start_ns,
+                         const std::string& mode);
 
 }  // namespace swlio::sim

@@ -18,14 +18,15 @@ Eigen::Isometry3d TrueExtrinsic(Rng& rng) {
   T.linear() = lie::QuatFromRpy(rng.Normal(0.8) * kDeg, rng.Normal(0.8) * kDeg,
                                 (-90.0 + rng.Normal(1.0)) * kDeg)
                    .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(0.03 + rng.Normal(0.01), -0.01 + rng.Normal(0.01),
-                                    -0.12 + rng.Normal(0.01));
+  T.translation() =
+      Eigen::Vector3d(0.03 + rng.Normal(0.01), -0.01 + rng.Normal(0.01), -0.12 + rng.Normal(0.01));
   return T;
 }
 
 }  // namespace
 
-std::optional<SimSetup> MakeSimSetup(const std::string& scenario, uint64_t seed,
+std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
+                                     uint64_t seed,
                                      std::optional<double> duration_s) {
   std::optional<Scenario> s = MakeScenario(scenario);
   if (!s) return std::nullopt;

@@ -20,7 +20,7 @@ namespace swlio::sim {
 struct SimSetup {
   Scenario scenario;
   uint64_t seed = 0;
-  std::unique_ptr<World> world;            ///< heap: the trajectory points into its terrain
+  std::unique_ptr<World> world;  ///< heap: the trajectory points into its terrain
   std::unique_ptr<Trajectory> trajectory;
   ImuSimConfig imu;
   LidarSimConfig lidar;       ///< includes T_imu_lidar and the LiDAR clock
@@ -29,7 +29,8 @@ struct SimSetup {
 
 /// Builds the setup; `duration_s` (when given) shortens the route's timeline. Returns nothing
 /// for an unknown scenario.
-std::optional<SimSetup> MakeSimSetup(const std::string& scenario, uint64_t seed,
+std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
+                                     uint64_t seed,
                                      std::optional<double> duration_s = std::nullopt);
 
 /// Trajectory duration after the optional cut.

@@ -19,14 +19,27 @@ constexpr float kFoliage = 20.0f, kMesh = 35.0f;
 double Ground(const World& w, double x, double y) { return w.terrain.Height(Vector2d(x, y)); }
 
 /// Box standing on the ground at (x, y) with footprint half sizes and height.
-void StandingBox(World& w, double x, double y, double hx, double hy, double height, double yaw,
-                 SurfaceClass cls, float refl) {
+void StandingBox(World& w,
+                 double x,
+                 double y,
+                 double hx,
+                 double hy,
+                 double height,
+                 double yaw,
+                 SurfaceClass cls,
+                 float refl) {
   const double z0 = Ground(w, x, y) - 0.1;  // sunk a little: no gap on slopes
   w.AddBox({Vector3d(x, y, z0 + 0.5 * height), Vector3d(hx, hy, 0.5 * height), yaw}, cls, refl);
 }
 
-void StandingCylinder(World& w, double x, double y, double r, double z_from_ground,
-                      double z_to_ground, SurfaceClass cls, float refl) {
+void StandingCylinder(World& w,
+                      double x,
+                      double y,
+                      double r,
+                      double z_from_ground,
+                      double z_to_ground,
+                      SurfaceClass cls,
+                      float refl) {
   const double g = Ground(w, x, y);
   w.AddCylinder({Vector3d(x, y, g + z_from_ground), Vector3d(x, y, g + z_to_ground), r}, cls, refl);
 }
@@ -36,30 +49,34 @@ void MakeTerrain(Terrain& t, Rng& rng) {
   for (int i = 0; i < 3; ++i) {
     const double wavelength = rng.Uniform(35.0, 90.0);
     const double dir = rng.Uniform(0.0, 2.0 * std::numbers::pi);
-    t.undulations.push_back({Vector2d(std::cos(dir), std::sin(dir)) * 2.0 * std::numbers::pi /
-                                 wavelength,
-                             rng.Uniform(0.04, 0.12), rng.Uniform(0.0, 6.3)});
+    t.undulations.push_back(
+        {Vector2d(std::cos(dir), std::sin(dir)) * 2.0 * std::numbers::pi / wavelength,
+         rng.Uniform(0.04, 0.12), rng.Uniform(0.0, 6.3)});
   }
   for (int i = 0; i < 5; ++i) {
     const double wavelength = rng.Uniform(0.35, 2.5);
     const double dir = rng.Uniform(0.0, 2.0 * std::numbers::pi);
-    t.roughness.push_back({Vector2d(std::cos(dir), std::sin(dir)) * 2.0 * std::numbers::pi /
-                               wavelength,
-                           rng.Uniform(0.002, 0.006), rng.Uniform(0.0, 6.3)});
+    t.roughness.push_back(
+        {Vector2d(std::cos(dir), std::sin(dir)) * 2.0 * std::numbers::pi / wavelength,
+         rng.Uniform(0.002, 0.006), rng.Uniform(0.0, 6.3)});
   }
   // Bumps across the roads (cable covers): fixed places, seeded heights.
   const Vector2d ex = Vector2d::UnitX(), ey = Vector2d::UnitY();
-  const std::pair<Vector2d, Vector2d> spots[] = {
-      {{120.0, L::kRoadSouth}, ex}, {{L::kRoadEast, 40.0}, ey}, {{100.0, L::kRoadMiddle}, ex},
-      {{L::kRoadWest, 90.0}, ey},   {{150.0, L::kRoadNorth}, ex}};
+  const std::pair<Vector2d, Vector2d> spots[] = {{{120.0, L::kRoadSouth}, ex},
+                                                 {{L::kRoadEast, 40.0}, ey},
+                                                 {{100.0, L::kRoadMiddle}, ex},
+                                                 {{L::kRoadWest, 90.0}, ey},
+                                                 {{150.0, L::kRoadNorth}, ex}};
   for (const auto& [c, along] : spots) {
     t.bumps.push_back({c, along, 0.5, 3.5, rng.Uniform(0.03, 0.06)});
   }
 }
 
 void MakeFence(World& w) {
-  const Vector2d corners[] = {{L::kFenceMinX, L::kFenceMinY}, {L::kFenceMaxX, L::kFenceMinY},
-                              {L::kFenceMaxX, L::kFenceMaxY}, {L::kFenceMinX, L::kFenceMaxY}};
+  const Vector2d corners[] = {{L::kFenceMinX, L::kFenceMinY},
+                              {L::kFenceMaxX, L::kFenceMinY},
+                              {L::kFenceMaxX, L::kFenceMaxY},
+                              {L::kFenceMinX, L::kFenceMaxY}};
   for (int i = 0; i < 4; ++i) {
     const Vector2d a = corners[i], b = corners[(i + 1) % 4];
     const Vector2d mid = 0.5 * (a + b);
@@ -91,9 +108,9 @@ void MakeTransformerBay(World& w, Rng& rng, double cx, double cy) {
   }
   for (int b = -1; b <= 1; ++b) {  // bushings on top
     const double g = Ground(w, cx + b * 1.2, cy);
-    w.AddCylinder({Vector3d(cx + b * 1.2, cy, g + h - 0.2), Vector3d(cx + b * 1.2, cy, g + h + 1.6),
-                   0.18},
-                  SurfaceClass::kInsulator, kPorcelain);
+    w.AddCylinder(
+        {Vector3d(cx + b * 1.2, cy, g + h - 0.2), Vector3d(cx + b * 1.2, cy, g + h + 1.6), 0.18},
+        SurfaceClass::kInsulator, kPorcelain);
   }
   StandingBox(w, cx - hx - 2.0, cy, 0.15, hy + 1.5, 6.0, 0.0, SurfaceClass::kWall, kConcrete);
 }

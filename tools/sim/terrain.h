@@ -20,8 +20,8 @@ struct Wave {
 struct Bump {
   Eigen::Vector2d center = Eigen::Vector2d::Zero();
   Eigen::Vector2d along = Eigen::Vector2d::UnitX();  ///< unit, direction of travel over it
-  double half_length_m = 0.5;                         ///< profile half-length along travel
-  double half_width_m = 3.0;                          ///< lateral extent
+  double half_length_m = 0.5;                        ///< profile half-length along travel
+  double half_width_m = 3.0;                         ///< lateral extent
   double height_m = 0.06;
 };
 

@@ -95,18 +95,19 @@ void Trajectory::BuildPath(const RouteSpec& spec) {
   for (size_t k = 1; k < knots; ++k) {
     const double s0 = static_cast<double>(k - 1) * kStep;
     const double p0 = Heading(s0), pm = Heading(s0 + 0.5 * kStep), p1 = Heading(s0 + kStep);
-    table_xy_[k] = table_xy_[k - 1] +
-                   kStep / 6.0 *
-                       Eigen::Vector2d(std::cos(p0) + 4.0 * std::cos(pm) + std::cos(p1),
-                                       std::sin(p0) + 4.0 * std::sin(pm) + std::sin(p1));
+    table_xy_[k] =
+        table_xy_[k - 1] + kStep / 6.0 *
+                               Eigen::Vector2d(std::cos(p0) + 4.0 * std::cos(pm) + std::cos(p1),
+                                               std::sin(p0) + 4.0 * std::sin(pm) + std::sin(p1));
   }
 }
 
 void Trajectory::AddPhase(double duration, double v0, double v1) {
   if (duration <= 0.0) return;
   Phase p{duration_s_, duration, v0, v1, 0.0};
-  p.s0 = phases_.empty() ? 0.0 : phases_.back().s0 + 0.5 * (phases_.back().v0 + phases_.back().v1) *
-                                                          phases_.back().duration;
+  p.s0 = phases_.empty() ? 0.0
+                         : phases_.back().s0 + 0.5 * (phases_.back().v0 + phases_.back().v1) *
+                                                   phases_.back().duration;
   phases_.push_back(p);
   duration_s_ += duration;
 }
@@ -215,8 +216,8 @@ Kinematics Trajectory::At(double t) const {
   Kinematics k;
   k.p_world = Eigen::Vector3d(xy.x(), xy.y(), terrain_->Height(xy) + imu_height_m_);
   k.v_world = Eigen::Vector3d(v_xy.x(), v_xy.y(), g.dot(v_xy));
-  k.a_world = Eigen::Vector3d(a_xy.x(), a_xy.y(),
-                              v_xy.dot(terrain_->Hessian(xy) * v_xy) + g.dot(a_xy));
+  k.a_world =
+      Eigen::Vector3d(a_xy.x(), a_xy.y(), v_xy.dot(terrain_->Hessian(xy) * v_xy) + g.dot(a_xy));
   k.R_world_body = Attitude(xy, psi);
   // Body rate from the attitude at t ± h (the attitude is smooth; h keeps rounding < 1e-9).
   const double h = 1e-4;

@@ -27,10 +27,10 @@ struct RouteSpec {
   double cruise_speed_mps = 1.0;
   double max_yaw_rate_radps = 0.5;
   double max_lateral_acc_mps2 = 1.0;
-  double mean_acc_mps2 = 0.3;       ///< of every speed change
-  double stand_start_s = 2.0;       ///< standing still before moving
+  double mean_acc_mps2 = 0.3;  ///< of every speed change
+  double stand_start_s = 2.0;  ///< standing still before moving
   double stand_end_s = 1.0;
-  double imu_height_m = 0.6;        ///< IMU above the driven surface
+  double imu_height_m = 0.6;  ///< IMU above the driven surface
 };
 
 /// Kinematic state of the body (IMU) frame at one instant.
@@ -38,8 +38,8 @@ struct Kinematics {
   Eigen::Vector3d p_world = Eigen::Vector3d::Zero();
   Eigen::Matrix3d R_world_body = Eigen::Matrix3d::Identity();
   Eigen::Vector3d v_world = Eigen::Vector3d::Zero();
-  Eigen::Vector3d a_world = Eigen::Vector3d::Zero();      ///< without gravity
-  Eigen::Vector3d omega_body = Eigen::Vector3d::Zero();   ///< rad/s in the body frame
+  Eigen::Vector3d a_world = Eigen::Vector3d::Zero();     ///< without gravity
+  Eigen::Vector3d omega_body = Eigen::Vector3d::Zero();  ///< rad/s in the body frame
 };
 
 class Trajectory {

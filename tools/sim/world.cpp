@@ -91,17 +91,28 @@ double IntersectPrimitive(const Primitive& p, const Eigen::Vector3d& o, const Ei
 
 const char* ClassName(SurfaceClass c) {
   switch (c) {
-    case SurfaceClass::kNone: return "none";
-    case SurfaceClass::kGround: return "ground";
-    case SurfaceClass::kWall: return "wall";
-    case SurfaceClass::kFence: return "fence";
-    case SurfaceClass::kPole: return "pole";
-    case SurfaceClass::kTransformer: return "transformer";
-    case SurfaceClass::kGantry: return "gantry";
-    case SurfaceClass::kInsulator: return "insulator";
-    case SurfaceClass::kBusbar: return "busbar";
-    case SurfaceClass::kTrench: return "trench";
-    case SurfaceClass::kTree: return "tree";
+    case SurfaceClass::kNone:
+      return "none";
+    case SurfaceClass::kGround:
+      return "ground";
+    case SurfaceClass::kWall:
+      return "wall";
+    case SurfaceClass::kFence:
+      return "fence";
+    case SurfaceClass::kPole:
+      return "pole";
+    case SurfaceClass::kTransformer:
+      return "transformer";
+    case SurfaceClass::kGantry:
+      return "gantry";
+    case SurfaceClass::kInsulator:
+      return "insulator";
+    case SurfaceClass::kBusbar:
+      return "busbar";
+    case SurfaceClass::kTrench:
+      return "trench";
+    case SurfaceClass::kTree:
+      return "tree";
   }
   return "unknown";
 }
@@ -116,7 +127,8 @@ void World::AddBox(const Box& b, SurfaceClass cls, float reflectivity) {
   p.reflectivity = reflectivity;
   const double c = std::abs(std::cos(b.yaw_rad));
   const double s = std::abs(std::sin(b.yaw_rad));
-  const Eigen::Vector2d ext(c * b.half_m.x() + s * b.half_m.y(), s * b.half_m.x() + c * b.half_m.y());
+  const Eigen::Vector2d ext(c * b.half_m.x() + s * b.half_m.y(),
+                            s * b.half_m.x() + c * b.half_m.y());
   p.min_xy = b.center.head<2>() - ext;
   p.max_xy = b.center.head<2>() + ext;
   Add(std::move(p));
@@ -153,14 +165,18 @@ void World::Build(double cell_m) {
   std::vector<std::vector<uint32_t>> lists(cells);
   for (size_t i = 0; i < primitives_.size(); ++i) {
     const Primitive& p = primitives_[i];
-    const int x0 = std::clamp(static_cast<int>((p.min_xy.x() - bounds_min.x()) / cell_m), 0, nx_ - 1);
-    const int x1 = std::clamp(static_cast<int>((p.max_xy.x() - bounds_min.x()) / cell_m), 0, nx_ - 1);
-    const int y0 = std::clamp(static_cast<int>((p.min_xy.y() - bounds_min.y()) / cell_m), 0, ny_ - 1);
-    const int y1 = std::clamp(static_cast<int>((p.max_xy.y() - bounds_min.y()) / cell_m), 0, ny_ - 1);
+    const int x0 =
+        std::clamp(static_cast<int>((p.min_xy.x() - bounds_min.x()) / cell_m), 0, nx_ - 1);
+    const int x1 =
+        std::clamp(static_cast<int>((p.max_xy.x() - bounds_min.x()) / cell_m), 0, nx_ - 1);
+    const int y0 =
+        std::clamp(static_cast<int>((p.min_xy.y() - bounds_min.y()) / cell_m), 0, ny_ - 1);
+    const int y1 =
+        std::clamp(static_cast<int>((p.max_xy.y() - bounds_min.y()) / cell_m), 0, ny_ - 1);
     for (int y = y0; y <= y1; ++y) {
       for (int x = x0; x <= x1; ++x) {
-        lists[static_cast<size_t>(y) * static_cast<size_t>(nx_) + static_cast<size_t>(x)]
-            .push_back(static_cast<uint32_t>(i));
+        lists[static_cast<size_t>(y) * static_cast<size_t>(nx_) + static_cast<size_t>(x)].push_back(
+            static_cast<uint32_t>(i));
       }
     }
   }
@@ -173,7 +189,9 @@ void World::Build(double cell_m) {
   cell_start_[cells] = static_cast<uint32_t>(cell_items_.size());
 }
 
-void World::CastCell(size_t cell, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+void World::CastCell(size_t cell,
+                     const Eigen::Vector3d& o,
+                     const Eigen::Vector3d& d,
                      RayHit* best) const {
   for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
     const Primitive& p = primitives_[cell_items_[k]];

@@ -16,14 +16,14 @@ namespace swlio::sim {
 enum class SurfaceClass : uint8_t {
   kNone = 0,
   kGround,
-  kWall,      ///< buildings
+  kWall,  ///< buildings
   kFence,
   kPole,
   kTransformer,
   kGantry,
   kInsulator,
   kBusbar,
-  kTrench,    ///< cable-trench covers
+  kTrench,  ///< cable-trench covers
   kTree,
 };
 
@@ -54,7 +54,7 @@ struct Primitive {
   Cylinder cylinder;
   Sphere sphere;
   SurfaceClass cls = SurfaceClass::kWall;
-  float reflectivity = 50.0f;  ///< 0–255 as a LiDAR reports intensity
+  float reflectivity = 50.0f;                        ///< 0–255 as a LiDAR reports intensity
   Eigen::Vector2d min_xy = Eigen::Vector2d::Zero();  ///< footprint bounds, filled by World::Add
   Eigen::Vector2d max_xy = Eigen::Vector2d::Zero();
 };
@@ -88,7 +88,9 @@ class World {
  private:
   void Add(Primitive p);
   /// Nearest primitive hit among the grid cell's primitives, updating `best`.
-  void CastCell(size_t cell, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+  void CastCell(size_t cell,
+                const Eigen::Vector3d& o,
+                const Eigen::Vector3d& d,
                 RayHit* best) const;
 
   std::vector<Primitive> primitives_;
