@@ -277,7 +277,7 @@ void Bind(Section s, drivers::CanConfig& c) {
   s.Get("wheel_radius_m", c.wheel_radius_m);
   s.Get("track_width_m", c.track_width_m);
   s.Get("max_pair_skew_s", c.max_pair_skew_s);
-  s.ForEachChild("signals", [&](Section item) { Bind(item, c.signals.emplace_back()); });
+  s.ForEachChild("signals", [&](const Section& item) { Bind(item, c.signals.emplace_back()); });
   s.Finish();
 }
 

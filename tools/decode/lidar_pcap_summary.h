@@ -90,8 +90,9 @@ inline void PrintSummaryKeys(const LidarPcapSummary& s,
                              const char* data_key,
                              const char* info_key) {
   std::printf("\"packets\": %llu, \"%s\": %llu, \"%s\": %llu, \"packets_other\": %llu, ",
-              static_cast<unsigned long long>(s.packets_data + s.packets_info), data_key,
-              static_cast<unsigned long long>(s.packets_data), info_key,
+              static_cast<unsigned long long>(s.packets_data) +
+                  static_cast<unsigned long long>(s.packets_info),
+              data_key, static_cast<unsigned long long>(s.packets_data), info_key,
               static_cast<unsigned long long>(s.packets_info),
               static_cast<unsigned long long>(s.packets_other));
   std::printf("\"decode_errors\": %llu, \"scans\": %llu, \"points\": %llu, ",

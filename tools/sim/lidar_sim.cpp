@@ -103,7 +103,7 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
         range = hit.range_m + rng_.Normal(config_.range_sigma_m);
         if (range < config_.min_range_m || range > config_.max_range_m) range = 0.0;
       }
-      const size_t slot = static_cast<size_t>((f % 2) * 16 + laser);
+      const size_t slot = 16 * static_cast<size_t>(f % 2) + static_cast<size_t>(laser);
       block.range_m[slot] = static_cast<float>(range);
       block.intensity[slot] = static_cast<uint8_t>(
           std::clamp(hit.reflectivity * (0.9 + 0.2 * rng_.Uniform()), 0.0, 255.0));

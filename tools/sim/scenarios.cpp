@@ -9,7 +9,7 @@ namespace {
 
 using L = Layout;
 
-RouteSpec Base(double cruise_mps, double radius_m, std::vector<Eigen::Vector2d> points) {
+RouteSpec Base(double cruise_mps, double radius_m, const std::vector<Eigen::Vector2d>& points) {
   RouteSpec r;
   r.cruise_speed_mps = cruise_mps;
   for (const auto& p : points) r.waypoints.push_back({p, radius_m});

@@ -206,7 +206,7 @@ MtData2Status DecodeMtData2(std::span<const uint8_t> payload, MtData2Sample* sam
 }
 
 Eigen::Vector3d XsensVectorToEnu(const XsensReal& item) {
-  const Eigen::Vector3d v(item.v[0], item.v[1], item.v[2]);
+  Eigen::Vector3d v(item.v[0], item.v[1], item.v[2]);
   switch (item.frame) {
     case XsensFrame::kNed:
       return {v.y(), v.x(), -v.z()};

@@ -132,7 +132,7 @@ int RunKitti(const CommonArgs& a, std::size_t step) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int Run(int argc, char** argv) {
   CLI::App app{"swlio-eval: trajectory accuracy (APE/RPE as evo computes them, KITTI metric)"};
   app.require_subcommand(1);
   CommonArgs ape_args;
@@ -165,4 +165,13 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 1;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return Run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "swlio-eval: " << e.what() << "\n";
+    return 2;
+  }
 }

@@ -12,8 +12,6 @@
 #include <fstream>
 #include <vector>
 
-extern char** environ;
-
 namespace swlio::tools {
 namespace {
 
@@ -29,6 +27,7 @@ std::filesystem::path PlotScript() {
 /// Runs argv[0] with argv (no shell) and waits; returns its exit status or -1.
 int RunProgram(const std::vector<std::string>& args) {
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   pid_t pid = 0;

@@ -46,7 +46,7 @@ Sim3Transform Umeyama(const Eigen::Matrix3Xd& source,
   const Eigen::Matrix3d cov_xy = inv_n * (y0 * x0.transpose());
 
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cov_xy, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Vector3d d = svd.singularValues();
+  const Eigen::Vector3d& d = svd.singularValues();
   int rank = 0;
   for (int i = 0; i < 3; ++i) rank += d(i) > std::numeric_limits<double>::epsilon() ? 1 : 0;
   if (rank < 2) throw EvalError("Umeyama: degenerate covariance (rank < 2), cannot align");

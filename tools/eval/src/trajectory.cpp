@@ -133,7 +133,8 @@ Trajectory ParseKitti(std::istream& in, const std::string& name) {
     }
     Pose T = Pose::Identity();
     for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 4; ++c) T(r, c) = v[static_cast<std::size_t>(4 * r + c)];
+      for (int c = 0; c < 4; ++c)
+        T(r, c) = v[4 * static_cast<std::size_t>(r) + static_cast<std::size_t>(c)];
     }
     traj.poses.push_back(T);
   });

@@ -19,11 +19,11 @@
 namespace swlio::drivers {
 
 struct UdpReceiverOptions {
-  std::string bind_address = "0.0.0.0";    ///< IPv4 address to bind (0.0.0.0 = all)
-  uint16_t port = 0;                       ///< 0 = any free port (tests)
-  int64_t rcvbuf_bytes = 8 * 1024 * 1024;  ///< requested SO_RCVBUF; 0 = leave the default
-  size_t max_datagram_bytes = 2048;        ///< longer datagrams are truncated and counted
-  size_t batch_size = 32;                  ///< datagrams per recvmmsg call
+  std::string bind_address = "0.0.0.0";             ///< IPv4 address to bind (0.0.0.0 = all)
+  uint16_t port = 0;                                ///< 0 = any free port (tests)
+  int64_t rcvbuf_bytes = int64_t{8} * 1024 * 1024;  ///< requested SO_RCVBUF; 0 = leave the default
+  size_t max_datagram_bytes = 2048;                 ///< longer datagrams are truncated and counted
+  size_t batch_size = 32;                           ///< datagrams per recvmmsg call
 };
 
 /// One received datagram. `payload` points into the receiver's buffers and stays valid until
