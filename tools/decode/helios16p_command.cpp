@@ -1,50 +1,78 @@
-// swlio-decode helios16p FILE.pcap [--msop-port N] [--difop-port N] --summary
-// Prints one JSON object: packet counts, valid returns, returns per ring, scans and the DIFOP
-// fields (rpm, ports, return mode, the 16 vertical angles).
+// swlio-decode helios16p FILE.pcap [--msop-port N] [--difop-port N] [--cut-angle D]
+//                                  [--summary] [--points OUT.csv]
+// The shared LiDAR pipeline (lidar_decode.h) with the RS-Helios-16P decoder: JSON summary with
+// the common keys plus the DIFOP fields; CSV of every valid point in the RoboSense manual's
+// sensor frame (y forward, x right, z up).
 
-#include <cstdio>
+#include <iostream>
+#include <memory>
 #include <string>
 
 #include "decode_command.h"
-#include "lidar_pcap_summary.h"
+#include "json_writer.h"
+#include "lidar_decode.h"
 #include "swlio/drivers/helios16p_decoder.h"
 
 namespace swlio::tools {
 namespace {
 
-int RunHelios16p(const std::string& file, uint16_t msop_port, uint16_t difop_port) {
-  drivers::Helios16pDecoder dec;
-  const auto s = SummarizeLidarPcap(file, dec, msop_port, difop_port);
-  if (!s.opened) {
-    std::fprintf(stderr, "helios16p: cannot open %s\n", file.c_str());
+struct HeliosArgs {
+  std::string file;
+  LidarDecodeOptions options;
+  bool summary = false;
+};
+
+void WriteDifop(const drivers::Helios16pDecoder& decoder, JsonWriter& json) {
+  const drivers::Helios16pInfo& info = decoder.Info();
+  json.Key("difop").BeginObject();
+  json.Key("received").Value(info.difop_seen);
+  json.Key("rpm").Value(info.rpm);
+  json.Key("msop_port").Value(info.msop_port);
+  json.Key("difop_port").Value(info.difop_port);
+  json.Key("return_mode_byte").Value(info.return_mode_byte);
+  json.Key("calibration_from_difop").Value(info.calibration_from_difop);
+  std::array<double, 16> vertical{};
+  for (size_t i = 0; i < vertical.size(); ++i) vertical[i] = decoder.VerticalCdeg(i) / 100.0;
+  json.Key("vertical_angles_deg").Array(std::span<const double>(vertical));
+  json.EndObject();
+}
+
+int Run(HeliosArgs& args) {
+  drivers::Helios16pDecoder decoder;
+  args.options.pcap_path = args.file;
+  LidarDecodeResult result;
+  std::string error;
+  if (!RunLidarDecode(decoder, args.options, &result, &error)) {
+    std::cerr << "swlio-decode helios16p: " << error << "\n";
     return 1;
   }
-  const auto& info = dec.Info();
-  std::printf("{\"model\": \"helios16p\", ");
-  PrintSummaryKeys(s, "packets_msop", "packets_difop");
-  std::printf(", \"difop\": {\"seen\": %s, \"rpm\": %u, \"msop_port\": %u, \"difop_port\": %u, ",
-              info.difop_seen ? "true" : "false", info.rpm, info.msop_port, info.difop_port);
-  std::printf("\"return_mode\": %u, \"calibration_from_difop\": %s, \"vertical_angles_deg\": [",
-              info.return_mode_byte, info.calibration_from_difop ? "true" : "false");
-  for (size_t i = 0; i < 16; ++i) {
-    std::printf("%s%.2f", i == 0 ? "" : ", ", dec.VerticalCdeg(i) / 100.0);
+  if (args.summary || args.options.points_csv.empty()) {
+    JsonWriter json(std::cout);
+    json.BeginObject();
+    json.Key("model").Value("helios16p");
+    WriteLidarSummary(result, json);
+    WriteDifop(decoder, json);
+    json.EndObject();
+    std::cout << "\n";
   }
-  std::printf("]}}\n");
   return 0;
 }
 
-const DecodeCommandRegistrar kRegistrar([](CLI::App& app, int* exit_code) {
-  auto* cmd = app.add_subcommand("helios16p", "RS-Helios-16P MSOP/DIFOP pcap");
-  auto file = std::make_shared<std::string>();
-  auto msop = std::make_shared<uint16_t>(6699);
-  auto difop = std::make_shared<uint16_t>(7788);
-  auto summary = std::make_shared<bool>(false);
-  cmd->add_option("file", *file, "pcap file")->required();
-  cmd->add_option("--msop-port", *msop, "MSOP UDP port (0: any)");
-  cmd->add_option("--difop-port", *difop, "DIFOP UDP port (0: any)");
-  cmd->add_flag("--summary", *summary, "print the JSON summary");
-  cmd->callback([=] { *exit_code = RunHelios16p(*file, *msop, *difop); });
-});
+void AddHeliosCommand(CLI::App& app, int* exit_code) {
+  auto args = std::make_shared<HeliosArgs>();
+  CLI::App* cmd = app.add_subcommand("helios16p", "RS-Helios-16P pcap (MSOP/DIFOP)");
+  cmd->add_option("file", args->file, "capture file (pcap or pcapng)")->required();
+  cmd->add_option("--msop-port", args->options.data_port, "MSOP UDP port")->capture_default_str();
+  cmd->add_option("--difop-port", args->options.info_port, "DIFOP UDP port")->capture_default_str();
+  cmd->add_option("--cut-angle", args->options.cut_angle_deg, "sweep cut azimuth, degrees")
+      ->check(CLI::Range(0.0, 359.999));
+  cmd->add_flag("--summary", args->summary, "print the JSON summary (default without --points)");
+  cmd->add_option("--points", args->options.points_csv, "write every valid point to this CSV");
+  cmd->callback([args, exit_code] { *exit_code = Run(*args); });
+}
+
+// NOLINTNEXTLINE(cert-err58-cpp): start-up registration; bad_alloc here may terminate.
+const DecodeCommandRegistrar kRegistrar(AddHeliosCommand);
 
 }  // namespace
 }  // namespace swlio::tools

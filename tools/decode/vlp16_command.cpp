@@ -1,40 +1,62 @@
-// swlio-decode vlp16 FILE.pcap [--port N] --summary
-// Prints one JSON object: packet counts, valid returns (second returns of dual pairs included),
-// returns per ring and scans.
+// swlio-decode vlp16 FILE.pcap [--port N] [--cut-angle D] [--summary] [--points OUT.csv]
+// The shared LiDAR pipeline (lidar_decode.h) with the VLP-16 decoder (no info packets): JSON
+// summary with the common keys; CSV of every valid point (second returns of dual pairs
+// included) in the VLP-16 manual's sensor frame (y forward, x right, z up).
 
-#include <cstdio>
+#include <iostream>
+#include <memory>
 #include <string>
 
 #include "decode_command.h"
-#include "lidar_pcap_summary.h"
+#include "json_writer.h"
+#include "lidar_decode.h"
 #include "swlio/drivers/vlp16_decoder.h"
 
 namespace swlio::tools {
 namespace {
 
-int RunVlp16(const std::string& file, uint16_t port) {
-  drivers::Vlp16Decoder dec;
-  const auto s = SummarizeLidarPcap(file, dec, port, 0);
-  if (!s.opened) {
-    std::fprintf(stderr, "vlp16: cannot open %s\n", file.c_str());
+struct Vlp16Args {
+  std::string file;
+  LidarDecodeOptions options;
+  bool summary = false;
+};
+
+int Run(Vlp16Args& args) {
+  drivers::Vlp16Decoder decoder;
+  args.options.pcap_path = args.file;
+  args.options.info_port = 0;  // Velodyne sends no DIFOP-like packets on this port
+  LidarDecodeResult result;
+  std::string error;
+  if (!RunLidarDecode(decoder, args.options, &result, &error)) {
+    std::cerr << "swlio-decode vlp16: " << error << "\n";
     return 1;
   }
-  std::printf("{\"model\": \"vlp16\", ");
-  PrintSummaryKeys(s, "packets_data", "packets_info");
-  std::printf("}\n");
+  if (args.summary || args.options.points_csv.empty()) {
+    JsonWriter json(std::cout);
+    json.BeginObject();
+    json.Key("model").Value("vlp16");
+    WriteLidarSummary(result, json);
+    json.EndObject();
+    std::cout << "\n";
+  }
   return 0;
 }
 
-const DecodeCommandRegistrar kRegistrar([](CLI::App& app, int* exit_code) {
-  auto* cmd = app.add_subcommand("vlp16", "Velodyne VLP-16 data-packet pcap");
-  auto file = std::make_shared<std::string>();
-  auto port = std::make_shared<uint16_t>(2368);
-  auto summary = std::make_shared<bool>(false);
-  cmd->add_option("file", *file, "pcap file")->required();
-  cmd->add_option("--port", *port, "data UDP port (0: any)");
-  cmd->add_flag("--summary", *summary, "print the JSON summary");
-  cmd->callback([=] { *exit_code = RunVlp16(*file, *port); });
-});
+void AddVlp16Command(CLI::App& app, int* exit_code) {
+  auto args = std::make_shared<Vlp16Args>();
+  args->options.data_port = 2368;  // VLP-16 factory data port
+  CLI::App* cmd = app.add_subcommand("vlp16", "Velodyne VLP-16 data-packet pcap");
+  cmd->add_option("file", args->file, "capture file (pcap or pcapng)")->required();
+  cmd->add_option("--port", args->options.data_port, "data UDP port")->capture_default_str();
+  cmd->add_option("--cut-angle", args->options.cut_angle_deg, "sweep cut azimuth, degrees")
+      ->check(CLI::Range(0.0, 359.999));
+  cmd->add_flag("--summary", args->summary, "print the JSON summary (default without --points)");
+  cmd->add_option("--points", args->options.points_csv, "write every valid point to this CSV");
+  cmd->callback([args, exit_code] { *exit_code = Run(*args); });
+}
+
+// NOLINTNEXTLINE(cert-err58-cpp): start-up registration; bad_alloc here may terminate.
+const DecodeCommandRegistrar kRegistrar(AddVlp16Command);
 
 }  // namespace
 }  // namespace swlio::tools
