@@ -1,0 +1,83 @@
+#pragma once
+/// @file
+/// Maps one sensor's own clock to host time (CLOCK_MONOTONIC ns) from (sensor time, host
+/// receive time) pairs — the one place where sensor time becomes host time.
+///
+/// Model: host = sensor + offset(sensor), offset linear in sensor time (offset + drift). Every
+/// observation satisfies host_rx = true_host + delay with delay ≥ fixed latency, and USB-serial
+/// bursts or network queues only ever add delay, so the lower envelope of (host_rx − sensor) is
+/// the clock relation. The envelope is kept as the minimum per window (default 1 s of sensor
+/// time); a line is fitted through the recent window minima (least squares, then lowered so
+/// that no minimum lies under it) and the fixed latency is subtracted.
+///
+/// Wraps (e.g. Xsens SampleTimeFine every 2³² × 100 µs) are unwrapped with the configured
+/// period. A jump (GPS time arriving, a device reset) shows as residuals beyond a threshold in
+/// the same direction for several consecutive samples: the model restarts and counts it.
+/// Pure: time is passed in; no system clock is read here.
+
+#include <cstdint>
+#include <deque>
+
+namespace swlio::drivers {
+
+struct ClockModelConfig {
+  int64_t window_ns = 1'000'000'000;        ///< envelope window, sensor time
+  int max_windows = 30;                     ///< windows kept for the drift fit
+  int64_t wrap_period_ns = 0;               ///< sensor clock period (0: does not wrap)
+  int64_t fixed_latency_ns = 0;             ///< known minimum delay (transmission time, …)
+  int64_t jump_threshold_ns = 200'000'000;  ///< |residual| beyond this is a jump candidate
+  int jump_confirm_samples = 5;             ///< consecutive candidates that confirm a jump
+};
+
+struct ClockModelStats {
+  uint64_t samples = 0;
+  uint64_t jumps = 0;      ///< confirmed jumps (model restarted)
+  uint64_t wraps = 0;      ///< sensor clock wraps unwrapped
+  uint64_t rejected = 0;   ///< samples ignored as jump candidates
+  double offset_ns = 0.0;  ///< host − sensor at the latest sample (latency removed)
+  double drift_ppm = 0.0;  ///< d(offset)/d(sensor time) × 1e6
+  bool valid = false;      ///< at least one sample since the last restart
+};
+
+class ClockModel {
+ public:
+  explicit ClockModel(const ClockModelConfig& config = {});
+
+  /// Adds an observation; returns the host time of `sensor_t_ns` under the updated model.
+  int64_t Observe(int64_t sensor_t_ns, int64_t host_rx_ns);
+
+  /// Host time of a sensor time (unwrapped against the latest observation). Only meaningful
+  /// once `stats().valid`.
+  int64_t ToHost(int64_t sensor_t_ns) const;
+
+  const ClockModelStats& stats() const { return stats_; }
+
+ private:
+  struct WindowMin {
+    double start = 0.0;  ///< where the window begins (sensor time − reference, ns)
+    double x = 0.0;      ///< where its minimum is
+    double d = 0.0;      ///< minimum of (host − reference) − x in the window
+  };
+
+  int64_t Unwrap(int64_t sensor_t_ns);
+  int64_t UnwrapConst(int64_t sensor_t_ns) const;
+  void Restart(int64_t sensor_unwrapped, int64_t host_rx_ns);
+  void AddToEnvelope(double x, double d);
+  void Fit();
+  double Predict(double x) const { return c0_ + c1_ * x; }
+
+  ClockModelConfig config_;
+  ClockModelStats stats_;
+  int64_t ref_sensor_ = 0;
+  int64_t ref_host_ = 0;
+  bool have_last_raw_ = false;
+  int64_t last_raw_ = 0;
+  int64_t wrap_offset_ = 0;
+  std::deque<WindowMin> windows_;
+  double c0_ = 0.0;
+  double c1_ = 0.0;
+  int jump_run_ = 0;
+  int jump_sign_ = 0;
+};
+
+}  // namespace swlio::drivers

@@ -1,0 +1,108 @@
+#include "swlio/drivers/clock_model.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+
+namespace swlio::drivers {
+namespace {
+
+/// A sensor clock: sensor = (1 + ppm·1e-6)·host + offset, sampled every period; arrivals delayed
+/// by latency + a wait for the next USB-like burst (up to `burst_ns`, random phase) + rare
+/// 30 ms stalls.
+struct Stream {
+  double offset_ns = 12'345'678'901.0;
+  double ppm = 100.0;
+  int64_t period_ns = 2'500'000;
+  int64_t latency_ns = 500'000;
+  int64_t burst_ns = 4'000'000;
+  int64_t wrap_ns = 0;
+  std::mt19937 rng{5};
+
+  int64_t Sensor(int64_t host) const {
+    const double s = (1.0 + ppm * 1e-6) * static_cast<double>(host) + offset_ns;
+    const auto t = static_cast<int64_t>(std::llround(s));
+    return wrap_ns > 0 ? t % wrap_ns : t;
+  }
+  int64_t Arrival(int64_t host) {
+    int64_t rx = host + latency_ns +
+                 static_cast<int64_t>(std::uniform_real_distribution<double>(0, 1)(rng) *
+                                      static_cast<double>(burst_ns));
+    if (std::uniform_real_distribution<double>(0, 1)(rng) < 0.003) rx += 30'000'000;  // stall
+    return rx;
+  }
+};
+
+TEST(ClockModel, RecoversOffsetAndDriftThroughBursts) {
+  Stream st;
+  ClockModelConfig config;
+  config.fixed_latency_ns = st.latency_ns;
+  ClockModel model(config);
+  double worst_ns = 0.0;
+  for (int64_t host = 1'000'000'000; host < 121'000'000'000; host += st.period_ns) {
+    model.Observe(st.Sensor(host), st.Arrival(host));
+    if (host > 11'000'000'000) {  // after 10 s
+      worst_ns =
+          std::max(worst_ns, std::abs(static_cast<double>(model.ToHost(st.Sensor(host)) - host)));
+    }
+  }
+  EXPECT_LT(worst_ns, 500'000.0) << "mapped within 0.5 ms";
+  EXPECT_NEAR(model.stats().drift_ppm, -100.0, 2.0);  // host per sensor: 1/(1+1e-4) − 1
+  EXPECT_EQ(model.stats().jumps, 0u);
+}
+
+TEST(ClockModel, UnwrapsAWrappingCounter) {
+  Stream st;
+  st.offset_ns = 429'490'000'000'000.0;  // SampleTimeFine wraps at 2³² × 100 µs ≈ 429,496.73 s
+  st.wrap_ns = 4'294'967'296LL * 100'000LL;
+  st.ppm = 20.0;
+  ClockModelConfig config;
+  config.wrap_period_ns = st.wrap_ns;
+  config.fixed_latency_ns = st.latency_ns;
+  ClockModel model(config);
+  double worst_ns = 0.0;
+  for (int64_t host = 0; host < 20'000'000'000; host += st.period_ns) {
+    model.Observe(st.Sensor(host), st.Arrival(host));
+    if (host > 3'000'000'000) {
+      worst_ns =
+          std::max(worst_ns, std::abs(static_cast<double>(model.ToHost(st.Sensor(host)) - host)));
+    }
+  }
+  EXPECT_EQ(model.stats().wraps, 1u);
+  EXPECT_LT(worst_ns, 500'000.0);
+}
+
+TEST(ClockModel, DetectsAJumpAndRelocks) {
+  Stream st;
+  ClockModelConfig config;
+  config.fixed_latency_ns = st.latency_ns;
+  ClockModel model(config);
+  for (int64_t host = 0; host < 10'000'000'000; host += st.period_ns) {
+    model.Observe(st.Sensor(host), st.Arrival(host));
+  }
+  st.offset_ns += 3'600e9;  // GPS time arrives: the sensor clock jumps by an hour
+  for (int64_t host = 10'000'000'000; host < 20'000'000'000; host += st.period_ns) {
+    model.Observe(st.Sensor(host), st.Arrival(host));
+  }
+  EXPECT_EQ(model.stats().jumps, 1u);
+  EXPECT_GE(model.stats().rejected, 4u);
+  EXPECT_LT(std::abs(static_cast<double>(model.ToHost(st.Sensor(19'900'000'000)) - 19'900'000'000)),
+            500'000.0);
+}
+
+TEST(ClockModel, SingleStallIsNotAJump) {
+  Stream st;
+  ClockModelConfig config;
+  ClockModel model(config);
+  for (int64_t host = 0; host < 5'000'000'000; host += st.period_ns) {
+    const int64_t rx = host == 2'500'000'000 ? host + 300'000'000 : st.Arrival(host);
+    model.Observe(st.Sensor(host), rx);
+  }
+  EXPECT_EQ(model.stats().jumps, 0u);
+  EXPECT_EQ(model.stats().rejected, 1u);
+}
+
+}  // namespace
+}  // namespace swlio::drivers
