@@ -1,0 +1,69 @@
+#pragma once
+/// @file
+/// Incremental voxel-hash local map (in the spirit of Faster-LIO's iVox): world points in cubic
+/// voxels, a bounded number per voxel, k-nearest search over the 27 voxels around a query, and
+/// removal of voxels far from the robot so memory stays bounded. Chosen over a kd-tree because
+/// inserting a scan costs O(points) with no rebuild (design.md: "incremental voxel map").
+///
+/// Deterministic: results depend only on insertion order, never on hash-table iteration order.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "swlio/core/config_issue.h"
+
+namespace swlio::estimator {
+
+struct VoxelMapConfig {
+  double voxel_m = 1.0;  ///< voxel edge
+  size_t max_points_per_voxel = 20;
+  double min_point_spacing_m =
+      0.1;                 ///< a new point closer than this to one in its voxel is skipped
+  double radius_m = 80.0;  ///< voxels farther than this from the robot are dropped
+
+  ConfigIssues Validate() const;
+};
+
+class VoxelMap {
+ public:
+  explicit VoxelMap(const VoxelMapConfig& config = {});
+
+  /// Adds world-frame points; returns how many were stored.
+  size_t Insert(const std::vector<Eigen::Vector3d>& points_world);
+
+  /// Up to `k` nearest stored points within `max_distance_m` of `query`, nearest first.
+  /// Writes into `out` (cleared first); returns the count.
+  size_t Nearest(const Eigen::Vector3d& query,
+                 size_t k,
+                 double max_distance_m,
+                 std::vector<Eigen::Vector3d>* out) const;
+
+  /// Drops every voxel whose centre is farther than `radius_m` from `center_world`.
+  size_t RemoveFar(const Eigen::Vector3d& center_world);
+
+  size_t size() const { return points_; }
+  size_t voxels() const { return voxels_.size(); }
+
+ private:
+  struct Key {
+    int32_t x, y, z;
+    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
+  };
+  struct KeyHash {
+    size_t operator()(const Key& k) const {
+      return (static_cast<size_t>(static_cast<uint32_t>(k.x)) * 73856093u) ^
+             (static_cast<size_t>(static_cast<uint32_t>(k.y)) * 19349669u) ^
+             (static_cast<size_t>(static_cast<uint32_t>(k.z)) * 83492791u);
+    }
+  };
+  Key KeyOf(const Eigen::Vector3d& p) const;
+
+  VoxelMapConfig config_;
+  std::unordered_map<Key, std::vector<Eigen::Vector3d>, KeyHash> voxels_;
+  size_t points_ = 0;
+};
+
+}  // namespace swlio::estimator
