@@ -46,6 +46,12 @@ int64_t LidarSimulator::MsopRxNs(uint64_t index) const {
   return SecToNs(PacketStartS(index)) + last_firing_ns + SecToNs(config_.latency_s);
 }
 
+void LidarSimulator::SkipTo(double t_s) {
+  const double period_s = NsToSec(kFiringsPerPacket * kFiringPeriodNs);
+  msop_index_ = std::max(msop_index_, static_cast<uint64_t>(std::ceil(t_s / period_s)));
+  difop_index_ = std::max(difop_index_, static_cast<uint64_t>(std::ceil(t_s)));
+}
+
 bool LidarSimulator::Next(SimPacket* out, std::vector<SimReturn>* returns) {
   const double t_msop = PacketStartS(msop_index_);
   if (t_msop > trajectory_->duration_s()) return false;

@@ -65,6 +65,10 @@ class LidarSimulator {
   /// of the trajectory. When `returns` is given it receives the truth of the MSOP's 384 slots.
   bool Next(SimPacket* out, std::vector<SimReturn>* returns = nullptr);
 
+  /// Continues from sim time `t_s` without casting the packets before it (for tests that need
+  /// one sweep late in a drive; the noise then differs from a full run's).
+  void SkipTo(double t_s);
+
   uint64_t msop_packets() const { return msop_index_; }
   uint64_t difop_packets() const { return difop_index_; }
 

@@ -1,0 +1,54 @@
+#pragma once
+/// @file
+/// De-skew: every point of a sweep is moved into the LiDAR frame at the sweep's end, using the
+/// IMU-propagated pose at the point's own time.
+///
+/// The paper interpolates linearly between the poses at the sweep's two ends (§3, Fig. 1); here
+/// the pose track holds one pose per IMU sample (400 Hz, 40 per sweep), and each point's pose
+/// is interpolated between the two samples around its time (linear in translation, geodesic in
+/// rotation), so turns that change rate within a sweep are followed.
+///
+///   p_end = (T_world_imu(t_end) · T_imu_lidar)⁻¹ · T_world_imu(t_i) · T_imu_lidar · p_i
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "swlio/core/types.h"
+
+namespace swlio::estimator {
+
+/// Time-ordered IMU poses with interpolation.
+class PoseTrack {
+ public:
+  void Clear() { samples_.clear(); }
+  /// Appends a pose; times must increase.
+  void Add(int64_t t_ns, const Eigen::Isometry3d& T_world_imu);
+  /// Pose at t by interpolation; false when t lies outside the track.
+  bool At(int64_t t_ns, Eigen::Isometry3d* T_world_imu) const;
+  bool empty() const { return samples_.empty(); }
+  int64_t begin_ns() const { return samples_.front().t_ns; }
+  int64_t end_ns() const { return samples_.back().t_ns; }
+
+ private:
+  struct Sample {
+    int64_t t_ns;
+    Eigen::Quaterniond q;
+    Eigen::Vector3d p;
+  };
+  std::vector<Sample> samples_;
+};
+
+struct DeskewResult {
+  size_t points = 0;     ///< points written
+  size_t uncovered = 0;  ///< points whose time the track does not cover (left as measured)
+};
+
+/// De-skews `scan` (host times) into the LiDAR frame at `scan.t_end_ns`. `out` is resized.
+DeskewResult Deskew(const Scan& scan,
+                    const PoseTrack& track,
+                    const Eigen::Isometry3d& T_imu_lidar,
+                    std::vector<Eigen::Vector3d>* out);
+
+}  // namespace swlio::estimator
