@@ -128,7 +128,9 @@ void Preintegrator::IntegrateStep(const ImuSample& a, const ImuSample& b) {
 PreintegrationStatus Preintegrator::Integrate(std::span<const ImuSample> samples,
                                               int64_t t_start_ns,
                                               int64_t t_end_ns) {
-  Reset(t_start_ns, pim_.bias_gyro_lin, pim_.bias_acc_lin);
+  const Vec3 bias_gyro = pim_.bias_gyro_lin;  // copies: Reset() clears pim_
+  const Vec3 bias_acc = pim_.bias_acc_lin;
+  Reset(t_start_ns, bias_gyro, bias_acc);
   if (t_end_ns < t_start_ns) return PreintegrationStatus::kBadInterval;
   for (size_t k = 1; k < samples.size(); ++k) {
     if (samples[k].t_ns < samples[k - 1].t_ns) return PreintegrationStatus::kUnsortedTime;
