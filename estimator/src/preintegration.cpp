@@ -82,9 +82,18 @@ void Preintegrator::Reset(int64_t t_ns, const Vec3& bias_gyro, const Vec3& bias_
 //   δp_{k+1} = δp_k + Δt δv_k − ½ R_m [a]× Δt² δφ_m + ½ R_m Δt² η_a
 // i.e. δ_{k+1} = A δ_k + B η with the 9×9 A and 9×6 B below. Then
 //   covariance:     Σ_{k+1} = A Σ_k Aᵀ + B Q Bᵀ, Q = diag(σ_g² I, σ_a² I), σ² = density²/Δt
-//                   (the discrete noise of a sample averaged over Δt, Forster eq. (47) style);
+//                   (the discrete noise of a sample averaged over Δt, Forster §IV: Cov(η_d) =
+//                   Cov(η)/Δt);
 //   bias Jacobians: a bias change δb acts like η = −δb, so J_{k+1} = A J_k − B.
 void Preintegrator::IntegrateStep(const ImuSample& a, const ImuSample& b) {
+  if (options_.keep_samples) {
+    if (samples_.empty()) samples_.push_back(a);
+    samples_.push_back(b);
+  }
+  Propagate(a, b);
+}
+
+void Preintegrator::Propagate(const ImuSample& a, const ImuSample& b) {
   const double dt = NsToSec(b.t_ns - a.t_ns);
   pim_.t_end_ns = b.t_ns;
   if (dt <= 0.0) return;
@@ -151,19 +160,14 @@ PreintegrationStatus Preintegrator::Integrate(std::span<const ImuSample> samples
       last > 0 ? InterpolateSample(samples[last - 1], samples[last], t_end_ns) : samples[last];
   ImuSample prev = start;
   prev.t_ns = t_start_ns;
-  if (options_.keep_samples) {
-    samples_.reserve(last - first + 2);
-    samples_.push_back(prev);
-  }
+  if (options_.keep_samples) samples_.reserve(last - first + 2);
   for (size_t k = first + 1; k < last; ++k) {
     IntegrateStep(prev, samples[k]);
     prev = samples[k];
-    if (options_.keep_samples) samples_.push_back(prev);
   }
   ImuSample stop = end;
   stop.t_ns = t_end_ns;
   IntegrateStep(prev, stop);
-  if (options_.keep_samples) samples_.push_back(stop);
   return PreintegrationStatus::kOk;
 }
 
@@ -177,7 +181,7 @@ void Preintegrator::Reintegrate(const Vec3& bias_gyro, const Vec3& bias_acc) {
   std::vector<ImuSample> kept;
   kept.swap(samples_);
   Reset(pim_.t_start_ns, bias_gyro, bias_acc);
-  for (size_t k = 1; k < kept.size(); ++k) IntegrateStep(kept[k - 1], kept[k]);
+  for (size_t k = 1; k < kept.size(); ++k) Propagate(kept[k - 1], kept[k]);
   samples_.swap(kept);
 }
 

@@ -77,7 +77,7 @@ CorrectedDeltas Corrected(const PreintegratedImu& pim,
                           const Eigen::Vector3d& bias_gyro,
                           const Eigen::Vector3d& bias_acc);
 
-/// Covariance (6×6, [b_g; b_a]) of the bias random walk over the interval (§V-E, bias random walk):
+/// Covariance (6×6, [b_g; b_a]) of the bias random walk over the interval (Forster §V, bias model):
 /// diag(σ_bg² Δt I, σ_ba² Δt I) with σ the continuous random-walk densities.
 Eigen::Matrix<double, 6, 6> BiasWalkCovariance(const ImuNoiseConfig& noise, double dt_s);
 
@@ -125,7 +125,8 @@ class Preintegrator {
   /// True when the bias change from the linearization point is too large for eq. (44).
   bool NeedsReintegration(const Eigen::Vector3d& bias_gyro, const Eigen::Vector3d& bias_acc) const;
 
-  /// Integrates the kept samples again with new biases (requires Options::keep_samples).
+  /// Integrates the kept samples again with new biases (requires Options::keep_samples; works
+  /// after Integrate() and after streaming IntegrateStep() calls).
   void Reintegrate(const Eigen::Vector3d& bias_gyro, const Eigen::Vector3d& bias_acc);
 
   /// The terms for new biases: first-order correction, or re-integration if the change is
@@ -136,6 +137,8 @@ class Preintegrator {
   const ImuNoiseConfig& noise() const { return noise_; }
 
  private:
+  void Propagate(const ImuSample& a, const ImuSample& b);  ///< the maths of one step
+
   ImuNoiseConfig noise_;
   Options options_;
   PreintegratedImu pim_;
