@@ -131,7 +131,7 @@ TEST_F(PreintegrationJacobians, ResidualJacobiansMatchCentralDifferences) {
         << numeric << "\nanalytic\n"
         << analytic;
   };
-  auto res = [&](NavPoint a, NavPoint b, Vec3 g_bias, Vec3 a_bias) {
+  auto res = [&](const NavPoint& a, const NavPoint& b, const Vec3& g_bias, const Vec3& a_bias) {
     return ImuResidual(pim, a, b, g_bias, a_bias, g);
   };
   check("R_i", J.R_i, [&](const Vec3& d) {
