@@ -11,6 +11,17 @@ namespace {
 using Mat3 = Eigen::Matrix3d;
 using Vec3 = Eigen::Vector3d;
 
+/// X ← A X for the step's A = [Eᵀ 0 0; M I 0; N Δt·I I] (block rows φ, v, p), exploiting the
+/// structure: 3 block products per column block instead of a dense 9×9 product.
+template <int Cols>
+void ApplyA(
+    const Mat3& Et, const Mat3& M, const Mat3& N, double dt, Eigen::Matrix<double, 9, Cols>& X) {
+  const Eigen::Matrix<double, 3, Cols> X_r = X.template middleRows<3>(kRowR);
+  X.template middleRows<3>(kRowP) += dt * X.template middleRows<3>(kRowV) + N * X_r;
+  X.template middleRows<3>(kRowV) += M * X_r;
+  X.template middleRows<3>(kRowR) = Et * X_r;
+}
+
 }  // namespace
 
 ImuSample InterpolateSample(const ImuSample& a, const ImuSample& b, int64_t t_ns) {
@@ -105,11 +116,9 @@ void Preintegrator::Propagate(const ImuSample& a, const ImuSample& b) {
   const Mat3 Rm_acc_hat = R_mid * lie::Hat(acc);
   const double dt2 = dt * dt;
 
-  Mat9 A = Mat9::Identity();
-  A.block<3, 3>(kRowR, kRowR) = E.transpose();
-  A.block<3, 3>(kRowV, kRowR) = -Rm_acc_hat * H.transpose() * dt;
-  A.block<3, 3>(kRowP, kRowR) = -0.5 * Rm_acc_hat * H.transpose() * dt2;
-  A.block<3, 3>(kRowP, kRowV) = Mat3::Identity() * dt;
+  const Mat3 Et = E.transpose();
+  const Mat3 M = -Rm_acc_hat * H.transpose() * dt;  // A_vφ
+  const Mat3 N = 0.5 * dt * M;                      // A_pφ
 
   const Mat3 half_jr_dt = 0.5 * lie::RightJacobian(0.5 * theta) * dt;
   Mat96 B = Mat96::Zero();
@@ -124,8 +133,15 @@ void Preintegrator::Propagate(const ImuSample& a, const ImuSample& b) {
   Eigen::Matrix<double, 6, 1> q;
   q << Vec3::Constant(ng * ng / dt), Vec3::Constant(na * na / dt);
 
-  pim_.covariance = A * pim_.covariance * A.transpose() + B * q.asDiagonal() * B.transpose();
-  pim_.jacobian_bias = A * pim_.jacobian_bias - B;
+  // Σ ← A Σ Aᵀ = A (A Σ)ᵀ (Σ symmetric), then + B Q Bᵀ.
+  Mat9& cov = pim_.covariance;
+  ApplyA(Et, M, N, dt, cov);
+  cov.transposeInPlace();
+  ApplyA(Et, M, N, dt, cov);
+  cov.noalias() += B * q.asDiagonal() * B.transpose();
+  cov = 0.5 * (cov + cov.transpose()).eval();
+  ApplyA(Et, M, N, dt, pim_.jacobian_bias);
+  pim_.jacobian_bias -= B;
 
   // The means, last: the linearization above uses ΔR_k, Δv_k.
   pim_.delta_p += pim_.delta_v * dt + 0.5 * R_mid * acc * dt2;
