@@ -54,8 +54,8 @@ struct StaticInitResult {
   double gyro_std_radps = 0.0;      ///< largest per-axis standard deviation
   double gravity_error_mps2 = 0.0;  ///< |mean f| − g
   double gyro_mean_radps = 0.0;     ///< |mean ω|
-  double gyro_drift_radps = 0.0;    ///< the same for ω
   double acc_drift_mps2 = 0.0;      ///< |mean f (second half) − mean f (first half)|
+  double gyro_drift_radps = 0.0;    ///< the same for ω
   Eigen::Vector3d bias_gyro_std = Eigen::Vector3d::Zero();  ///< standard error of b_g
 };
 
