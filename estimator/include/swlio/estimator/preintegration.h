@@ -15,7 +15,8 @@
 /// specific force at the step's middle time), and the specific force is rotated with the
 /// attitude at the step's middle, ΔR_mid = ΔR_ik Exp(½ θ_k), θ_k = (ω̄ − b_g) Δt. This is
 /// second-order accurate, where the sums above (forward Euler with ΔR_ik) are first order;
-/// the noise and bias Jacobian recursions below are the exact linearization of this scheme.
+/// the noise and bias Jacobian recursions (derived in preintegration.cpp) are the exact
+/// linearization of this scheme, checked against central differences in the tests.
 ///
 /// Error state (9): [δφ; δv; δp] with ΔR̃ = ΔR Exp(δφ), Δṽ = Δv + δv, Δp̃ = Δp + δp (§V-B).
 /// Bias Jacobian J (9×6): rows [φ; v; p], columns [b_g; b_a]; first-order bias update (eq. (44)):
