@@ -82,6 +82,7 @@ void Segmenter::MarkGround() {
 // Such a point is the lower end of a near-vertical pair with the ring above: horizontally
 // within ground_foot_gap_m of it and rising steeply. Those points are taken off the ground.
 void Segmenter::UnmarkWallFeet(int column) {
+  if (foot_gap_m_ <= 0.0f) return;
   const int max_ring = static_cast<int>(config_.ground_max_ring);
   for (int r = 1; r <= max_ring && r + 1 < image_.rings(); ++r) {
     const int cell = image_.Cell(r, column);
