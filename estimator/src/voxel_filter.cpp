@@ -2,27 +2,15 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace swlio::estimator {
 namespace {
 
-// 21 bits per axis, offset so that negative indices (fixed grid) pack too.
-constexpr int64_t kAxisBits = 21;
-constexpr int64_t kAxisOffset = int64_t{1} << (kAxisBits - 1);
-constexpr int64_t kAxisMax = (int64_t{1} << kAxisBits) - 1;
-
-uint64_t Key(const Eigen::Vector3f& p, const Eigen::Vector3f& origin, double inv_cell) {
-  uint64_t key = 0;
-  for (int a = 2; a >= 0; --a) {
-    const auto i =
-        static_cast<int64_t>(std::floor(static_cast<double>(p[a] - origin[a]) * inv_cell));
-    key = (key << kAxisBits) |
-          static_cast<uint64_t>(std::clamp(i + kAxisOffset, int64_t{0}, kAxisMax));
-  }
-  return key;
-}
+constexpr double kMaxCellIndex = 1 << 20;  ///< ±1 M cells per axis; beyond that, clamped
 
 bool LexLess(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
   return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
@@ -76,7 +64,7 @@ VoxelFilterResult VoxelFilter::FilterFixed(std::span<const Eigen::Vector3f> poin
 // Eq. (16): voxel (i, j, k) = ⌊(p − p_min)/cell⌋; centroid c_ijk = (1/m)·Σ p over its m points;
 // the representative is the point nearest c_ijk (exact ties: the lexicographically smaller
 // point, so that the result does not depend on the input order). The sums of floats in double
-// are exact, hence order-free too. Sorting the (key, index) pairs groups each voxel's points.
+// are exact, hence order-free too.
 VoxelFilterResult VoxelFilter::Run(std::span<const Eigen::Vector3f> points,
                                    const Eigen::Vector3f& origin,
                                    double cell_m,
@@ -85,12 +73,7 @@ VoxelFilterResult VoxelFilter::Run(std::span<const Eigen::Vector3f> points,
   result.cell_m = cell_m;
   result.input_points = points.size();
   kept->clear();
-  keyed_.clear();
-  const double inv_cell = 1.0 / cell_m;
-  for (size_t i = 0; i < points.size(); ++i) {
-    keyed_.emplace_back(Key(points[i], origin, inv_cell), static_cast<uint32_t>(i));
-  }
-  std::sort(keyed_.begin(), keyed_.end());
+  SortByVoxel(points, origin, cell_m);
   for (size_t begin = 0; begin < keyed_.size();) {
     size_t end = begin + 1;
     while (end < keyed_.size() && keyed_[end].first == keyed_[begin].first) ++end;
@@ -112,6 +95,53 @@ VoxelFilterResult VoxelFilter::Run(std::span<const Eigen::Vector3f> points,
   }
   result.voxels = kept->size();
   return result;
+}
+
+// Groups the points by voxel: integer cell coordinates, a dense key over their bounding range
+// (x fastest, then y, then z), and an LSD radix sort of the (key, index) pairs — O(n) and
+// stable, so equal keys keep ascending indices.
+void VoxelFilter::SortByVoxel(std::span<const Eigen::Vector3f> points,
+                              const Eigen::Vector3f& origin,
+                              double cell_m) {
+  const double inv_cell = 1.0 / cell_m;
+  cells_.clear();
+  Eigen::Array3i lo = Eigen::Array3i::Constant(std::numeric_limits<int>::max());
+  Eigen::Array3i hi = Eigen::Array3i::Constant(std::numeric_limits<int>::min());
+  for (const auto& p : points) {
+    Eigen::Array3i c;
+    for (int a = 0; a < 3; ++a) {
+      const double v = std::floor(static_cast<double>(p[a] - origin[a]) * inv_cell);
+      c[a] = static_cast<int>(std::clamp(v, -kMaxCellIndex, kMaxCellIndex));
+    }
+    lo = lo.min(c);
+    hi = hi.max(c);
+    cells_.push_back(c);
+  }
+  keyed_.clear();
+  if (points.empty()) return;
+  const auto dx = static_cast<uint64_t>(hi.x() - lo.x() + 1);
+  const auto dy = static_cast<uint64_t>(hi.y() - lo.y() + 1);
+  uint64_t max_key = 0;
+  for (size_t i = 0; i < cells_.size(); ++i) {
+    const Eigen::Array3i c = cells_[i] - lo;
+    const uint64_t key = static_cast<uint64_t>(c.x()) +
+                         dx * (static_cast<uint64_t>(c.y()) + dy * static_cast<uint64_t>(c.z()));
+    max_key = std::max(max_key, key);
+    keyed_.emplace_back(key, static_cast<uint32_t>(i));
+  }
+  constexpr int kDigitBits = 11;
+  constexpr size_t kBuckets = size_t{1} << kDigitBits;
+  std::array<uint32_t, kBuckets> count{};
+  scratch_.resize(keyed_.size());
+  for (int shift = 0; shift < 64 && (max_key >> shift) != 0; shift += kDigitBits) {
+    count.fill(0);
+    for (const auto& [key, index] : keyed_) ++count[(key >> shift) & (kBuckets - 1)];
+    uint32_t total = 0;
+    for (auto& c : count) total += std::exchange(c, total);
+    for (const auto& entry : keyed_)
+      scratch_[count[(entry.first >> shift) & (kBuckets - 1)]++] = entry;
+    keyed_.swap(scratch_);
+  }
 }
 
 }  // namespace swlio::estimator

@@ -42,7 +42,7 @@ double AdaptiveCellSize(const Eigen::Vector3f& extent_m, size_t n, double k, dou
 class VoxelFilter {
  public:
   /// Eqs. (14)–(16) on `points`; `kept` receives the indices of the representatives in
-  /// voxel order (x fastest after z, y: a deterministic order).
+  /// voxel order (z slowest, x fastest: a deterministic order).
   VoxelFilterResult FilterAdaptive(std::span<const Eigen::Vector3f> points,
                                    const VoxelFilterConfig& config,
                                    std::vector<uint32_t>* kept);
@@ -70,6 +70,9 @@ class VoxelFilter {
                         const Eigen::Vector3f& origin,
                         double cell_m,
                         std::vector<uint32_t>* kept);
+  void SortByVoxel(std::span<const Eigen::Vector3f> points,
+                   const Eigen::Vector3f& origin,
+                   double cell_m);
 
   template <typename Point>
   void Gather(const std::vector<Point>& points) {
@@ -86,7 +89,9 @@ class VoxelFilter {
     return result;
   }
 
-  std::vector<std::pair<uint64_t, uint32_t>> keyed_;  ///< (voxel key, point index)
+  std::vector<Eigen::Array3i> cells_;                   ///< integer voxel coordinates
+  std::vector<std::pair<uint64_t, uint32_t>> keyed_;    ///< (voxel key, point index)
+  std::vector<std::pair<uint64_t, uint32_t>> scratch_;  ///< radix sort buffer
   std::vector<Eigen::Vector3f> positions_;
   std::vector<uint32_t> kept_;
 };
