@@ -1,8 +1,8 @@
 #include "swlio/estimator/feature_extractor.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-#include <numeric>
 
 namespace swlio::estimator {
 namespace {
@@ -130,16 +130,17 @@ void FeatureExtractor::SelectSector(const SegmentationResult& s,
                                     size_t begin,
                                     size_t end,
                                     FeatureSet* out) {
+  // Sort keys: the smoothness's IEEE bits (c ≥ 0, so they order as integers) above the index.
   const auto first = order_.begin() + static_cast<std::ptrdiff_t>(begin);
   const auto last = order_.begin() + static_cast<std::ptrdiff_t>(end);
-  std::iota(first, last, static_cast<uint32_t>(begin));
-  std::sort(first, last, [&](uint32_t a, uint32_t b) {
-    return curvature_[a] < curvature_[b] || (curvature_[a] == curvature_[b] && a < b);
-  });
+  for (size_t i = begin; i < end; ++i) {
+    order_[i] = (uint64_t{std::bit_cast<uint32_t>(curvature_[i])} << 32) | i;
+  }
+  std::sort(first, last);
   constexpr uint8_t kBlocked = kNoWindow | kUnreliable | kPicked;
   int64_t edges = 0;
   for (auto it = last; it != first && edges < config_.max_edges_per_sector;) {
-    const uint32_t i = *--it;
+    const auto i = static_cast<uint32_t>(*--it);
     if (curvature_[i] <= config_.edge_threshold_m2) break;
     if ((flags_[i] & kBlocked) != 0 || s.points[i].label == kLabelGround) continue;
     const FeaturePoint f = ToFeature(s.points[i], curvature_[i]);
@@ -150,7 +151,7 @@ void FeatureExtractor::SelectSector(const SegmentationResult& s,
   }
   int64_t flats = 0;
   for (auto it = first; it != last && flats < config_.max_flat_planes_per_sector; ++it) {
-    const uint32_t i = *it;
+    const auto i = static_cast<uint32_t>(*it);
     if (curvature_[i] >= config_.planar_threshold_m2) break;
     if ((flags_[i] & kBlocked) != 0) continue;
     out->planes_flat.push_back(ToFeature(s.points[i], curvature_[i]));

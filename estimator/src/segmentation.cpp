@@ -111,7 +111,8 @@ bool Segmenter::SameObject(int cell_a, int cell_b) const {
   const Eigen::Vector3f& p2 = image_.Xyz(a_far ? cell_b : cell_a);
   const float denominator = p1.squaredNorm() - p1.dot(p2);
   if (denominator <= 0.0f) return true;  // β ≥ 90°
-  return p1.cross(p2).norm() > tan_cluster_ * denominator;
+  const float bound = tan_cluster_ * denominator;
+  return p1.cross(p2).squaredNorm() > bound * bound;
 }
 
 int Segmenter::Grow(int seed, int32_t label, uint64_t* ring_mask) {

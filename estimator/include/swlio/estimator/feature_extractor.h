@@ -69,7 +69,7 @@ class FeatureExtractor {
   FeatureConfig config_;
   std::vector<float> curvature_;
   std::vector<uint8_t> flags_;
-  std::vector<uint32_t> order_;
+  std::vector<uint64_t> order_;  ///< per sector: (smoothness bits << 32) | point index
 };
 
 }  // namespace swlio::estimator
