@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
+#include <vector>
 
 #include "labelled_scan.h"
 #include "sim_setup.h"
@@ -109,5 +110,34 @@ void BM_FrontEndWithoutDeskew(benchmark::State& state) {
   state.counters["edges"] = static_cast<double>(features.edges.size());
 }
 BENCHMARK(BM_FrontEndWithoutDeskew)->Unit(benchmark::kMicrosecond);
+
+// The same over 30 consecutive sweeps of the `aggressive` drive while it moves (3–6 s),
+// cycled: the mean over varied scenes.
+void BM_FrontEndDriveSweeps(benchmark::State& state) {
+  static const std::vector<swlio::Scan> sweeps = [] {
+    auto setup = swlio::sim::MakeSimSetup("aggressive", 1, 6.0);
+    if (!setup) std::abort();
+    swlio::sim::LabelledScanSource source(*setup);
+    swlio::sim::LabelledScan ls;
+    std::vector<swlio::Scan> out;
+    while (out.size() < 30 && source.Next(&ls, 3.0)) out.push_back(ls.scan);
+    return out;
+  }();
+  Segmenter segmenter(SegmentationConfig{});
+  SegmentationResult segmented;
+  FeatureExtractor extractor(FeatureConfig{});
+  FeatureSet features;
+  VoxelFilter filter;
+  size_t k = 0;
+  for (auto _ : state) {
+    segmenter.Segment(sweeps[k++ % sweeps.size()], &segmented);
+    extractor.Extract(segmented, &features);
+    filter.Apply(&features.planes, 0.4);
+    filter.Apply(&features.edges, 0.2);
+    benchmark::DoNotOptimize(features.planes.data());
+  }
+  state.counters["sweeps"] = static_cast<double>(sweeps.size());
+}
+BENCHMARK(BM_FrontEndDriveSweeps)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

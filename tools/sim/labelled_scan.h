@@ -28,8 +28,8 @@ class LabelledScanSource {
   /// `setup` must outlive the source.
   explicit LabelledScanSource(const SimSetup& setup);
 
-  /// The next sweep; false when the route ends. Sweeps before `t_min_s` are skipped cheaply
-  /// only in the sense that their points are not assembled (the rays are still cast).
+  /// The next sweep starting at or after `t_min_s`; false when the route ends. Skipped
+  /// sweeps are not assembled, but their rays are still cast (the simulator runs in order).
   bool Next(LabelledScan* out, double t_min_s = 0.0);
 
  private:
