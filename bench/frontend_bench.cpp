@@ -3,6 +3,7 @@
 // sweep at 0.5 s (standing still), built from the simulator's returns.
 #include <benchmark/benchmark.h>
 
+#include <Eigen/Geometry>
 #include <cstdlib>
 #include <vector>
 
@@ -88,6 +89,13 @@ void BM_VoxelAdaptive(benchmark::State& state) {
   }
   state.counters["kept"] = static_cast<double>(kept.size());
   state.counters["cell_m"] = r.cell_m;
+  Eigen::AlignedBox3f box;
+  for (const auto& p : positions) box.extend(p);
+  state.counters["unclamped_cell_m"] =
+      AdaptiveCellSize(box.sizes(), positions.size(), config.points_per_voxel, config.min_cell_m);
+  state.counters["extent_x_m"] = box.sizes().x();
+  state.counters["extent_y_m"] = box.sizes().y();
+  state.counters["extent_z_m"] = box.sizes().z();
 }
 BENCHMARK(BM_VoxelAdaptive)->Arg(8)->Unit(benchmark::kMicrosecond);
 
