@@ -40,7 +40,7 @@ Segmenter::Segmenter(const SegmentationConfig& config)
        Eigen::AngleAxisd(config.mount_roll_deg * kDegToRad, Eigen::Vector3d::UnitX()))
           .toRotationMatrix();
   R_level_lidar_ = R.cast<float>();
-  const auto cells = static_cast<size_t>(image_.rings() * image_.columns());
+  const auto cells = static_cast<size_t>(image_.rings()) * static_cast<size_t>(image_.columns());
   cell_label_.assign(cells, 0);
   queue_.assign(cells, 0);
 }

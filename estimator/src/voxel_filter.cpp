@@ -119,8 +119,8 @@ void VoxelFilter::SortByVoxel(std::span<const Eigen::Vector3f> points,
   }
   keyed_.clear();
   if (points.empty()) return;
-  const auto dx = static_cast<uint64_t>(hi.x() - lo.x() + 1);
-  const auto dy = static_cast<uint64_t>(hi.y() - lo.y() + 1);
+  const auto dx = static_cast<uint64_t>(int64_t{hi.x()} - lo.x() + 1);
+  const auto dy = static_cast<uint64_t>(int64_t{hi.y()} - lo.y() + 1);
   uint64_t max_key = 0;
   for (size_t i = 0; i < cells_.size(); ++i) {
     const Eigen::Array3i c = cells_[i] - lo;
