@@ -172,9 +172,11 @@ INSTANTIATE_TEST_SUITE_P(Scenarios,
                          FeatureTest,
                          ::testing::Values(Case{"short", 1, 0.5},
                                            Case{"loop943", 2, 0.5},
-                                           Case{"aggressive", 3, 1.0}),
+                                           Case{"aggressive", 3, 1.0},
+                                           Case{"short", 2, 6.0}),
                          [](const auto& info) {
-                           return info.param.scenario + "_seed" + std::to_string(info.param.seed);
+                           return info.param.scenario + "_seed" + std::to_string(info.param.seed) +
+                                  "_t" + std::to_string(static_cast<int>(info.param.t_min_s));
                          });
 
 }  // namespace

@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cstdio>
+#include <map>
 #include <string>
 
 #include "labelled_scan.h"
@@ -59,6 +61,51 @@ TEST_P(GroundTest, PrecisionAndRecallAgainstSimulatorClasses) {
       static_cast<long long>(result.image.collisions));
   EXPECT_GE(precision, 0.95);
   EXPECT_GE(recall, 0.95);
+}
+
+// Structure of the output on a real-looking sweep: ring-major column order, labels agree, every
+// kept cluster passes the size rule, and a second run gives the same result.
+TEST(Segmenter, OutputIsConsistentAndDeterministic) {
+  auto setup = sim::MakeSimSetup("loop943", 1, 1.0);
+  ASSERT_TRUE(setup.has_value());
+  sim::LabelledScanSource source(*setup);
+  sim::LabelledScan ls;
+  ASSERT_TRUE(source.Next(&ls, 0.5));
+  const SegmentationConfig config;
+  Segmenter segmenter(config);
+  SegmentationResult a, b;
+  segmenter.Segment(ls.scan, &a);
+  segmenter.Segment(ls.scan, &b);
+  EXPECT_EQ(a.labels, b.labels);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  ASSERT_EQ(a.ring_begin.size(), 17u);
+  std::map<int32_t, std::pair<int, uint32_t>> clusters;  // label → (points, ring mask)
+  int64_t outliers = 0;
+  for (int32_t label : a.labels) outliers += label == kLabelOutlier;
+  EXPECT_EQ(outliers, a.outlier_points);
+  for (size_t r = 0; r < 16; ++r) {
+    for (size_t i = a.ring_begin[r]; i < a.ring_begin[r + 1]; ++i) {
+      const SegmentedPoint& p = a.points[i];
+      EXPECT_EQ(p.ring, r);
+      if (i > a.ring_begin[r]) {
+        EXPECT_LT(a.points[i - 1].column, p.column);
+      }
+      EXPECT_EQ(a.labels[p.source_index], p.label);
+      EXPECT_TRUE(p.label == kLabelGround || p.label >= 1);
+      EXPECT_EQ(p.xyz_m, ls.scan.points[p.source_index].xyz_m);
+      if (p.label >= 1) {
+        ++clusters[p.label].first;
+        clusters[p.label].second |= 1u << p.ring;
+      }
+    }
+  }
+  EXPECT_EQ(static_cast<int64_t>(clusters.size()), a.clusters);
+  for (const auto& [label, info] : clusters) {
+    const bool big = info.first >= config.min_cluster_points;
+    const bool tall = std::popcount(info.second) >= config.min_cluster_rings &&
+                      info.first >= config.min_spanning_cluster_points;
+    EXPECT_TRUE(big || tall) << "cluster " << label;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenarios,
