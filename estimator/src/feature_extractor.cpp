@@ -56,6 +56,8 @@ void FeatureExtractor::Extract(const SegmentationResult& s, FeatureSet* out) {
     const size_t end = s.ring_begin[r + 1];
     ComputeSmoothness(s, begin, end);
     RejectUnreliable(s, begin, end, out);
+    ring_begin_ = begin;
+    ring_end_ = end;
     if (end - begin > 2 * w + sectors) {
       const size_t span = end - begin - 2 * w;
       for (size_t k = 0; k < sectors; ++k) {
@@ -147,7 +149,7 @@ void FeatureExtractor::SelectSector(const SegmentationResult& s,
     if (edges++ < config_.max_sharp_edges_per_sector) out->edges_sharp.push_back(f);
     out->edges.push_back(f);
     flags_[i] |= kPicked | kEdge;
-    Suppress(s, i, begin, end);
+    Suppress(s, i);
   }
   int64_t flats = 0;
   for (auto it = first; it != last && flats < config_.max_flat_planes_per_sector; ++it) {
@@ -157,13 +159,15 @@ void FeatureExtractor::SelectSector(const SegmentationResult& s,
     out->planes_flat.push_back(ToFeature(s.points[i], curvature_[i]));
     ++flats;
     flags_[i] |= kPicked;
-    Suppress(s, i, begin, end);
+    Suppress(s, i);
   }
 }
 
 // Neighbour suppression: the W ring neighbours on each side of a selected point (up to a
-// column gap) cannot be selected in turn, which spreads the features over the sector.
-void FeatureExtractor::Suppress(const SegmentationResult& s, size_t i, size_t begin, size_t end) {
+// column gap, across sector borders) cannot be selected in turn, which spreads the features.
+void FeatureExtractor::Suppress(const SegmentationResult& s, size_t i) {
+  const size_t begin = ring_begin_;
+  const size_t end = ring_end_;
   const auto w = static_cast<size_t>(config_.half_window);
   for (size_t j = i + 1; j < end && j <= i + w; ++j) {
     if (s.points[j].column - s.points[j - 1].column > config_.max_neighbour_column_gap) break;

@@ -64,9 +64,11 @@ class FeatureExtractor {
   void ComputeSmoothness(const SegmentationResult& s, size_t begin, size_t end);
   void RejectUnreliable(const SegmentationResult& s, size_t begin, size_t end, FeatureSet* out);
   void SelectSector(const SegmentationResult& s, size_t begin, size_t end, FeatureSet* out);
-  void Suppress(const SegmentationResult& s, size_t i, size_t begin, size_t end);
+  void Suppress(const SegmentationResult& s, size_t i);
 
   FeatureConfig config_;
+  size_t ring_begin_ = 0;  ///< the ring being processed: [ring_begin_, ring_end_)
+  size_t ring_end_ = 0;
   std::vector<float> curvature_;
   std::vector<uint8_t> flags_;
   std::vector<uint64_t> order_;  ///< per sector: (smoothness bits << 32) | point index
