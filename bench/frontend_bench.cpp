@@ -29,6 +29,13 @@ const swlio::Scan& SimulatedSweep() {
   return scan;
 }
 
+void BM_RangeImage(benchmark::State& state) {
+  const swlio::Scan& scan = SimulatedSweep();
+  RangeImage image(RangeImageConfig{});
+  for (auto _ : state) benchmark::DoNotOptimize(image.Build(scan.points));
+}
+BENCHMARK(BM_RangeImage)->Unit(benchmark::kMicrosecond);
+
 void BM_Segmentation(benchmark::State& state) {
   const swlio::Scan& scan = SimulatedSweep();
   Segmenter segmenter(SegmentationConfig{});

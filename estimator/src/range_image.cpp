@@ -5,6 +5,28 @@
 #include <numbers>
 
 namespace swlio::estimator {
+namespace {
+
+// atan2 from an 11th-order odd minimax polynomial for atan on [−1, 1] (|error| < 1e-5 rad =
+// 0.0006°, against 0.2° columns) and octant folding; several times cheaper than std::atan2.
+float FastAtan2(float y, float x) {
+  const float ax = std::abs(x);
+  const float ay = std::abs(y);
+  const float mx = std::max(ax, ay);
+  if (mx == 0.0f) return 0.0f;
+  const float z = std::min(ax, ay) / mx;
+  const float z2 = z * z;
+  float a =
+      z *
+      (0.99997726f +
+       z2 * (-0.33262347f +
+             z2 * (0.19354346f + z2 * (-0.11643287f + z2 * (0.05265332f + z2 * -0.01172120f)))));
+  if (ay > ax) a = std::numbers::pi_v<float> / 2.0f - a;
+  if (x < 0.0f) a = std::numbers::pi_v<float> - a;
+  return y < 0.0f ? -a : a;
+}
+
+}  // namespace
 
 ConfigIssues RangeImageConfig::Validate() const {
   ConfigIssues issues;
@@ -30,7 +52,7 @@ RangeImage::RangeImage(const RangeImageConfig& config)
 
 int RangeImage::Column(const Eigen::Vector3f& xyz_m) const {
   // Azimuth clockwise from +y (the RS16 manual's convention), shifted to [0, 2π).
-  const float azimuth = std::atan2(xyz_m.x(), xyz_m.y()) + std::numbers::pi_v<float>;
+  const float azimuth = FastAtan2(xyz_m.x(), xyz_m.y()) + std::numbers::pi_v<float>;
   const int column = static_cast<int>(azimuth * columns_per_rad_);
   return std::clamp(column, 0, columns_ - 1);
 }

@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
 #include "synthetic_scan.h"
 
 namespace swlio::estimator {
@@ -16,6 +21,25 @@ TEST(RangeImage, ColumnIsTheAzimuthClockwiseFromY) {
   EXPECT_EQ(image.Column({1.0f, 0.0f, 0.0f}), 1350);  // right (+x)
   EXPECT_EQ(image.Column({-1.0f, 0.0f, 0.0f}), 450);  // left
   EXPECT_EQ(image.Column(At(3, 17, 10.0).xyz_m), 17);
+}
+
+// The column uses a polynomial atan2: it agrees with std::atan2's column everywhere but within
+// 0.001° of a column border.
+TEST(RangeImage, FastAzimuthMatchesStdAtan2) {
+  RangeImage image(RangeImageConfig{});
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int checked = 0;
+  for (int n = 0; n < 200000; ++n) {
+    const Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    const double bins =
+        (std::atan2(p.x(), p.y()) + std::numbers::pi) / (2.0 * std::numbers::pi) * 1800.0;
+    if (std::abs(bins - std::round(bins)) < 0.001 / 0.2) continue;
+    ASSERT_EQ(image.Column(p.cast<float>()), std::min(static_cast<int>(bins), 1799))
+        << p.transpose();
+    ++checked;
+  }
+  EXPECT_GT(checked, 190000);
 }
 
 TEST(RangeImage, CountsRejectsAndKeepsTheNearerOfColliding) {
