@@ -39,13 +39,21 @@ Segmenter::Segmenter(const SegmentationConfig& config)
       (Eigen::AngleAxisd(config.mount_pitch_deg * kDegToRad, Eigen::Vector3d::UnitY()) *
        Eigen::AngleAxisd(config.mount_roll_deg * kDegToRad, Eigen::Vector3d::UnitX()))
           .toRotationMatrix();
-  R_level_lidar_ = R.cast<float>();
+  R_level_lidar_mount_ = R.cast<float>();
+  R_level_lidar_ = R_level_lidar_mount_;
   const auto cells = static_cast<size_t>(image_.rings()) * static_cast<size_t>(image_.columns());
   cell_label_.assign(cells, 0);
   queue_.assign(cells, 0);
 }
 
 void Segmenter::Segment(const Scan& scan, SegmentationResult* result) {
+  Segment(scan, R_level_lidar_mount_, result);
+}
+
+void Segmenter::Segment(const Scan& scan,
+                        const Eigen::Matrix3f& R_level_lidar,
+                        SegmentationResult* result) {
+  R_level_lidar_ = R_level_lidar;
   result->image = image_.Build(scan.points);
   std::fill(cell_label_.begin(), cell_label_.end(), 0);
   clusters_ = 0;

@@ -105,6 +105,15 @@ TEST(Segmenter, MountTiltIsLevelledBeforeTheSlopeTest) {
   // with no ring neighbour on the ground.
   EXPECT_GT(ground_share(14.0), 0.97);
   EXPECT_LT(ground_share(0.0), 0.7);
+  // The same levelling given per scan (as from the IMU attitude) instead of by the mount.
+  SegmentationConfig config;
+  config.ground_max_ring = 15;
+  Segmenter segmenter(config);
+  SegmentationResult r;
+  const Eigen::Matrix3f R_level_lidar =
+      Eigen::AngleAxisf(static_cast<float>(roll), Eigen::Vector3f::UnitX()).toRotationMatrix();
+  segmenter.Segment(scan, R_level_lidar, &r);
+  EXPECT_GT(static_cast<double>(r.ground_points), 0.97 * static_cast<double>(scan.points.size()));
 }
 
 }  // namespace

@@ -70,7 +70,11 @@ class Segmenter {
  public:
   explicit Segmenter(const SegmentationConfig& config);
 
+  /// Levels the ring pairs with the configured mount tilt.
   void Segment(const Scan& scan, SegmentationResult* result);
+  /// Levels the ring pairs with `R_level_lidar` for this scan instead (for example roll and
+  /// pitch of the current attitude, from gravity), so that slopes are taken against gravity.
+  void Segment(const Scan& scan, const Eigen::Matrix3f& R_level_lidar, SegmentationResult* result);
 
  private:
   void MarkGround();
@@ -83,7 +87,8 @@ class Segmenter {
 
   SegmentationConfig config_;
   RangeImage image_;
-  Eigen::Matrix3f R_level_lidar_;
+  Eigen::Matrix3f R_level_lidar_mount_;
+  Eigen::Matrix3f R_level_lidar_;  ///< the one used for the current scan
   float tan_ground_;
   float tan_cluster_;
   float foot_gap_m_;
