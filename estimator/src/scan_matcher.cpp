@@ -38,6 +38,19 @@ Mat36 PointJacobian(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
   return J;
 }
 
+/// The `config.neighbors` nearest map points of `x` and their fit; false when there are fewer.
+bool FitNeighbours(const VoxelMap& map,
+                   const Eigen::Vector3d& x,
+                   const ScanMatcherConfig& config,
+                   std::vector<Eigen::Vector3d>* nn,
+                   Fit* fit) {
+  if (map.Nearest(x, config.neighbors, config.max_neighbor_distance_m, nn) < config.neighbors) {
+    return false;
+  }
+  *fit = FitPoints(*nn);
+  return true;
+}
+
 }  // namespace
 
 ConfigIssues ScanMatcherConfig::Validate() const {
@@ -64,13 +77,10 @@ void ScanMatcher::AddPlanes(const std::vector<Eigen::Vector3d>& pts,
                             const Eigen::Isometry3d& T,
                             Normal* ne) const {
   std::vector<Eigen::Vector3d> nn;
+  Fit f;
   for (const Eigen::Vector3d& p : pts) {
     const Eigen::Vector3d x = T * p;
-    if (map.Nearest(x, config_.neighbors, config_.max_neighbor_distance_m, &nn) <
-        config_.neighbors) {
-      continue;
-    }
-    const Fit f = FitPoints(nn);
+    if (!FitNeighbours(map, x, config_, &nn, &f)) continue;
     const Eigen::Vector3d n = f.eigenvectors.col(0);
     bool planar = true;
     for (const auto& q : nn)
@@ -91,13 +101,10 @@ void ScanMatcher::AddEdges(const std::vector<Eigen::Vector3d>& pts,
                            const Eigen::Isometry3d& T,
                            Normal* ne) const {
   std::vector<Eigen::Vector3d> nn;
+  Fit f;
   for (const Eigen::Vector3d& p : pts) {
     const Eigen::Vector3d x = T * p;
-    if (map.Nearest(x, config_.neighbors, config_.max_neighbor_distance_m, &nn) <
-        config_.neighbors) {
-      continue;
-    }
-    const Fit f = FitPoints(nn);
+    if (!FitNeighbours(map, x, config_, &nn, &f)) continue;
     if (f.eigenvalues(2) < config_.line_min_ratio * f.eigenvalues(1)) continue;
     const Eigen::Vector3d d = f.eigenvectors.col(2);
     const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - d * d.transpose();
