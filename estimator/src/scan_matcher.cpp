@@ -58,6 +58,7 @@ ConfigIssues ScanMatcherConfig::Validate() const {
   CheckInRange<size_t>(issues, "neighbors", neighbors, 3, 20);
   CheckInRange(issues, "max_neighbor_distance_m", max_neighbor_distance_m, 0.1, 10.0);
   CheckInRange(issues, "plane_max_distance_m", plane_max_distance_m, 0.001, 1.0);
+  CheckInRange(issues, "plane_min_spread_ratio", plane_min_spread_ratio, 0.0, 1.0);
   CheckInRange(issues, "line_min_ratio", line_min_ratio, 1.0, 100.0);
   CheckPositive(issues, "huber_m", huber_m);
   CheckPositive(issues, "max_residual_m", max_residual_m);
@@ -81,6 +82,9 @@ void ScanMatcher::AddPlanes(const std::vector<Eigen::Vector3d>& pts,
   for (const Eigen::Vector3d& p : pts) {
     const Eigen::Vector3d x = T * p;
     if (!FitNeighbours(map, x, config_, &nn, &f)) continue;
+    // Neighbours along one scan line (a ring on the ground, a row on a wall) are collinear:
+    // their "plane" normal is arbitrary and would tie the sweep to the previous sensor position.
+    if (f.eigenvalues(1) < config_.plane_min_spread_ratio * f.eigenvalues(2)) continue;
     const Eigen::Vector3d n = f.eigenvectors.col(0);
     bool planar = true;
     for (const auto& q : nn)

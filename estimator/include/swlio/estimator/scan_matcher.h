@@ -27,6 +27,9 @@ struct ScanMatcherConfig {
   size_t neighbors = 5;  ///< map points per correspondence
   double max_neighbor_distance_m = 1.5;
   double plane_max_distance_m = 0.1;  ///< neighbour-to-plane bound for a valid plane
+  /// A plane needs neighbours spread in two directions: λ_mid ≥ this × λ_max of their
+  /// covariance (collinear neighbours, e.g. one ring on the ground, define no plane).
+  double plane_min_spread_ratio = 0.05;
   double line_min_ratio = 3.0;        ///< λ1/λ2 of the neighbours for a valid line
   double huber_m = 0.1;               ///< Huber kernel width
   double max_residual_m = 1.0;        ///< larger residuals are outliers
