@@ -1,6 +1,7 @@
 #include "swlio/estimator/scan_matcher.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 #include "swlio/core/lie.h"
@@ -63,6 +64,8 @@ ConfigIssues ScanMatcherConfig::Validate() const {
   CheckPositive(issues, "huber_m", huber_m);
   CheckPositive(issues, "max_residual_m", max_residual_m);
   CheckInRange(issues, "max_iterations", max_iterations, 1, 100);
+  CheckInRange(issues, "reassociate_translation_m", reassociate_translation_m, 0.0, 1.0);
+  CheckInRange(issues, "reassociate_rotation_rad", reassociate_rotation_rad, 0.0, 0.5);
   return issues;
 }
 
@@ -73,52 +76,67 @@ double ScanMatcher::HuberWeight(double r) const {
   return a <= config_.huber_m ? 1.0 : config_.huber_m / a;
 }
 
-void ScanMatcher::AddPlanes(const std::vector<Eigen::Vector3d>& pts,
-                            const VoxelMap& map,
+void ScanMatcher::Associate(const std::vector<Eigen::Vector3d>& planar_lidar,
+                            const std::vector<Eigen::Vector3d>& edge_lidar,
+                            const VoxelMap& plane_map,
+                            const VoxelMap& edge_map,
                             const Eigen::Isometry3d& T,
-                            Normal* ne) const {
+                            std::vector<PlaneCorrespondence>* planes,
+                            std::vector<LineCorrespondence>* lines) const {
+  planes->clear();
+  lines->clear();
   std::vector<Eigen::Vector3d> nn;
+  nn.reserve(config_.neighbors);
   Fit f;
-  for (const Eigen::Vector3d& p : pts) {
-    const Eigen::Vector3d x = T * p;
-    if (!FitNeighbours(map, x, config_, &nn, &f)) continue;
+  for (size_t i = 0; i < planar_lidar.size(); ++i) {
+    const Eigen::Vector3d x = T * planar_lidar[i];
+    if (!FitNeighbours(plane_map, x, config_, &nn, &f)) continue;
     // Neighbours along one scan line (a ring on the ground, a row on a wall) are collinear:
     // their "plane" normal is arbitrary and would tie the sweep to the previous sensor position.
     if (f.eigenvalues(1) < config_.plane_min_spread_ratio * f.eigenvalues(2)) continue;
     const Eigen::Vector3d n = f.eigenvectors.col(0);
-    bool planar = true;
-    for (const auto& q : nn)
-      planar = planar && std::abs(n.dot(q - f.centroid)) <= config_.plane_max_distance_m;
-    const double r = n.dot(x - f.centroid);
-    if (!planar || std::abs(r) > config_.max_residual_m) continue;
-    const Eigen::Matrix<double, 1, 6> J = n.transpose() * PointJacobian(T.linear(), p);
-    const double w = HuberWeight(r);
-    ne->H += w * J.transpose() * J;
-    ne->b += w * J.transpose() * r;
-    ne->cost += w * r * r;
-    ++ne->planes;
+    const bool planar = std::all_of(nn.begin(), nn.end(), [&](const Eigen::Vector3d& q) {
+      return std::abs(n.dot(q - f.centroid)) <= config_.plane_max_distance_m;
+    });
+    if (!planar || std::abs(n.dot(x - f.centroid)) > config_.max_residual_m) continue;
+    planes->push_back({static_cast<uint32_t>(i), n, f.centroid});
+  }
+  for (size_t i = 0; i < edge_lidar.size(); ++i) {
+    const Eigen::Vector3d x = T * edge_lidar[i];
+    if (!FitNeighbours(edge_map, x, config_, &nn, &f)) continue;
+    if (f.eigenvalues(2) < config_.line_min_ratio * f.eigenvalues(1)) continue;
+    const Eigen::Vector3d d = f.eigenvectors.col(2);
+    const Eigen::Vector3d e = (x - f.centroid) - d * d.dot(x - f.centroid);
+    if (e.norm() > config_.max_residual_m) continue;
+    lines->push_back({static_cast<uint32_t>(i), d, f.centroid});
   }
 }
 
-void ScanMatcher::AddEdges(const std::vector<Eigen::Vector3d>& pts,
-                           const VoxelMap& map,
-                           const Eigen::Isometry3d& T,
-                           Normal* ne) const {
-  std::vector<Eigen::Vector3d> nn;
-  Fit f;
-  for (const Eigen::Vector3d& p : pts) {
-    const Eigen::Vector3d x = T * p;
-    if (!FitNeighbours(map, x, config_, &nn, &f)) continue;
-    if (f.eigenvalues(2) < config_.line_min_ratio * f.eigenvalues(1)) continue;
-    const Eigen::Vector3d d = f.eigenvectors.col(2);
-    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - d * d.transpose();
-    const Eigen::Vector3d e = P * (x - f.centroid);
+void ScanMatcher::Accumulate(const std::vector<Eigen::Vector3d>& planar_lidar,
+                             const std::vector<Eigen::Vector3d>& edge_lidar,
+                             const std::vector<PlaneCorrespondence>& planes,
+                             const std::vector<LineCorrespondence>& lines,
+                             const Eigen::Isometry3d& T,
+                             Normal* ne) const {
+  for (const PlaneCorrespondence& c : planes) {
+    const Eigen::Vector3d& p = planar_lidar[c.index];
+    const double r = c.normal.dot(T * p - c.centroid);
+    const Eigen::Matrix<double, 1, 6> J = c.normal.transpose() * PointJacobian(T.linear(), p);
+    const double w = HuberWeight(r);
+    ne->H.noalias() += w * J.transpose() * J;
+    ne->b.noalias() += w * J.transpose() * r;
+    ne->cost += w * r * r;
+    ++ne->planes;
+  }
+  for (const LineCorrespondence& c : lines) {
+    const Eigen::Vector3d& p = edge_lidar[c.index];
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - c.direction * c.direction.transpose();
+    const Eigen::Vector3d e = P * (T * p - c.centroid);
     const double r = e.norm();
-    if (r > config_.max_residual_m) continue;
     const Mat36 J = P * PointJacobian(T.linear(), p);
     const double w = HuberWeight(r);
-    ne->H += w * J.transpose() * J;
-    ne->b += w * J.transpose() * e;
+    ne->H.noalias() += w * J.transpose() * J;
+    ne->b.noalias() += w * J.transpose() * e;
     ne->cost += w * r * r;
     ++ne->edges;
   }
@@ -131,20 +149,32 @@ MatchResult ScanMatcher::Match(const std::vector<Eigen::Vector3d>& planar_lidar,
                                const Eigen::Isometry3d& T_init) const {
   MatchResult result;
   Eigen::Isometry3d T = T_init;
+  Eigen::Isometry3d T_associated = T_init;
+  std::vector<PlaneCorrespondence> planes;
+  std::vector<LineCorrespondence> lines;
+  Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, &planes, &lines);
+  bool fresh = true;
   Normal ne;
   for (int it = 0; it < config_.max_iterations; ++it) {
     ne = Normal{};
-    AddPlanes(planar_lidar, plane_map, T, &ne);
-    AddEdges(edge_lidar, edge_map, T, &ne);
+    Accumulate(planar_lidar, edge_lidar, planes, lines, T, &ne);
     result.iterations = it + 1;
     if (ne.planes + ne.edges < 6) break;  // too few constraints to solve
     const Eigen::Matrix<double, 6, 1> delta = ne.H.ldlt().solve(-ne.b);
     if (!delta.allFinite()) break;
     T = T * lie::ExpSE3(delta);
-    if (delta.head<3>().norm() < config_.converged_translation_m &&
+    if (fresh && delta.head<3>().norm() < config_.converged_translation_m &&
         delta.tail<3>().norm() < config_.converged_rotation_rad) {
       result.converged = true;
       break;
+    }
+    const Eigen::Isometry3d moved = T_associated.inverse() * T;
+    fresh = moved.translation().norm() > config_.reassociate_translation_m ||
+            Eigen::AngleAxisd(moved.linear()).angle() > config_.reassociate_rotation_rad ||
+            delta.head<3>().norm() < config_.converged_translation_m;
+    if (fresh) {
+      Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, &planes, &lines);
+      T_associated = T;
     }
   }
   result.T_world_lidar = T;

@@ -1,6 +1,7 @@
 #include "swlio/estimator/voxel_map.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -41,35 +42,64 @@ size_t VoxelMap::Insert(const std::vector<Eigen::Vector3d>& points_world) {
   return stored;
 }
 
+namespace {
+
+/// Squared distance from `q` to the axis-aligned cell [lo, lo + side]³.
+double BoxDistanceSq(const Eigen::Vector3d& q, const Eigen::Vector3d& lo, double side) {
+  double d2 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double below = lo[i] - q[i];
+    const double above = q[i] - (lo[i] + side);
+    const double d = std::max({below, above, 0.0});
+    d2 += d * d;
+  }
+  return d2;
+}
+
+/// The query's voxel and its 26 neighbours, nearest cells first (faces, edges, corners), so
+/// the k-th best distance shrinks early and prunes the rest.
+constexpr std::array<std::array<int, 3>, 27> kSearchOrder = {{
+    {0, 0, 0},   {1, 0, 0},   {-1, 0, 0},  {0, 1, 0},   {0, -1, 0},  {0, 0, 1},   {0, 0, -1},
+    {1, 1, 0},   {1, -1, 0},  {-1, 1, 0},  {-1, -1, 0}, {1, 0, 1},   {1, 0, -1},  {-1, 0, 1},
+    {-1, 0, -1}, {0, 1, 1},   {0, 1, -1},  {0, -1, 1},  {0, -1, -1}, {1, 1, 1},   {1, 1, -1},
+    {1, -1, 1},  {1, -1, -1}, {-1, 1, 1},  {-1, 1, -1}, {-1, -1, 1}, {-1, -1, -1},
+}};
+
+}  // namespace
+
 size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
                          size_t k,
                          double max_distance_m,
                          std::vector<Eigen::Vector3d>* out) const {
   out->clear();
+  k = std::min(k, kMaxNeighbours);
   if (k == 0) return 0;
   const Key c = KeyOf(query);
-  const double max_sq = max_distance_m * max_distance_m;
-  // Keep the k best (distance², point) in a small sorted buffer.
-  std::vector<std::pair<double, const Eigen::Vector3d*>> best;
-  best.reserve(k + 1);
-  for (int dx = -1; dx <= 1; ++dx) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dz = -1; dz <= 1; ++dz) {
-        const auto it = voxels_.find({c.x + dx, c.y + dy, c.z + dz});
-        if (it == voxels_.end()) continue;
-        for (const Eigen::Vector3d& p : it->second) {
-          const double d2 = (p - query).squaredNorm();
-          if (d2 > max_sq || (best.size() == k && d2 >= best.back().first)) continue;
-          best.insert(std::upper_bound(best.begin(), best.end(), d2,
-                                       [](double v, const auto& e) { return v < e.first; }),
-                      {d2, &p});
-          if (best.size() > k) best.pop_back();
-        }
+  // The k best (distance², point), sorted, in a fixed buffer: no allocation per query.
+  std::array<std::pair<double, const Eigen::Vector3d*>, kMaxNeighbours + 1> best;
+  size_t n = 0;
+  double bound_sq = max_distance_m * max_distance_m;  // the k-th best once full
+  for (const std::array<int, 3>& o : kSearchOrder) {
+    const Key key{c.x + o[0], c.y + o[1], c.z + o[2]};
+    const Eigen::Vector3d lo = Eigen::Vector3d(key.x, key.y, key.z) * config_.voxel_m;
+    if (BoxDistanceSq(query, lo, config_.voxel_m) >= bound_sq) continue;  // cannot improve
+    const auto it = voxels_.find(key);
+    if (it == voxels_.end()) continue;
+    for (const Eigen::Vector3d& p : it->second) {
+      const double d2 = (p - query).squaredNorm();
+      if (d2 >= bound_sq) continue;
+      size_t i = n;
+      while (i > 0 && best[i - 1].first > d2) {
+        best[i] = best[i - 1];
+        --i;
       }
+      best[i] = {d2, &p};
+      if (n < k) ++n;
+      if (n == k) bound_sq = best[k - 1].first;
     }
   }
-  for (const auto& [d2, p] : best) out->push_back(*p);
-  return out->size();
+  for (size_t i = 0; i < n; ++i) out->push_back(*best[i].second);
+  return n;
 }
 
 size_t VoxelMap::RemoveFar(const Eigen::Vector3d& center_world) {

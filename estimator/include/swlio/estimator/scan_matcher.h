@@ -2,7 +2,10 @@
 /// @file
 /// Scan-to-map registration: point-to-plane residuals for planar features and point-to-line
 /// residuals for edge features against a VoxelMap, solved by Gauss–Newton on SE(3) with a
-/// Huber kernel and correspondences re-found each iteration.
+/// Huber kernel. Correspondences are found at the start and again whenever the pose has moved
+/// more than `reassociate_*` since they were found; in between, Gauss–Newton re-linearizes
+/// the same planes and lines (LOAM does the same every few iterations), which saves most
+/// neighbour searches once the pose settles. Convergence is only declared on fresh ones.
 ///
 /// Residuals (T = T_world_lidar, p a feature point in the LiDAR frame, x = T p):
 ///   plane: r = nᵀ (x − c)             c, n: centroid and normal of the k nearest map points
@@ -16,6 +19,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <vector>
 
 #include "swlio/core/config_issue.h"
@@ -34,8 +38,10 @@ struct ScanMatcherConfig {
   double huber_m = 0.1;               ///< Huber kernel width
   double max_residual_m = 1.0;        ///< larger residuals are outliers
   int max_iterations = 10;
-  double converged_translation_m = 1e-4;
-  double converged_rotation_rad = 1e-5;
+  double reassociate_translation_m = 0.02;  ///< pose change that triggers new neighbours
+  double reassociate_rotation_rad = 0.004;
+  double converged_translation_m = 1e-3;  ///< a step below both ends the solve
+  double converged_rotation_rad = 1e-4;
 
   ConfigIssues Validate() const;
 };
@@ -52,6 +58,18 @@ struct MatchResult {
       Eigen::Matrix<double, 6, 1>::Zero();  ///< ascending
 };
 
+/// A feature point (index into its input vector) paired with a plane or a line of the map.
+struct PlaneCorrespondence {
+  uint32_t index = 0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+};
+struct LineCorrespondence {
+  uint32_t index = 0;
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  ///< unit
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+};
+
 class ScanMatcher {
  public:
   explicit ScanMatcher(const ScanMatcherConfig& config = {});
@@ -63,6 +81,16 @@ class ScanMatcher {
                     const VoxelMap& edge_map,
                     const Eigen::Isometry3d& T_init) const;
 
+  /// Pairs every feature, placed at `T_world_lidar`, with the plane or line its map
+  /// neighbours form (validity checks as above); features without one are left out.
+  void Associate(const std::vector<Eigen::Vector3d>& planar_lidar,
+                 const std::vector<Eigen::Vector3d>& edge_lidar,
+                 const VoxelMap& plane_map,
+                 const VoxelMap& edge_map,
+                 const Eigen::Isometry3d& T_world_lidar,
+                 std::vector<PlaneCorrespondence>* planes,
+                 std::vector<LineCorrespondence>* lines) const;
+
  private:
   struct Normal {  ///< accumulated Gauss–Newton system
     Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
@@ -71,14 +99,12 @@ class ScanMatcher {
     size_t planes = 0;
     size_t edges = 0;
   };
-  void AddPlanes(const std::vector<Eigen::Vector3d>& pts,
-                 const VoxelMap& map,
-                 const Eigen::Isometry3d& T,
-                 Normal* ne) const;
-  void AddEdges(const std::vector<Eigen::Vector3d>& pts,
-                const VoxelMap& map,
-                const Eigen::Isometry3d& T,
-                Normal* ne) const;
+  void Accumulate(const std::vector<Eigen::Vector3d>& planar_lidar,
+                  const std::vector<Eigen::Vector3d>& edge_lidar,
+                  const std::vector<PlaneCorrespondence>& planes,
+                  const std::vector<LineCorrespondence>& lines,
+                  const Eigen::Isometry3d& T,
+                  Normal* ne) const;
   double HuberWeight(double r) const;
 
   ScanMatcherConfig config_;

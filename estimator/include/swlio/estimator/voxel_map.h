@@ -29,13 +29,17 @@ struct VoxelMapConfig {
 
 class VoxelMap {
  public:
+  static constexpr size_t kMaxNeighbours = 32;
+
   explicit VoxelMap(const VoxelMapConfig& config = {});
 
   /// Adds world-frame points; returns how many were stored.
   size_t Insert(const std::vector<Eigen::Vector3d>& points_world);
 
-  /// Up to `k` nearest stored points within `max_distance_m` of `query`, nearest first.
-  /// Writes into `out` (cleared first); returns the count.
+  /// Up to `k` (≤ kMaxNeighbours) nearest stored points within `max_distance_m` of `query`,
+  /// nearest first. Searches the query's voxel and its 26 neighbours (cells that cannot hold a
+  /// closer point are skipped), so distances beyond one voxel edge may be missed. Writes into
+  /// `out` (cleared first); returns the count. No allocation once `out` has capacity k.
   size_t Nearest(const Eigen::Vector3d& query,
                  size_t k,
                  double max_distance_m,
