@@ -1,7 +1,10 @@
 #include "test_data.h"
 
+#include <sys/wait.h>
 #include <unistd.h>
+
 #include <atomic>
+#include <cstdio>
 #include <cstdlib>
 
 namespace swlio::test {
@@ -34,6 +37,27 @@ std::filesystem::path MakeTempDir(const std::string& tag) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+std::filesystem::path ToolPath(const std::string& name) {
+  const std::filesystem::path tool =
+      std::filesystem::read_symlink("/proc/self/exe").parent_path() / name;
+  return std::filesystem::exists(tool) ? tool : std::filesystem::path{};
+}
+
+std::string RunCommand(const std::string& command, int* exit_code) {
+  std::string out;
+  std::FILE* p = ::popen(command.c_str(), "r");
+  if (p == nullptr) {
+    if (exit_code != nullptr) *exit_code = -1;
+    return out;
+  }
+  char buf[4096];
+  size_t n = 0;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int status = ::pclose(p);
+  if (exit_code != nullptr) *exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return out;
 }
 
 }  // namespace swlio::test

@@ -21,6 +21,13 @@ std::filesystem::path SourceDir();
 /// A fresh empty directory under the system temp dir, unique per call.
 std::filesystem::path MakeTempDir(const std::string& tag);
 
+/// A program built next to the running test (build/bin/<name>), or empty when absent.
+std::filesystem::path ToolPath(const std::string& name);
+
+/// Runs `command` with /bin/sh; returns stdout (append "2>&1" for stderr). `exit_code`
+/// (optional) receives the exit status, or -1 when it did not exit normally.
+std::string RunCommand(const std::string& command, int* exit_code = nullptr);
+
 }  // namespace swlio::test
 
 /// Skips the current test with a clear message when a real-data file is absent.

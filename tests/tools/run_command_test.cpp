@@ -1,0 +1,74 @@
+// swlio-run as a user runs it: a simulated recording in, a TUM trajectory and the stage timings
+// CSV out; the LiDAR-only odometry follows the simulator's ground truth.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "sim_recording.h"
+#include "sim_setup.h"
+#include "swlio/eval/evaluate.h"
+#include "test_data.h"
+
+namespace swlio {
+namespace {
+
+namespace fs = std::filesystem;
+
+size_t CountLines(const fs::path& path, std::string* first) {
+  std::ifstream in(path);
+  std::string line;
+  size_t n = 0;
+  while (std::getline(in, line)) {
+    if (n == 0 && first != nullptr) *first = line;
+    ++n;
+  }
+  return n;
+}
+
+TEST(RunCommand, LidarOnlyFollowsTheSimulatedDrive) {
+  const fs::path tool = test::ToolPath("swlio-run");
+  if (tool.empty()) GTEST_SKIP() << "swlio-run not built next to the tests";
+  // 25 s of `short`: about 3 s standing (initialization), then ~25 m along the south road.
+  const fs::path dir = test::MakeTempDir("swlio_run");
+  auto setup = sim::MakeSimSetup("short", 11, 25.0);
+  ASSERT_TRUE(setup);
+  sim::RecordingStats stats;
+  std::string error;
+  ASSERT_TRUE(sim::WriteRecording(*setup, dir, &stats, &error)) << error;
+
+  int code = 0;
+  const std::string out = test::RunCommand(tool.string() + " " + dir.string() +
+                                               " --mode lidar-only --out " +
+                                               (dir / "est.tum").string() + " --timings " +
+                                               (dir / "t.csv").string() + " 2>&1",
+                                           &code);
+  ASSERT_EQ(code, 0) << out;
+  std::string header;
+  const size_t timing_lines = CountLines(dir / "t.csv", &header);
+  EXPECT_EQ(header, "t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms");
+  EXPECT_GE(timing_lines, 240u);  // one per sweep (10 Hz) plus the header
+  EXPECT_GE(CountLines(dir / "est.tum", nullptr), 200u);
+
+  eval::ApeOptions options;
+  options.alignment = eval::Alignment::kSe3;
+  const eval::Evaluation ape = eval::EvaluateApe(
+      eval::LoadPaired(dir / "groundtruth.tum", dir / "est.tum", eval::Format::kTum), options);
+  EXPECT_GE(ape.errors.size(), 200u);
+  EXPECT_LT(ape.stats.rmse, 0.10) << out;  // measured 0.02 m; drift would grow past this
+  EXPECT_LT(ape.stats.max, 0.25) << out;
+}
+
+TEST(RunCommand, MissingFolderIsAClearError) {
+  const fs::path tool = test::ToolPath("swlio-run");
+  if (tool.empty()) GTEST_SKIP() << "swlio-run not built next to the tests";
+  int code = 0;
+  const std::string out =
+      test::RunCommand(tool.string() + " /nonexistent/rec --out /dev/null 2>&1", &code);
+  EXPECT_NE(code, 0);
+  EXPECT_NE(out.find("/nonexistent/rec"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace swlio
