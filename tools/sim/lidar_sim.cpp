@@ -57,6 +57,7 @@ bool LidarSimulator::Next(SimPacket* out, std::vector<SimReturn>* returns) {
   if (t_msop > trajectory_->duration_s()) return false;
   const double t_difop = static_cast<double>(difop_index_);  // one DIFOP per second
   if (t_difop <= t_msop) {
+    if (returns != nullptr) returns->clear();  // a DIFOP carries no returns
     MakeDifop(out);
     return true;
   }

@@ -62,7 +62,8 @@ class LidarSimulator {
                  uint64_t seed);
 
   /// The next packet in receive order (DIFOP once a second, MSOP otherwise); false at the end
-  /// of the trajectory. When `returns` is given it receives the truth of the MSOP's 384 slots.
+  /// of the trajectory. When `returns` is given it receives the truth of the MSOP's 384 slots
+  /// (emptied for a DIFOP).
   bool Next(SimPacket* out, std::vector<SimReturn>* returns = nullptr);
 
   /// Continues from sim time `t_s` without casting the packets before it (for tests that need
