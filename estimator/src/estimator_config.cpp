@@ -1,5 +1,7 @@
 #include "swlio/estimator/estimator_config.h"
 
+#include "swlio/core/lie.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -44,6 +46,16 @@ ConfigIssues EstimatorConfig::Validate() const {
   CheckInRange(issues, "local_map_radius_m", local_map_radius_m, 10.0, 500.0);
   CheckInRange<int64_t>(issues, "num_threads", num_threads, 1, 64);
   return issues;
+}
+
+Eigen::Isometry3d ExtrinsicConfig::ToIsometry() const {
+  constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = lie::QuatFromRpy(rotation_rpy_deg[0] * kDegToRad, rotation_rpy_deg[1] * kDegToRad,
+                                rotation_rpy_deg[2] * kDegToRad)
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3d(translation_m[0], translation_m[1], translation_m[2]);
+  return T;
 }
 
 }  // namespace swlio::estimator

@@ -1,43 +1,47 @@
 // swlio-run: runs the estimator offline on a recording folder (simulator output or a daemon
 // recording) through the same decoders and clock models as the daemon, and writes the IMU-frame
-// trajectory in TUM format (stamped at each sweep's end, host time).
+// trajectory in TUM format (stamped at each sweep's end, host time) and per-scan stage timings.
 
 #include <CLI/CLI.hpp>
-
 #include <time.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
-#include <sstream>
+#include <optional>
 
 #include "swlio/core/lie.h"
+#include "swlio/daemon/config_loader.h"
 #include "swlio/daemon/recording_reader.h"
 #include "swlio/estimator/lidar_odometry.h"
 
 namespace {
 
-/// T_imu_lidar from a simulator manifest (translation_m and quaternion_xyzw lines), if present.
-bool ExtrinsicFromManifest(const std::string& dir, Eigen::Isometry3d* T) {
+using swlio::estimator::OdometryResult;
+using swlio::estimator::OdometryStatus;
+
+struct Options {
+  std::string dir, out, timings, config, mode = "lidar-only";
+};
+
+/// T_imu_lidar from a recording manifest (translation_m and quaternion_xyzw lines), if present:
+/// a recording describes its own rig, so it wins over the configuration file.
+std::optional<Eigen::Isometry3d> ExtrinsicFromManifest(const std::string& dir) {
   std::ifstream in(dir + "/manifest.yaml");
   std::string line;
   double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1};
   int found = 0;
   while (std::getline(in, line)) {
-    if (std::sscanf(line.c_str(), " translation_m: [%lf, %lf, %lf]", &t[0], &t[1], &t[2]) == 3) {
-      ++found;
-    }
-    if (std::sscanf(line.c_str(), " quaternion_xyzw: [%lf, %lf, %lf, %lf]", &q[0], &q[1], &q[2],
-                    &q[3]) == 4) {
-      ++found;
-    }
+    found += std::sscanf(line.c_str(), " translation_m: [%lf, %lf, %lf]", &t[0], &t[1], &t[2]) == 3;
+    found += std::sscanf(line.c_str(), " quaternion_xyzw: [%lf, %lf, %lf, %lf]", &q[0], &q[1],
+                         &q[2], &q[3]) == 4;
   }
-  if (found != 2) return false;
-  T->setIdentity();
-  T->linear() = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
-  T->translation() = Eigen::Vector3d(t[0], t[1], t[2]);
-  return true;
+  if (found != 2) return std::nullopt;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
+  T.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
+  return T;
 }
 
 /// Stage timings use this thread's CPU time: on a shared machine it is the time the work took
@@ -49,7 +53,8 @@ int64_t ThreadCpuNs() {
 }
 
 void WriteTum(std::ostream& out, const swlio::State& state) {
-  const Eigen::Quaterniond q = swlio::lie::PositiveW(Eigen::Quaterniond(state.T_world_imu.linear()));
+  const Eigen::Quaterniond q =
+      swlio::lie::PositiveW(Eigen::Quaterniond(state.T_world_imu.linear()));
   const Eigen::Vector3d p = state.T_world_imu.translation();
   char line[256];
   std::snprintf(line, sizeof line, "%lld.%09lld %.6f %.6f %.6f %.9f %.9f %.9f %.9f",
@@ -59,7 +64,7 @@ void WriteTum(std::ostream& out, const swlio::State& state) {
   out << line << '\n';
 }
 
-void WriteTimings(std::ostream& out, const swlio::estimator::OdometryResult& r, int64_t t_ns) {
+void WriteTimings(std::ostream& out, const OdometryResult& r, int64_t t_ns) {
   char line[256];
   std::snprintf(line, sizeof line, "%lld,%zu,%.4f,%.4f,%.4f,%.4f", static_cast<long long>(t_ns),
                 r.points_in, r.times.frontend_ms, r.times.match_ms, r.times.optimize_ms,
@@ -67,71 +72,108 @@ void WriteTimings(std::ostream& out, const swlio::estimator::OdometryResult& r, 
   out << line << '\n';
 }
 
-int Run(int argc, char** argv) {
-  CLI::App app{"swlio-run: the estimator offline on a recording folder"};
-  std::string dir, out, mode = "lidar-only";
-  app.add_option("dir", dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")->required();
-  app.add_option("--mode", mode, "lidar-only")->check(CLI::IsMember({"lidar-only"}));
-  app.add_option("--out", out, "trajectory (TUM)")->required();
-  std::string timings_path;
-  app.add_option("--timings", timings_path,
-                 "per-scan stage timings CSV (t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms), thread CPU time");
-  CLI11_PARSE(app, argc, argv);
+/// Running means for the summary line.
+struct Summary {
+  size_t scans = 0, tracked = 0, failed = 0;
+  double total_ms = 0.0, planes = 0.0, edges = 0.0, inliers = 0.0, iterations = 0.0;
 
+  void Add(const OdometryResult& r) {
+    ++scans;
+    if (r.status == OdometryStatus::kInitializing) return;
+    (r.status == OdometryStatus::kTracking ? tracked : failed)++;
+    total_ms += r.times.total_ms;
+    planes += static_cast<double>(r.planes);
+    edges += static_cast<double>(r.edges);
+    inliers += static_cast<double>(r.match.plane_inliers + r.match.edge_inliers);
+    iterations += r.match.iterations;
+  }
+  void Print() const {
+    const double n = std::max<double>(1.0, static_cast<double>(tracked + failed));
+    std::printf(
+        "{\"scans\": %zu, \"tracked\": %zu, \"match_failed\": %zu, \"mean_scan_ms\": %.2f, "
+        "\"mean_planes\": %.0f, \"mean_edges\": %.0f, \"mean_inliers\": %.0f, "
+        "\"mean_iterations\": %.2f}\n",
+        scans, tracked, failed, total_ms / n, planes / n, edges / n, inliers / n, iterations / n);
+  }
+};
+
+/// The daemon configuration (defaults without --config); false with a report on errors.
+bool LoadDaemonConfig(const Options& opt, swlio::daemon::DaemonConfig* config) {
+  if (opt.config.empty()) return true;
+  const swlio::daemon::LoadedConfig loaded = swlio::daemon::LoadConfigFile(opt.config);
+  if (!loaded.ok()) {
+    std::cerr << loaded.ErrorReport();
+    return false;
+  }
+  *config = loaded.config;
+  return true;
+}
+
+int Run(const Options& opt) {
+  swlio::daemon::DaemonConfig daemon_config;
+  if (!LoadDaemonConfig(opt, &daemon_config)) return 1;
   swlio::estimator::LidarOdometryConfig config;
-  if (!ExtrinsicFromManifest(dir, &config.T_imu_lidar)) {
-    std::cerr << "swlio-run: no extrinsic in " << dir << "/manifest.yaml; using identity\n";
+  config.estimator = daemon_config.estimator;
+  const auto manifest_extrinsic = ExtrinsicFromManifest(opt.dir);
+  config.T_imu_lidar = manifest_extrinsic.value_or(config.estimator.extrinsic_imu_lidar.ToIsometry());
+  if (!manifest_extrinsic && opt.config.empty()) {
+    std::cerr << "swlio-run: no extrinsic in " << opt.dir
+              << "/manifest.yaml and no --config; using identity\n";
   }
   std::string error;
-  auto reader = swlio::daemon::RecordingReader::Open(dir, swlio::drivers::LidarConfig{},
-                                                     swlio::drivers::ImuConfig{}, &error);
+  auto reader =
+      swlio::daemon::RecordingReader::Open(opt.dir, daemon_config.lidar, daemon_config.imu, &error);
   if (!reader) {
     std::cerr << "swlio-run: " << error << "\n";
     return 1;
   }
-  swlio::estimator::LidarOdometry odometry(config, &ThreadCpuNs);
-  std::ofstream tum(out);
+  std::ofstream tum(opt.out);
   std::ofstream timings;
-  if (!timings_path.empty()) {
-    timings.open(timings_path);
-    timings << "t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms\n";
+  if (!opt.timings.empty()) timings.open(opt.timings);
+  if (!tum || (!opt.timings.empty() && !timings)) {
+    std::cerr << "swlio-run: cannot write " << (!tum ? opt.out : opt.timings) << "\n";
+    return 1;
   }
   tum << "# timestamp tx ty tz qx qy qz qw  (IMU frame, host time, sweep end)\n";
+  if (timings) timings << "t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms\n";
+
+  swlio::estimator::LidarOdometry odometry(config, &ThreadCpuNs);
   swlio::daemon::RecordingEvent e;
-  size_t scans = 0, tracked = 0, failed = 0;
-  double total_ms = 0.0, planes = 0.0, edges = 0.0, iterations = 0.0, inliers = 0.0;
+  Summary summary;
   while (reader->Next(&e)) {
     if (e.kind == swlio::daemon::RecordingEvent::Kind::kImu) {
       odometry.AddImu(e.imu);
       continue;
     }
-    const auto r = odometry.AddScan(e.scan);
-    ++scans;
-    total_ms += r.times.total_ms;
-    if (timings.is_open()) WriteTimings(timings, r, e.scan.t_end_ns);
-    if (r.status == swlio::estimator::OdometryStatus::kInitializing) continue;
-    (r.status == swlio::estimator::OdometryStatus::kTracking ? tracked : failed)++;
-    planes += static_cast<double>(r.planes);
-    edges += static_cast<double>(r.edges);
-    iterations += r.match.iterations;
-    inliers += static_cast<double>(r.match.plane_inliers + r.match.edge_inliers);
-    WriteTum(tum, r.state);
+    const OdometryResult r = odometry.AddScan(e.scan);
+    summary.Add(r);
+    if (timings) WriteTimings(timings, r, e.scan.t_end_ns);
+    if (r.status != OdometryStatus::kInitializing) WriteTum(tum, r.state);
   }
-  const double used = std::max<double>(1.0, static_cast<double>(tracked + failed));
-  std::printf(
-      "{\"scans\": %zu, \"tracked\": %zu, \"match_failed\": %zu, \"mean_scan_ms\": %.2f, "
-      "\"mean_planes\": %.0f, \"mean_edges\": %.0f, \"mean_inliers\": %.0f, "
-      "\"mean_iterations\": %.2f}\n",
-      scans, tracked, failed, total_ms / used, planes / used, edges / used, inliers / used,
-      iterations / used);
+  summary.Print();
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  CLI::App app{"swlio-run: the estimator offline on a recording folder"};
+  Options opt;
+  app.add_option("dir", opt.dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")
+      ->required();
+  app.add_option("--mode", opt.mode, "estimator mode")
+      ->check(CLI::IsMember({"lidar-only"}))
+      ->capture_default_str();
+  app.add_option("--out", opt.out, "trajectory (TUM, IMU frame)")->required();
+  app.add_option("--timings", opt.timings,
+                 "per-scan stage timings CSV (t_ns,points,frontend_ms,match_ms,optimize_ms,"
+                 "total_ms; thread CPU time, 0 for a stage that did not run)");
+  app.add_option("--config", opt.config,
+                 "daemon configuration (swlio.yaml): sensors, estimator, extrinsic (a manifest's "
+                 "extrinsic wins)");
+  CLI11_PARSE(app, argc, argv);
   try {
-    return Run(argc, argv);
+    return Run(opt);
   } catch (const std::exception& e) {
     std::cerr << "swlio-run: " << e.what() << "\n";
     return 2;

@@ -3,6 +3,7 @@
 /// Configuration of the LiDAR-inertial estimator. Plain structs with documented defaults;
 /// loaded by the daemon, validated here.
 
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -32,6 +33,8 @@ struct ExtrinsicConfig {
   bool estimate_online = true;  ///< refine inside the window optimization
 
   ConfigIssues Validate() const;
+  /// The transform these numbers describe.
+  Eigen::Isometry3d ToIsometry() const;
 };
 
 struct EstimatorConfig {
