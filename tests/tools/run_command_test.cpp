@@ -39,11 +39,10 @@ TEST(RunCommand, LidarOnlyFollowsTheSimulatedDrive) {
   ASSERT_TRUE(sim::WriteRecording(*setup, dir, &stats, &error)) << error;
 
   int code = 0;
-  const std::string out = test::RunCommand(tool.string() + " " + dir.string() +
-                                               " --mode lidar-only --out " +
-                                               (dir / "est.tum").string() + " --timings " +
-                                               (dir / "t.csv").string() + " 2>&1",
-                                           &code);
+  const std::string out = test::RunCommand(
+      tool.string() + " " + dir.string() + " --mode lidar-only --out " +
+          (dir / "est.tum").string() + " --timings " + (dir / "t.csv").string() + " 2>&1",
+      &code);
   ASSERT_EQ(code, 0) << out;
   std::string header;
   const size_t timing_lines = CountLines(dir / "t.csv", &header);

@@ -2,8 +2,8 @@
 // recording) through the same decoders and clock models as the daemon, and writes the IMU-frame
 // trajectory in TUM format (stamped at each sweep's end, host time) and per-scan stage timings.
 
-#include <CLI/CLI.hpp>
 #include <time.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -115,7 +115,8 @@ int Run(const Options& opt) {
   swlio::estimator::LidarOdometryConfig config;
   config.estimator = daemon_config.estimator;
   const auto manifest_extrinsic = ExtrinsicFromManifest(opt.dir);
-  config.T_imu_lidar = manifest_extrinsic.value_or(config.estimator.extrinsic_imu_lidar.ToIsometry());
+  config.T_imu_lidar =
+      manifest_extrinsic.value_or(config.estimator.extrinsic_imu_lidar.ToIsometry());
   if (!manifest_extrinsic && opt.config.empty()) {
     std::cerr << "swlio-run: no extrinsic in " << opt.dir
               << "/manifest.yaml and no --config; using identity\n";
@@ -159,8 +160,7 @@ int Run(const Options& opt) {
 int main(int argc, char** argv) {
   CLI::App app{"swlio-run: the estimator offline on a recording folder"};
   Options opt;
-  app.add_option("dir", opt.dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")
-      ->required();
+  app.add_option("dir", opt.dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")->required();
   app.add_option("--mode", opt.mode, "estimator mode")
       ->check(CLI::IsMember({"lidar-only"}))
       ->capture_default_str();

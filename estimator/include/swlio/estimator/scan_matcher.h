@@ -34,9 +34,9 @@ struct ScanMatcherConfig {
   /// A plane needs neighbours spread in two directions: λ_mid ≥ this × λ_max of their
   /// covariance (collinear neighbours, e.g. one ring on the ground, define no plane).
   double plane_min_spread_ratio = 0.05;
-  double line_min_ratio = 3.0;        ///< λ1/λ2 of the neighbours for a valid line
-  double huber_m = 0.1;               ///< Huber kernel width
-  double max_residual_m = 1.0;        ///< larger residuals are outliers
+  double line_min_ratio = 3.0;  ///< λ1/λ2 of the neighbours for a valid line
+  double huber_m = 0.1;         ///< Huber kernel width
+  double max_residual_m = 1.0;  ///< larger residuals are outliers
   int max_iterations = 10;
   double reassociate_translation_m = 0.02;  ///< pose change that triggers new neighbours
   double reassociate_rotation_rad = 0.004;
