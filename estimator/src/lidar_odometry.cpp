@@ -21,6 +21,8 @@ ConfigIssues LidarOdometryConfig::Validate() const {
   AppendWithPrefix(issues, "plane_map", plane_map.Validate());
   AppendWithPrefix(issues, "edge_map", edge_map.Validate());
   CheckInRange<size_t>(issues, "min_inliers", min_inliers, 6, 100000);
+  CheckInRange(issues, "keyframe_distance_m", keyframe_distance_m, 0.0, 10.0);
+  CheckInRange(issues, "keyframe_angle_rad", keyframe_angle_rad, 0.0, 1.0);
   return issues;
 }
 
@@ -97,7 +99,8 @@ OdometryResult LidarOdometry::AddScan(const Scan& scan) {
     result.times.match_ms = timer.Lap();
   }
   Correct(T_world_lidar, scan.t_end_ns);
-  InsertFeatures(T_world_lidar);
+  result.keyframe = IsKeyframe(T_world_lidar);
+  if (result.keyframe) InsertFeatures(T_world_lidar);
   result.state = propagator_.state();
   result.times.total_ms = result.times.frontend_ms + result.times.match_ms + timer.Lap();
   return result;
@@ -116,7 +119,16 @@ void LidarOdometry::Correct(const Eigen::Isometry3d& T_world_lidar, int64_t t_ns
   propagator_.Reset(corrected);
 }
 
+bool LidarOdometry::IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const {
+  if (!have_keyframe_) return true;
+  const Eigen::Isometry3d moved = T_world_last_keyframe_.inverse() * T_world_lidar;
+  return moved.translation().norm() >= config_.keyframe_distance_m ||
+         Eigen::AngleAxisd(moved.linear()).angle() >= config_.keyframe_angle_rad;
+}
+
 void LidarOdometry::InsertFeatures(const Eigen::Isometry3d& T_world_lidar) {
+  have_keyframe_ = true;
+  T_world_last_keyframe_ = T_world_lidar;
   for (Eigen::Vector3d& p : planes_lidar_) p = T_world_lidar * p;
   for (Eigen::Vector3d& p : edges_lidar_) p = T_world_lidar * p;
   plane_map_.Insert(planes_lidar_);

@@ -8,7 +8,7 @@
 /// sample) → de-skew into the sweep-end LiDAR frame → front end (segmentation, edge/planar
 /// features, voxel filter) → point-to-plane and point-to-line registration against the plane
 /// and edge maps from the propagated guess → correct the state → insert the features into the
-/// maps. The corrected velocity is the propagated one plus the position correction spread over
+/// maps when the sweep is a keyframe. The corrected velocity is the propagated one plus the position correction spread over
 /// the sweep period (the IMU cannot be trusted for more in this mode).
 /// Initialization: standing still (StaticInitializer); sweeps before that are skipped.
 /// Pure library: the caller supplies samples and sweeps in time order (host ns) and, for
@@ -40,6 +40,10 @@ struct LidarOdometryConfig {
   VoxelMapConfig plane_map = {.voxel_m = 0.5, .max_points_per_voxel = 10};
   VoxelMapConfig edge_map = {.voxel_m = 0.5, .max_points_per_voxel = 10};
   size_t min_inliers = 100;  ///< fewer matched features: keep the IMU prediction
+  /// A sweep becomes a keyframe (its features join the maps) after this much motion since the
+  /// last keyframe; 0 inserts every sweep.
+  double keyframe_distance_m = 0.2;
+  double keyframe_angle_rad = 0.05;
 
   ConfigIssues Validate() const;
 };
@@ -56,6 +60,7 @@ struct OdometryResult {
   size_t points_uncovered = 0;  ///< points the IMU track did not cover (left as measured)
   size_t planes = 0;            ///< planar features used
   size_t edges = 0;             ///< edge features used
+  bool keyframe = false;        ///< its features were added to the local map
   StageTimes times;
 };
 
@@ -75,6 +80,7 @@ class LidarOdometry {
   void PropagateTo(int64_t t_ns);
   void Correct(const Eigen::Isometry3d& T_world_lidar, int64_t t_ns);
   void InsertFeatures(const Eigen::Isometry3d& T_world_lidar);
+  bool IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const;
 
   LidarOdometryConfig config_;
   NowNsFn now_ns_;
@@ -91,6 +97,8 @@ class LidarOdometry {
   VoxelMap plane_map_;
   VoxelMap edge_map_;
   ScanMatcher matcher_;
+  bool have_keyframe_ = false;
+  Eigen::Isometry3d T_world_last_keyframe_ = Eigen::Isometry3d::Identity();
 };
 
 }  // namespace swlio::estimator
