@@ -38,6 +38,7 @@ std::unique_ptr<Publisher> Publisher::Create(const Participant& participant,
     if (topic < 0) {
       return fail("cannot create DDS topic '" + name + "': " + dds_strretcode(topic));
     }
+    publisher->topics_[Index(topic_id)] = topic;
     dds_qos_t* qos = wire::MakeQos(topic_id, /*writer=*/true, 0);
     const dds_entity_t writer = dds_create_writer(participant.handle(), topic, qos, nullptr);
     dds_delete_qos(qos);
@@ -51,8 +52,9 @@ std::unique_ptr<Publisher> Publisher::Create(const Participant& participant,
 }
 
 Publisher::~Publisher() {
-  for (const int32_t writer : writers_) {
-    if (writer > 0) dds_delete(writer);
+  for (size_t i = 0; i < writers_.size(); ++i) {
+    if (writers_[i] > 0) dds_delete(writers_[i]);
+    if (topics_[i] > 0) dds_delete(topics_[i]);
   }
 }
 

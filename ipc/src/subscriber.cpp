@@ -44,6 +44,7 @@ std::unique_ptr<Subscriber> Subscriber::Create(const Participant& participant,
     if (topic < 0) {
       return fail("cannot create DDS topic '" + name + "': " + dds_strretcode(topic));
     }
+    subscriber->topics_[static_cast<size_t>(i)] = topic;
     dds_qos_t* qos = wire::MakeQos(topic_id, /*writer=*/false, options.history_depth);
     const dds_entity_t reader = dds_create_reader(participant.handle(), topic, qos, nullptr);
     dds_delete_qos(qos);
@@ -61,8 +62,9 @@ std::unique_ptr<Subscriber> Subscriber::Create(const Participant& participant,
 
 Subscriber::~Subscriber() {
   if (waitset_ > 0) dds_delete(waitset_);
-  for (const int32_t reader : readers_) {
-    if (reader > 0) dds_delete(reader);
+  for (size_t i = 0; i < readers_.size(); ++i) {
+    if (readers_[i] > 0) dds_delete(readers_[i]);  // also deletes its read condition
+    if (topics_[i] > 0) dds_delete(topics_[i]);
   }
 }
 

@@ -6,7 +6,9 @@
 // 2 --count samples did not arrive within --duration.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <fstream>
@@ -19,9 +21,9 @@
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/subscriber.h"
 
+namespace swlio::tools::echo {
 namespace {
 
-using namespace swlio;
 using ipc::Topic;
 
 std::atomic<bool> g_stop{false};
@@ -47,12 +49,12 @@ class Sink {
     if (!options_.record_tum.empty()) {
       tum_.open(options_.record_tum);
       if (!tum_) return Fail(error, "cannot write " + options_.record_tum);
-      tum_ << tools::echo::kTumHeader << "\n";
+      tum_ << kTumHeader << "\n";
     }
     if (!options_.latency_csv.empty()) {
       csv_.open(options_.latency_csv);
       if (!csv_) return Fail(error, "cannot write " + options_.latency_csv);
-      csv_ << tools::echo::kLatencyHeader << "\n";
+      csv_ << kLatencyHeader << "\n";
     }
     return true;
   }
@@ -60,8 +62,8 @@ class Sink {
   template <typename Message>
   void Handle(Topic topic, const std::vector<ipc::Received<Message>>& samples) {
     for (const auto& r : samples) {
-      if (!options_.quiet) std::cout << tools::echo::FormatLine(r.msg) << "\n";
-      if (csv_.is_open()) csv_ << tools::echo::LatencyRow(topic, r) << "\n";
+      if (!options_.quiet) std::cout << FormatLine(r.msg) << "\n";
+      if (csv_.is_open()) csv_ << LatencyRow(topic, r) << "\n";
       if (tum_.is_open() && options_.record_from == ipc::TopicLabel(topic)) Record(r.msg);
       if (topic == Topic::kPose)
         transport_ns_.push_back(r.receive_realtime_ns - r.source_realtime_ns);
@@ -95,10 +97,8 @@ class Sink {
     *error = message;
     return false;
   }
-  void Record(const ipc::PoseWithCovarianceStamped& m) {
-    tum_ << tools::echo::TumLine(m.t_ns, m.pose) << "\n";
-  }
-  void Record(const ipc::Odometry& m) { tum_ << tools::echo::TumLine(m.t_ns, m.pose) << "\n"; }
+  void Record(const ipc::PoseWithCovarianceStamped& m) { tum_ << TumLine(m.t_ns, m.pose) << "\n"; }
+  void Record(const ipc::Odometry& m) { tum_ << TumLine(m.t_ns, m.pose) << "\n"; }
   template <typename Other>
   void Record(const Other&) {}
 
@@ -178,17 +178,18 @@ int Run(EchoOptions& options) {
 }
 
 }  // namespace
+}  // namespace swlio::tools::echo
 
 int main(int argc, char** argv) {
   CLI::App app{"swlio-echo: print or record swlio's DDS topics (loopback only)"};
-  EchoOptions options;
+  swlio::tools::echo::EchoOptions options;
   options.ipc.dds_config_file = SWLIO_DEFAULT_DDS_CONFIG;
-  AddOptions(app, options);
+  swlio::tools::echo::AddOptions(app, options);
   CLI11_PARSE(app, argc, argv);
   const auto issues = options.ipc.Validate();
   if (!issues.empty()) {
     std::cerr << "swlio-echo: " << issues.front().key << ": " << issues.front().reason << "\n";
     return 1;
   }
-  return Run(options);
+  return swlio::tools::echo::Run(options);
 }

@@ -54,6 +54,7 @@ class Publisher {
   static size_t Index(Topic topic) { return static_cast<size_t>(topic); }
   bool Count(bool ok);
 
+  std::array<int32_t, kTopicCount> topics_{};   // dds_entity_t
   std::array<int32_t, kTopicCount> writers_{};  // dds_entity_t
   std::array<std::string, kTopicCount> names_;
   std::atomic<uint64_t> published_{0};

@@ -46,7 +46,8 @@ class Subscriber {
 
   /// Writers currently matched to the topic's reader (0 when not subscribed).
   int MatchedPublications(Topic topic) const;
-  /// Samples received that could not be decoded (stamps outside int64 ns, never expected).
+  /// Samples received that could not be decoded (a stamp with nanosec ≥ 1e9 from a foreign
+  /// writer); they are dropped.
   uint64_t decode_failures() const { return decode_failures_; }
 
  private:
@@ -54,6 +55,7 @@ class Subscriber {
   template <typename Message, typename Wire>
   std::vector<Received<Message>> Take(Topic topic);
 
+  std::array<int32_t, kTopicCount> topics_{};   // dds_entity_t, 0 when not subscribed
   std::array<int32_t, kTopicCount> readers_{};  // dds_entity_t, 0 when not subscribed
   int32_t waitset_ = 0;
   uint64_t decode_failures_ = 0;
