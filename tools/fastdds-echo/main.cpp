@@ -1,10 +1,9 @@
-// swlio-fastdds-echo: receives swlio's pose topic with Fast DDS, the default middleware of ROS 2,
+// swlio-fastdds-echo: receives swlio's topics with Fast DDS, the default middleware of ROS 2,
 // as a ROS 2 node would (reader QoS RELIABLE, VOLATILE, KEEP_LAST 10 — ROS 2's default
-// subscription), and prints every sample with its doubles as IEEE-754 bit patterns so that a
-// test can check them bit for bit against what the Cyclone DDS publisher wrote.
+// subscription), and prints every sample in a bit-exact text form (fastdds_print.h) so that a
+// test can compare it bit for bit with what the Cyclone DDS publisher wrote.
 //
-// Output: "ready" once the reader exists, then one line per sample:
-//   pose <sec> <nanosec> <frame_id> <x y z qx qy qz qw cov[0..35] as 16 hex digits each>
+// Output: "ready" followed by "<topic>=<type name>" for each reader, then one line per sample.
 //
 // Loopback only: the participant comes from --profile (set as FASTRTPS_DEFAULT_PROFILES_FILE
 // and loaded before the default QoS is read, otherwise Fast DDS silently keeps its defaults),
@@ -23,13 +22,19 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
 #include <chrono>
-#include <cinttypes>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
+#include <memory>
 #include <string>
+#include <thread>
+#include <vector>
 
+#include "diagnostic_msgsPubSubTypes.h"
+#include "fastdds_print.h"
 #include "geometry_msgsPubSubTypes.h"
+#include "nav_msgsPubSubTypes.h"
 
 namespace {
 
@@ -37,8 +42,6 @@ namespace fdds = eprosima::fastdds::dds;
 using eprosima::fastrtps::rtps::IPLocator;
 using eprosima::fastrtps::rtps::Locator_t;
 using eprosima::fastrtps::rtps::LocatorList_t;
-using PoseMsg = geometry_msgs::msg::dds_::PoseWithCovarianceStamped_;
-using PosePubSubType = geometry_msgs::msg::dds_::PoseWithCovarianceStamped_PubSubType;
 
 bool AllLoopback(const LocatorList_t& list, const char* what, std::string* why) {
   for (const Locator_t& locator : list) {
@@ -89,66 +92,93 @@ bool IsLoopbackOnly(const fdds::DomainParticipantQos& qos, std::string* why) {
          !builtin.initialPeersList.empty();
 }
 
-void PrintBits(double v) {
-  uint64_t bits = 0;
-  std::memcpy(&bits, &v, sizeof bits);
-  std::printf(" %016" PRIx64, bits);
-}
-
-void PrintPose(const PoseMsg& m) {
-  std::printf("pose %" PRId32 " %" PRIu32 " %s", m.header().stamp().sec(),
-              m.header().stamp().nanosec(), m.header().frame_id().c_str());
-  const auto& pose = m.pose().pose();
-  for (double v :
-       {pose.position().x(), pose.position().y(), pose.position().z(), pose.orientation().x(),
-        pose.orientation().y(), pose.orientation().z(), pose.orientation().w()}) {
-    PrintBits(v);
-  }
-  for (double v : m.pose().covariance()) PrintBits(v);
-  std::printf("\n");
-  std::fflush(stdout);
-}
-
 struct Options {
   std::string profile;
   uint32_t domain = 0;
-  std::string topic = "rt/swlio/pose";
+  std::string pose_topic = "rt/swlio/pose";
+  std::string odometry_topic = "rt/swlio/odometry";
+  std::string health_topic = "rt/diagnostics";
+  std::string path_topic = "rt/swlio/path";
   int count = 0;
   double timeout_s = 30.0;
 };
 
-/// Receives until `count` samples or the timeout; returns the exit code.
-int Receive(fdds::DomainParticipant* participant, const Options& options) {
-  fdds::TypeSupport type(new PosePubSubType());
-  if (type.register_type(participant) != ReturnCode_t::RETCODE_OK) return 1;
+/// A reader and the function that takes and prints one sample from it.
+struct Reader {
+  fdds::DataReader* reader = nullptr;
+  std::function<bool()> take_and_print;  // false when nothing was left to take
+};
+
+template <typename PubSubType>
+bool AddReader(fdds::DomainParticipant* participant,
+               fdds::Subscriber* subscriber,
+               const std::string& topic_name,
+               std::vector<Reader>* readers,
+               std::string* ready) {
+  using Message = typename PubSubType::type;
+  fdds::TypeSupport type(new PubSubType());
+  if (type.register_type(participant) != ReturnCode_t::RETCODE_OK) return false;
   fdds::Topic* topic =
-      participant->create_topic(options.topic, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
-  fdds::Subscriber* subscriber = participant->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
-  if (topic == nullptr || subscriber == nullptr) return 1;
-  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
+      participant->create_topic(topic_name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+  if (topic == nullptr) return false;
+  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;  // made into ROS 2's default:
   qos.reliability().kind = fdds::RELIABLE_RELIABILITY_QOS;
   qos.durability().kind = fdds::VOLATILE_DURABILITY_QOS;
   qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
   qos.history().depth = 10;
   fdds::DataReader* reader = subscriber->create_datareader(topic, qos);
-  if (reader == nullptr) return 1;
-  std::printf("ready %s %s\n", options.topic.c_str(), type.get_type_name().c_str());
+  if (reader == nullptr) return false;
+  auto sample = std::make_shared<Message>();
+  readers->push_back({reader, [reader, sample] {
+                        fdds::SampleInfo info;
+                        if (reader->take_next_sample(sample.get(), &info) !=
+                            ReturnCode_t::RETCODE_OK) {
+                          return false;
+                        }
+                        if (info.valid_data) {
+                          std::printf("%s\n", swlio::tools::fastdds_echo::Line(*sample).c_str());
+                          std::fflush(stdout);
+                        }
+                        return true;
+                      }});
+  ready->append(" ").append(topic_name).append("=").append(type.get_type_name());
+  return true;
+}
+
+/// Receives until `count` samples or the timeout; returns the exit code.
+int Receive(fdds::DomainParticipant* participant, const Options& options) {
+  fdds::Subscriber* subscriber = participant->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+  std::vector<Reader> readers;
+  std::string ready = "ready";
+  namespace gm = geometry_msgs::msg::dds_;
+  if (subscriber == nullptr ||
+      !AddReader<gm::PoseWithCovarianceStamped_PubSubType>(participant, subscriber,
+                                                           options.pose_topic, &readers, &ready) ||
+      !AddReader<nav_msgs::msg::dds_::Odometry_PubSubType>(
+          participant, subscriber, options.odometry_topic, &readers, &ready) ||
+      !AddReader<diagnostic_msgs::msg::dds_::DiagnosticArray_PubSubType>(
+          participant, subscriber, options.health_topic, &readers, &ready) ||
+      !AddReader<nav_msgs::msg::dds_::Path_PubSubType>(participant, subscriber, options.path_topic,
+                                                       &readers, &ready)) {
+    return 1;
+  }
+  std::printf("%s\n", ready.c_str());
   std::fflush(stdout);
 
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                             std::chrono::duration<double>(options.timeout_s));
   int received = 0;
-  PoseMsg sample;
-  fdds::SampleInfo info;
   while (options.count <= 0 || received < options.count) {
     if (std::chrono::steady_clock::now() > deadline) return options.count > 0 ? 2 : 0;
-    if (!reader->wait_for_unread_message(eprosima::fastrtps::Duration_t(0, 100'000'000))) continue;
-    while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-      if (!info.valid_data) continue;
-      PrintPose(sample);
-      ++received;
+    bool any = false;
+    for (Reader& r : readers) {
+      while (r.take_and_print()) {
+        any = true;
+        ++received;
+      }
     }
+    if (!any) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   return 0;
 }
@@ -162,7 +192,10 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   app.add_option("--domain", options.domain, "DDS domain id")->check(CLI::Range(0, 232));
-  app.add_option("--topic", options.topic, "DDS topic name (ROS 2 /swlio/pose is rt/swlio/pose)");
+  app.add_option("--pose-topic", options.pose_topic, "DDS topic (ROS 2 /swlio/pose)");
+  app.add_option("--odometry-topic", options.odometry_topic, "DDS topic");
+  app.add_option("--health-topic", options.health_topic, "DDS topic");
+  app.add_option("--path-topic", options.path_topic, "DDS topic");
   app.add_option("--count", options.count, "exit after this many samples (0: until timeout)");
   app.add_option("--timeout", options.timeout_s, "give up after this many seconds");
   CLI11_PARSE(app, argc, argv);
