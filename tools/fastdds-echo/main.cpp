@@ -36,6 +36,23 @@
 #include "geometry_msgsPubSubTypes.h"
 #include "nav_msgsPubSubTypes.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#define SWLIO_FASTDDS_ECHO_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SWLIO_FASTDDS_ECHO_ASAN 1
+#endif
+#endif
+#ifdef SWLIO_FASTDDS_ECHO_ASAN
+// Sanitizer builds only. Debian's Fast DDS 2.9.1 allocates a StatisticsReaderImpl (64 bytes)
+// and deletes it through RTPSReader's sized delete (56 bytes) when a DataReader is destroyed.
+// ASan reports new-delete-type-mismatch for this defect inside the library. Nothing of ours is
+// involved, so that one check is off in this program.
+extern "C" __attribute__((used)) const char* __asan_default_options() {
+  return "new_delete_type_mismatch=0";
+}
+#endif
+
 namespace {
 
 namespace fdds = eprosima::fastdds::dds;

@@ -11,6 +11,7 @@
 /// Thread safety: each Publish* may be called from any one thread at a time per topic; the
 /// methods share no mutable state except the atomic counters.
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <memory>

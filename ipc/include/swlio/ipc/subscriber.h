@@ -5,6 +5,7 @@
 /// qos_profile.h): RELIABLE, KEEP_LAST `history_depth`, VOLATILE except the path, which is
 /// TRANSIENT_LOCAL so a late subscriber still gets the last keyframe path.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
