@@ -180,7 +180,9 @@ int Run(EchoOptions& options) {
 }  // namespace
 }  // namespace swlio::tools::echo
 
-int main(int argc, char** argv) {
+namespace {
+
+int Main(int argc, char** argv) {
   CLI::App app{"swlio-echo: print or record swlio's DDS topics (loopback only)"};
   swlio::tools::echo::EchoOptions options;
   options.ipc.dds_config_file = SWLIO_DEFAULT_DDS_CONFIG;
@@ -192,4 +194,17 @@ int main(int argc, char** argv) {
     return 1;
   }
   return swlio::tools::echo::Run(options);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Main(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", "swlio-echo", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unknown exception\n", "swlio-echo");
+  }
+  return 1;
 }

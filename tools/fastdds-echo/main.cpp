@@ -202,8 +202,10 @@ int Receive(fdds::DomainParticipant* participant, const Options& options) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  CLI::App app{"Fast DDS subscriber of swlio's pose (a ROS 2 stand-in), loopback only"};
+namespace {
+
+int Main(int argc, char** argv) {
+  CLI::App app{"Fast DDS subscriber of swlio's topics (a ROS 2 stand-in), loopback only"};
   Options options;
   app.add_option("--profile", options.profile, "Fast DDS XML profile (loopback only)")
       ->required()
@@ -242,4 +244,17 @@ int main(int argc, char** argv) {
   if (code == 1) std::fprintf(stderr, "swlio-fastdds-echo: cannot create the reader\n");
   if (code == 2) std::fprintf(stderr, "swlio-fastdds-echo: timeout\n");
   return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Main(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", "swlio-fastdds-echo", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unknown exception\n", "swlio-fastdds-echo");
+  }
+  return 1;
 }
