@@ -159,6 +159,14 @@ TEST(EchoCli, RefusesNonLoopbackConfig) {
   EXPECT_EQ(echo.Wait(), 1);
 }
 
+TEST(EchoCli, RecordWithoutItsTopicIsRefused) {
+  const auto dir = test::MakeTempDir("echo");
+  ChildProcess echo(EchoArgs(
+      125, {"--topics", "health", "--record", (dir / "p.tum").string(), "--duration", "5"}));
+  EXPECT_EQ(echo.Wait(), 1);
+  EXPECT_FALSE(std::filesystem::exists(dir / "p.tum"));
+}
+
 TEST(EchoCli, CountNotReachedWithinDurationExitsTwo) {
   ChildProcess echo(EchoArgs(124, {"--count", "1", "--duration", "0.3"}));
   EXPECT_EQ(echo.Wait(), 2);

@@ -144,6 +144,11 @@ int Run(EchoOptions& options) {
     sub_options.topics[i] =
         std::find(options.topics.begin(), options.topics.end(), label) != options.topics.end();
   }
+  if (!options.record_tum.empty() && std::find(options.topics.begin(), options.topics.end(),
+                                               options.record_from) == options.topics.end()) {
+    std::cerr << "swlio-echo: --record needs the " << options.record_from << " topic in --topics\n";
+    return 1;
+  }
   std::string error;
   auto participant = ipc::Participant::Create(options.ipc, &error);
   std::unique_ptr<ipc::Subscriber> subscriber;
