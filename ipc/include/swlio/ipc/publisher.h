@@ -1,0 +1,65 @@
+#pragma once
+/// @file
+/// Writes swlio's four topics on a Participant. Cyclone DDS stays behind this header.
+///
+/// Topic names are IpcConfig's ROS 2 names with the "rt/" prefix ROS 2 uses for topics
+/// ("swlio/pose" → DDS "rt/swlio/pose"). QoS follows ROS 2 conventions (see qos_profile.h and
+/// ipc/README.md): every writer is RELIABLE and KEEP_LAST, so it never blocks the caller and
+/// matches both reliable and best-effort readers; the path is TRANSIENT_LOCAL (latched).
+/// Writers pin XCDR1, the encoding Fast DDS 2.9 (ROS 2's default middleware) reads.
+///
+/// Thread safety: each Publish* may be called from any one thread at a time per topic; the
+/// methods share no mutable state except the atomic counters.
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "swlio/ipc/ipc_config.h"
+#include "swlio/ipc/messages.h"
+#include "swlio/ipc/participant.h"
+
+namespace swlio::ipc {
+
+class Publisher {
+ public:
+  /// Creates the four topics and writers on `participant` (which must outlive the Publisher).
+  /// Returns nullptr with `error` filled when a topic name is invalid or DDS refuses.
+  static std::unique_ptr<Publisher> Create(const Participant& participant,
+                                           const IpcConfig& config,
+                                           std::string* error);
+  ~Publisher();
+  Publisher(const Publisher&) = delete;
+  Publisher& operator=(const Publisher&) = delete;
+
+  /// Each returns false (and counts a failure) when the stamp does not fit
+  /// builtin_interfaces/Time or DDS refuses the write. Pose and odometry allocate nothing.
+  bool PublishPose(const PoseWithCovarianceStamped& pose);
+  bool PublishOdometry(const Odometry& odometry);
+  bool PublishHealth(const DiagnosticArray& health);
+  bool PublishPath(const Path& path);
+
+  /// Readers currently matched to the topic's writer, as Cyclone counts them (the count to
+  /// trust: Fast DDS may report "matched" for a writer whose data it then refuses).
+  int MatchedSubscriptions(Topic topic) const;
+  /// The DDS topic name ("rt/...") of `topic`.
+  const std::string& DdsTopicName(Topic topic) const { return names_[Index(topic)]; }
+
+  uint64_t published() const { return published_.load(std::memory_order_relaxed); }
+  uint64_t failures() const { return failures_.load(std::memory_order_relaxed); }
+
+ private:
+  Publisher() = default;
+  static size_t Index(Topic topic) { return static_cast<size_t>(topic); }
+  bool Count(bool ok);
+
+  std::array<int32_t, kTopicCount> topics_{};   // dds_entity_t
+  std::array<int32_t, kTopicCount> writers_{};  // dds_entity_t
+  std::array<std::string, kTopicCount> names_;
+  std::atomic<uint64_t> published_{0};
+  std::atomic<uint64_t> failures_{0};
+};
+
+}  // namespace swlio::ipc

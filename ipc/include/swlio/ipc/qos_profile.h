@@ -1,0 +1,39 @@
+#pragma once
+/// @file
+/// The QoS of each swlio topic, chosen like ROS 2 so that a ROS 2 node's default subscription
+/// (RELIABLE, VOLATILE, KEEP_LAST 10) matches every topic without a QoS override.
+///
+/// | Topic                   | Reliability | Durability      | History      | Why |
+/// |-------------------------|-------------|-----------------|--------------|------------------------------|
+/// | pose (IMU rate)         | RELIABLE    | VOLATILE        | KEEP_LAST 10 | matches reliable and
+/// best-effort readers; keep-last never blocks the writer | | odometry (scan rate)    | RELIABLE |
+/// VOLATILE        | KEEP_LAST 10 | as ROS 2 default             | | health (/diagnostics)   |
+/// RELIABLE    | VOLATILE        | KEEP_LAST 10 | as ROS 2 diagnostic_updater  | | path (keyframes)
+/// | RELIABLE    | TRANSIENT_LOCAL | KEEP_LAST 1  | latched: late joiners get the last path (like
+/// /map) |
+///
+/// Every writer also pins data representation XCDR1 (Fast DDS 2.9 reads only XCDR1). Deadline,
+/// lifespan, liveliness (AUTOMATIC) and ownership (SHARED) stay at the DDS defaults, as in ROS 2.
+/// A best-effort writer would not match ROS 2's default reliable reader, hence RELIABLE even at
+/// IMU rate; with KEEP_LAST a slow reader loses old samples instead of blocking the publisher.
+
+#include "swlio/ipc/messages.h"
+
+namespace swlio::ipc {
+
+enum class Reliability : uint8_t { kBestEffort, kReliable };
+enum class Durability : uint8_t { kVolatile, kTransientLocal };
+
+struct QosProfile {
+  Reliability reliability = Reliability::kReliable;
+  Durability durability = Durability::kVolatile;
+  int depth = 10;  ///< KEEP_LAST depth
+};
+
+/// The writer QoS of `topic` (table above).
+constexpr QosProfile WriterQos(Topic topic) {
+  if (topic == Topic::kPath) return {Reliability::kReliable, Durability::kTransientLocal, 1};
+  return {Reliability::kReliable, Durability::kVolatile, 10};
+}
+
+}  // namespace swlio::ipc

@@ -1,0 +1,100 @@
+#include "swlio/ipc/publisher.h"
+
+#include "wire.h"
+
+namespace swlio::ipc {
+
+const char* TopicLabel(Topic topic) {
+  switch (topic) {
+    case Topic::kPose:
+      return "pose";
+    case Topic::kOdometry:
+      return "odometry";
+    case Topic::kHealth:
+      return "health";
+    case Topic::kPath:
+      return "path";
+  }
+  return "?";
+}
+
+std::unique_ptr<Publisher> Publisher::Create(const Participant& participant,
+                                             const IpcConfig& config,
+                                             std::string* error) {
+  auto fail = [&](const std::string& message) {
+    if (error != nullptr) *error = message;
+    return std::unique_ptr<Publisher>();
+  };
+  const ConfigIssues issues = config.Validate();
+  if (!issues.empty()) {
+    return fail("invalid ipc configuration: " + issues.front().key + " " + issues.front().reason);
+  }
+  std::unique_ptr<Publisher> publisher(new Publisher());
+  for (int i = 0; i < kTopicCount; ++i) {
+    const auto topic_id = static_cast<Topic>(i);
+    const std::string name = wire::DdsTopicName(config, topic_id);
+    const dds_entity_t topic = dds_create_topic(participant.handle(), wire::Descriptor(topic_id),
+                                                name.c_str(), nullptr, nullptr);
+    if (topic < 0) {
+      return fail("cannot create DDS topic '" + name + "': " + dds_strretcode(topic));
+    }
+    publisher->topics_[Index(topic_id)] = topic;
+    dds_qos_t* qos = wire::MakeQos(topic_id, /*writer=*/true, 0);
+    const dds_entity_t writer = dds_create_writer(participant.handle(), topic, qos, nullptr);
+    dds_delete_qos(qos);
+    if (writer < 0) {
+      return fail("cannot create DDS writer for '" + name + "': " + dds_strretcode(writer));
+    }
+    publisher->writers_[Index(topic_id)] = writer;
+    publisher->names_[Index(topic_id)] = name;
+  }
+  return publisher;
+}
+
+Publisher::~Publisher() {
+  for (size_t i = 0; i < writers_.size(); ++i) {
+    if (writers_[i] > 0) dds_delete(writers_[i]);
+    if (topics_[i] > 0) dds_delete(topics_[i]);
+  }
+}
+
+bool Publisher::Count(bool ok) {
+  (ok ? published_ : failures_).fetch_add(1, std::memory_order_relaxed);
+  return ok;
+}
+
+bool Publisher::PublishPose(const PoseWithCovarianceStamped& pose) {
+  wire::PoseCovStampedMsg msg{};
+  if (!wire::ToWire(pose, &msg)) return Count(false);
+  return Count(dds_write(writers_[Index(Topic::kPose)], &msg) == DDS_RETCODE_OK);
+}
+
+bool Publisher::PublishOdometry(const Odometry& odometry) {
+  wire::OdometryMsg msg{};
+  if (!wire::ToWire(odometry, &msg)) return Count(false);
+  return Count(dds_write(writers_[Index(Topic::kOdometry)], &msg) == DDS_RETCODE_OK);
+}
+
+bool Publisher::PublishHealth(const DiagnosticArray& health) {
+  wire::DiagnosticStorage storage;
+  wire::DiagnosticArrayMsg msg{};
+  if (!wire::ToWire(health, &storage, &msg)) return Count(false);
+  return Count(dds_write(writers_[Index(Topic::kHealth)], &msg) == DDS_RETCODE_OK);
+}
+
+bool Publisher::PublishPath(const Path& path) {
+  wire::PathStorage storage;
+  wire::PathMsg msg{};
+  if (!wire::ToWire(path, &storage, &msg)) return Count(false);
+  return Count(dds_write(writers_[Index(Topic::kPath)], &msg) == DDS_RETCODE_OK);
+}
+
+int Publisher::MatchedSubscriptions(Topic topic) const {
+  dds_publication_matched_status_t status{};
+  if (dds_get_publication_matched_status(writers_[Index(topic)], &status) != DDS_RETCODE_OK) {
+    return 0;
+  }
+  return static_cast<int>(status.current_count);
+}
+
+}  // namespace swlio::ipc

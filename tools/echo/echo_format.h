@@ -1,0 +1,44 @@
+#pragma once
+/// @file
+/// Text forms of received swlio samples for swlio-echo: one human line per sample, TUM
+/// trajectory lines and latency CSV rows. Every double is printed in its shortest form that
+/// reads back to the same bits (std::to_chars), stamps as exact "sec.nanosec".
+
+#include <cstdint>
+#include <string>
+
+#include "swlio/ipc/messages.h"
+
+namespace swlio::tools::echo {
+
+/// t_ns as exact decimal seconds with nine decimals ("-0.000000001" for -1).
+std::string FormatStamp(int64_t t_ns);
+/// Shortest round-trip decimal form of `v` ("nan", "inf", "-0" included).
+std::string FormatDouble(double v);
+
+std::string FormatLine(const ipc::PoseWithCovarianceStamped& m);
+std::string FormatLine(const ipc::Odometry& m);
+std::string FormatLine(const ipc::DiagnosticArray& m);
+std::string FormatLine(const ipc::Path& m);
+
+/// "t x y z qx qy qz qw" (TUM RGB-D benchmark trajectory format).
+std::string TumLine(int64_t t_ns, const ipc::Pose& pose);
+inline constexpr const char* kTumHeader = "# timestamp tx ty tz qx qy qz qw";
+
+/// Latency CSV: the stamp, the writer's source time, the receive times, and two differences:
+/// transport_ns = receive_realtime − source_realtime (write → take, same host), and
+/// age_ns = receive_steady − stamp (end-to-end, meaningful when the stamp is CLOCK_MONOTONIC).
+inline constexpr const char* kLatencyHeader =
+    "topic,stamp_ns,source_realtime_ns,receive_realtime_ns,receive_steady_ns,transport_ns,age_ns";
+template <typename Message>
+std::string LatencyRow(ipc::Topic topic, const ipc::Received<Message>& r) {
+  std::string out = ipc::TopicLabel(topic);
+  for (const int64_t v :
+       {r.msg.t_ns, r.source_realtime_ns, r.receive_realtime_ns, r.receive_steady_ns,
+        r.receive_realtime_ns - r.source_realtime_ns, r.receive_steady_ns - r.msg.t_ns}) {
+    out.append(",").append(std::to_string(v));
+  }
+  return out;
+}
+
+}  // namespace swlio::tools::echo
