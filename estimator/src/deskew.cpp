@@ -1,6 +1,8 @@
 #include "swlio/estimator/deskew.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <limits>
 
 namespace swlio::estimator {
 
@@ -42,12 +44,24 @@ DeskewResult Deskew(const Scan& scan,
     return result;
   }
   const Eigen::Isometry3d T_end_world = (T_world_imu_end * T_imu_lidar).inverse();
+  // Points fired within kReuseNs of each other share one transform (a firing sequence of 16
+  // lasers spans 55.5 µs): at 1.5 m/s and 60 °/s that moves a point 30 m away by < 0.7 mm.
+  constexpr int64_t kReuseNs = 20'000;
   Eigen::Isometry3d T_world_imu;
+  Eigen::Isometry3d T_end_point = Eigen::Isometry3d::Identity();
+  int64_t t_cached = std::numeric_limits<int64_t>::min();
+  bool cached_ok = false;
   for (size_t i = 0; i < scan.points.size(); ++i) {
     const LidarPoint& pt = scan.points[i];
+    const int64_t t_ns = scan.t_start_ns + pt.dt_ns;
+    if (t_cached == std::numeric_limits<int64_t>::min() || std::abs(t_ns - t_cached) > kReuseNs) {
+      cached_ok = track.At(t_ns, &T_world_imu);
+      if (cached_ok) T_end_point = T_end_world * T_world_imu * T_imu_lidar;
+      t_cached = t_ns;
+    }
     const Eigen::Vector3d p = pt.xyz_m.cast<double>();
-    if (track.At(scan.t_start_ns + pt.dt_ns, &T_world_imu)) {
-      (*out)[i] = T_end_world * (T_world_imu * (T_imu_lidar * p));
+    if (cached_ok && t_ns >= track.begin_ns() && t_ns <= track.end_ns()) {
+      (*out)[i] = T_end_point * p;
     } else {
       (*out)[i] = p;
       ++result.uncovered;
