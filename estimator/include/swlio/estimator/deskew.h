@@ -6,7 +6,8 @@
 /// The paper interpolates linearly between the poses at the sweep's two ends (§3, Fig. 1); here
 /// the pose track holds one pose per IMU sample (400 Hz, 40 per sweep), and each point's pose
 /// is interpolated between the two samples around its time (linear in translation, geodesic in
-/// rotation), so turns that change rate within a sweep are followed.
+/// rotation), so turns that change rate within a sweep are followed. Points fired within 20 µs
+/// of each other share one interpolated transform (< 0.7 mm at 30 m, 1.5 m/s, 60 °/s).
 ///
 ///   p_end = (T_world_imu(t_end) · T_imu_lidar)⁻¹ · T_world_imu(t_i) · T_imu_lidar · p_i
 
