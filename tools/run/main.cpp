@@ -155,12 +155,11 @@ int Run(const Options& opt) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Main(int argc, char** argv) {
   CLI::App app{"swlio-run: the estimator offline on a recording folder"};
   Options opt;
-  app.add_option("dir", opt.dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")->required();
+  app.add_option("dir", opt.dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")
+      ->required();
   app.add_option("--mode", opt.mode, "estimator mode")
       ->check(CLI::IsMember({"lidar-only"}))
       ->capture_default_str();
@@ -172,10 +171,18 @@ int main(int argc, char** argv) {
                  "daemon configuration (swlio.yaml): sensors, estimator, extrinsic (a manifest's "
                  "extrinsic wins)");
   CLI11_PARSE(app, argc, argv);
+  return Run(opt);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
   try {
-    return Run(opt);
+    return Main(argc, argv);
   } catch (const std::exception& e) {
     std::cerr << "swlio-run: " << e.what() << "\n";
-    return 2;
+  } catch (...) {
+    std::cerr << "swlio-run: unknown error\n";
   }
+  return 2;
 }
