@@ -80,6 +80,15 @@ inline Eigen::MatrixXd Hessian(ceres::Problem* problem, const std::vector<double
   return J.transpose() * J;
 }
 
+// Gradient of a problem in the tangent spaces of `blocks`.
+inline Eigen::VectorXd Gradient(ceres::Problem* problem, const std::vector<double*>& blocks) {
+  ceres::Problem::EvaluateOptions eo;
+  eo.parameter_blocks = blocks;
+  std::vector<double> g;
+  EXPECT_TRUE(problem->Evaluate(eo, nullptr, nullptr, &g, nullptr));
+  return Eigen::Map<const Eigen::VectorXd>(g.data(), static_cast<Eigen::Index>(g.size()));
+}
+
 inline Eigen::MatrixXd SchurKeepTail(const Eigen::MatrixXd& H, Eigen::Index drop) {
   const Eigen::Index n = H.rows() - drop;
   return H.bottomRightCorner(n, n) - H.bottomLeftCorner(n, drop) *

@@ -24,6 +24,7 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 using Block = std::vector<double>;
 using test::Borrowing;
+using test::Gradient;
 using test::Hessian;
 using test::LinearFactor;
 using test::SchurKeepTail;
@@ -116,24 +117,70 @@ TEST_F(LinearMarginalization, PriorGivesTheMarginalOfTheFullProblem) {
 }
 
 TEST_F(LinearMarginalization, RobustLossIsFoldedInAsCeresDoes) {
-  // TolerantLoss has ρ'' > 0, so the full Triggs correction (α ≠ 0) is exercised; the Schur
-  // complement of Ceres' own robustified Gauss–Newton system must match the prior's J₀ᵀJ₀.
-  loss_ = std::make_unique<ceres::TolerantLoss>(0.5, 1.0);
-  const MarginalizationResult m = Marginalize(loss_.get());
-  ASSERT_EQ(m.status, MarginalizationStatus::kOk);
-  ceres::Problem full(Borrowing());
-  Build(&full, nullptr);
-  const Eigen::MatrixXd H_star = SchurKeepTail(Hessian(&full, {a_, b_, c_}), 2);
-  const Eigen::MatrixXd H_prior = m.prior->jacobian().transpose() * m.prior->jacobian();
-  ceres::Problem only_prior(Borrowing());
-  only_prior.AddResidualBlock(m.prior.get(), nullptr, m.kept_blocks);
-  // The f_bc and f_c part of H_star (they do not touch a) is left out of the prior.
+  // The Schur complement of Ceres' own robustified Gauss–Newton system (H, g) must match the
+  // prior's (J₀ᵀJ₀, J₀ᵀr₀) plus the factors that do not touch a. TolerantLoss has ρ'' > 0 (the
+  // full Triggs correction, α ≠ 0); Cauchy (ρ'' < 0) and Huber (ρ'' = 0) are a √ρ' re-weighting.
+  // The robust factor's squared residual is checked to lie in every loss's robust region.
+  std::vector<std::unique_ptr<ceres::LossFunction>> losses;
+  losses.push_back(std::make_unique<ceres::TolerantLoss>(0.5, 1.0));
+  losses.push_back(std::make_unique<ceres::CauchyLoss>(0.5));
+  losses.push_back(std::make_unique<ceres::HuberLoss>(0.3));
   ceres::Problem rest(Borrowing());
   rest.AddResidualBlock(f_bc_.get(), nullptr, b_, c_);
   rest.AddResidualBlock(f_c_.get(), nullptr, c_);
   const Eigen::MatrixXd H_rest = Hessian(&rest, {b_, c_});
-  EXPECT_LT((H_prior + H_rest - H_star).cwiseAbs().maxCoeff(), 1e-9 * H_star.norm());
-  EXPECT_LT((Hessian(&only_prior, {b_, c_}) - H_prior).cwiseAbs().maxCoeff(), 1e-12);
+  const Eigen::VectorXd g_rest = Gradient(&rest, {b_, c_});
+  double r_ac[2];
+  const double* x_ac[] = {a_, c_};
+  ASSERT_TRUE(f_ac_->Evaluate(x_ac, r_ac, nullptr));
+  ASSERT_GT(r_ac[0] * r_ac[0] + r_ac[1] * r_ac[1], 0.25);
+  for (std::unique_ptr<ceres::LossFunction>& loss : losses) {
+    loss_ = std::move(loss);
+    const MarginalizationResult m = Marginalize(loss_.get());
+    ASSERT_EQ(m.status, MarginalizationStatus::kOk);
+    ceres::Problem full(Borrowing());
+    Build(&full, nullptr);
+    const Eigen::MatrixXd H = Hessian(&full, {a_, b_, c_});
+    const Eigen::VectorXd g = Gradient(&full, {a_, b_, c_});
+    const Eigen::MatrixXd H_star = SchurKeepTail(H, 2);
+    const Eigen::VectorXd g_star =
+        g.tail(5) - H.bottomLeftCorner(5, 2) * H.topLeftCorner(2, 2).inverse() * g.head(2);
+    const Eigen::MatrixXd& J0 = m.prior->jacobian();
+    EXPECT_LT((J0.transpose() * J0 + H_rest - H_star).cwiseAbs().maxCoeff(), 1e-12 * H_star.norm());
+    EXPECT_LT((J0.transpose() * m.prior->residual() + g_rest - g_star).norm(),
+              1e-12 * g_star.norm());
+  }
+}
+
+// A dropped block u seen by a single one-row factor (with b): the row fixes one direction of u
+// and says nothing about b, so the prior must be the one without that factor (pseudo-inverse
+// semantics for the rank-deficient J_m).
+TEST_F(LinearMarginalization, FreeDroppedDirectionsAbsorbTheirResiduals) {
+  double u[2] = {0.3, -0.2};
+  Eigen::MatrixXd A_u(1, 2), A_b(1, 3);
+  A_u << 0.7, -1.1;
+  A_b << 0.4, 0.9, -0.3;
+  const LinearFactor f_ub({A_u, A_b}, Eigen::VectorXd::Constant(1, 0.5));
+  Marginalizer m;
+  m.AddParameterBlock(a_, 2, nullptr, BlockRole::kMarginalize);
+  m.AddParameterBlock(u, 2, nullptr, BlockRole::kMarginalize);
+  m.AddParameterBlock(b_, 3, nullptr, BlockRole::kKeep);
+  m.AddParameterBlock(c_, 2, nullptr, BlockRole::kKeep);
+  m.AddResidualBlock(f_a_.get(), nullptr, {a_});
+  m.AddResidualBlock(f_ab_.get(), nullptr, {a_, b_});
+  m.AddResidualBlock(f_ac_.get(), nullptr, {a_, c_});
+  m.AddResidualBlock(&f_ub, nullptr, {u, b_});
+  const MarginalizationResult with_u = m.Marginalize();
+  const MarginalizationResult without_u = Marginalize(nullptr);
+  ASSERT_EQ(with_u.status, MarginalizationStatus::kOk);
+  EXPECT_EQ(with_u.marginalized_dim, 4);
+  EXPECT_EQ(with_u.rank, without_u.rank);
+  const Eigen::MatrixXd& J1 = with_u.prior->jacobian();
+  const Eigen::MatrixXd& J2 = without_u.prior->jacobian();
+  const Eigen::MatrixXd H2 = J2.transpose() * J2;
+  EXPECT_LT((J1.transpose() * J1 - H2).cwiseAbs().maxCoeff(), 1e-12 * H2.norm());
+  const Eigen::VectorXd g2 = J2.transpose() * without_u.prior->residual();
+  EXPECT_LT((J1.transpose() * with_u.prior->residual() - g2).norm(), 1e-12 * g2.norm());
 }
 
 TEST_F(LinearMarginalization, ReportsMisuse) {
