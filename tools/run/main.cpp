@@ -15,6 +15,7 @@
 #include "swlio/daemon/config_loader.h"
 #include "swlio/daemon/recording_reader.h"
 #include "swlio/estimator/lidar_odometry.h"
+#include "swlio/estimator/window_estimator.h"
 
 namespace {
 
@@ -22,7 +23,10 @@ using swlio::estimator::OdometryResult;
 using swlio::estimator::OdometryStatus;
 
 struct Options {
-  std::string dir, out, timings, config, mode = "lidar-only";
+  std::string dir, out, timings, config, mode = "tightly-coupled";
+  size_t window_size = swlio::estimator::WindowEstimatorConfig{}.window_size;
+  int iterations = swlio::estimator::WindowEstimatorConfig{}.max_iterations;
+  bool estimate_extrinsic = false;
 };
 
 /// T_imu_lidar from a recording manifest (translation_m and quaternion_xyzw lines), if present:
@@ -138,15 +142,31 @@ int Run(const Options& opt) {
   tum << "# timestamp tx ty tz qx qy qz qw  (IMU frame, host time, sweep end)\n";
   if (timings) timings << "t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms\n";
 
+  swlio::estimator::WindowEstimatorConfig window_config;
+  window_config.odometry = config;
+  window_config.window_size = opt.window_size;
+  window_config.max_iterations = opt.iterations;
+  window_config.estimate_extrinsic = opt.estimate_extrinsic;
+  if (const auto issues = window_config.Validate(); !issues.empty()) {
+    for (const auto& issue : issues)
+      std::cerr << "swlio-run: " << issue.key << ": " << issue.reason << "\n";
+    return 1;
+  }
+  const bool tightly_coupled = opt.mode == "tightly-coupled";
   swlio::estimator::LidarOdometry odometry(config, &ThreadCpuNs);
+  swlio::estimator::WindowEstimator window(window_config, &ThreadCpuNs);
   swlio::daemon::RecordingEvent e;
   Summary summary;
   while (reader->Next(&e)) {
     if (e.kind == swlio::daemon::RecordingEvent::Kind::kImu) {
-      odometry.AddImu(e.imu);
+      if (tightly_coupled)
+        window.AddImu(e.imu);
+      else
+        odometry.AddImu(e.imu);
       continue;
     }
-    const OdometryResult r = odometry.AddScan(e.scan);
+    const OdometryResult r =
+        tightly_coupled ? window.AddScan(e.scan).odometry : odometry.AddScan(e.scan);
     summary.Add(r);
     if (timings) WriteTimings(timings, r, e.scan.t_end_ns);
     if (r.status != OdometryStatus::kInitializing) WriteTum(tum, r.state);
@@ -158,11 +178,16 @@ int Run(const Options& opt) {
 int Main(int argc, char** argv) {
   CLI::App app{"swlio-run: the estimator offline on a recording folder"};
   Options opt;
-  app.add_option("dir", opt.dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")
-      ->required();
+  app.add_option("dir", opt.dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")->required();
   app.add_option("--mode", opt.mode, "estimator mode")
-      ->check(CLI::IsMember({"lidar-only"}))
+      ->check(CLI::IsMember({"tightly-coupled", "lidar-only"}))
       ->capture_default_str();
+  app.add_option("--window-size", opt.window_size, "frames in the sliding window (tightly-coupled)")
+      ->capture_default_str();
+  app.add_option("--iterations", opt.iterations, "solver iterations per solve (tightly-coupled)")
+      ->capture_default_str();
+  app.add_flag("--estimate-extrinsic", opt.estimate_extrinsic,
+               "refine T_imu_lidar online (tightly-coupled; weak prior on the configured value)");
   app.add_option("--out", opt.out, "trajectory (TUM, IMU frame)")->required();
   app.add_option("--timings", opt.timings,
                  "per-scan stage timings CSV (t_ns,points,frontend_ms,match_ms,optimize_ms,"

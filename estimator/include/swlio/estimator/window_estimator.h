@@ -1,0 +1,131 @@
+#pragma once
+/// @file
+/// Tightly coupled sliding-window LiDAR-inertial estimator (issue 6; paper §4.3, eq. 17–21).
+///
+/// Frames sit at sweep ends. Each frame holds pose [p; q] (7, PoseManifold) and speed_bias
+/// [v, b_a, b_g] (9); the extrinsic T_imu_lidar is one more block, constant unless
+/// `estimate_extrinsic` (then tied to its configured value by a weak prior).
+///
+/// Per sweep: propagate the IMU from the newest optimized frame → de-skew → front end →
+/// associate the sweep's features with the local map (VoxelMaps of keyframe features, world
+/// frame) at the predicted pose → one Ceres problem over the window:
+///   - ImuFactor between consecutive frames (pre-integrated covariance, eq. 21),
+///   - point-to-plane / point-to-line factors of every window frame (each frame keeps the
+///     correspondences found when it was newest), Huber loss, σ = `lidar_sigma_m`,
+///   - the marginalization prior of the frames that left (at start: a Gaussian prior on the
+///     first frame from the static initialization, which also fixes the gauge),
+/// → solve → re-associate the newest frame at the solution and solve again
+/// (`reassociations` times) → re-integrate IMU factors whose frame-i biases moved past
+/// Preintegrator::NeedsReintegration → keyframe features into the maps at the optimized pose
+/// → when the window holds more than `window_size` frames, marginalize the oldest
+/// (Marginalizer: its LiDAR factors, its IMU factor and the previous prior).
+/// Degeneracy: the 6×6 LiDAR Hessian of the newest frame (tangent [δp; δφ] of T_world_imu)
+/// and its eigenvalues are reported in every result; in weak directions the IMU factors and
+/// the prior carry the estimate, as they are part of the same problem.
+/// Pure library: no clock (StageTimes through NowNsFn), no printing.
+
+#include <ceres/loss_function.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "swlio/estimator/imu_factor.h"
+#include "swlio/estimator/lidar_odometry.h"
+#include "swlio/estimator/marginalization.h"
+#include "swlio/estimator/pose_manifold.h"
+
+namespace swlio::estimator {
+
+struct WindowEstimatorConfig {
+  /// Front end, matcher (association), maps, keyframes, extrinsic, noise and gravity.
+  LidarOdometryConfig odometry;
+  size_t window_size = 5;       ///< frames in the window (after marginalization)
+  int max_iterations = 4;       ///< Ceres iterations per solve
+  int reassociations = 1;       ///< re-associations of the newest frame (each one more solve)
+  double lidar_sigma_m = 0.05;  ///< point-to-plane / point-to-line standard deviation
+  double huber_m = 0.1;         ///< Huber kernel width (metres of residual)
+  bool estimate_extrinsic = false;
+  double extrinsic_prior_sigma_m = 0.02;  ///< weak prior when estimated online
+  double extrinsic_prior_sigma_rad = 0.01;
+  /// Prior of the first frame (static initialization): pose (gauge), velocity, biases.
+  double init_sigma_position_m = 1e-3;
+  double init_sigma_rotation_rad = 1e-3;
+  double init_sigma_velocity_mps = 0.05;
+  double init_sigma_bias_acc_mps2 = 0.05;
+  double init_sigma_bias_gyro_radps = 0.005;
+
+  ConfigIssues Validate() const;
+};
+
+struct WindowResult {
+  OdometryResult odometry;  ///< state of the newest frame, stage times, LiDAR Hessian in match
+  size_t window_frames = 0;
+  int solver_iterations = 0;  ///< summed over the solves of this sweep
+  int prior_rank = 0;         ///< rows of the current marginalization prior
+  size_t lidar_factors = 0;   ///< LiDAR residual blocks in the last solve (all frames)
+};
+
+class WindowEstimator {
+ public:
+  explicit WindowEstimator(const WindowEstimatorConfig& config, NowNsFn now_ns = nullptr);
+  ~WindowEstimator();
+  WindowEstimator(const WindowEstimator&) = delete;
+  WindowEstimator& operator=(const WindowEstimator&) = delete;
+
+  void AddImu(const ImuSample& sample);
+  WindowResult AddScan(const Scan& scan);
+
+  bool initialized() const { return initialized_; }
+  size_t window_frames() const { return frames_.size(); }
+
+ private:
+  struct Frame;
+
+  bool PropagateAndExtract(const Scan& scan, OdometryResult* result);
+  std::unique_ptr<Frame> NewFrame(int64_t t_ns, const State& predicted);
+  bool Preintegrate(const Frame& from, Frame* to) const;
+  void Associate(Frame* frame);
+  int Solve(WindowResult* result);
+  void Reintegrate();
+  void Marginalize();
+  void SetInitialPrior(Frame* frame);
+  State StateOf(const Frame& frame) const;
+  struct LidarSystem {  ///< robust Gauss–Newton system of one frame's LiDAR factors (tangent)
+    Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
+    double cost = 0.0;
+  };
+  LidarSystem LinearizeLidar(const Frame& frame) const;
+  void FillLidarHessian(const Frame& frame, MatchResult* match) const;
+  void CompressLidar(Frame* frame) const;
+  bool IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const;
+  void InsertFeatures(const Frame& frame);
+
+  WindowEstimatorConfig config_;
+  NowNsFn now_ns_;
+  StaticInitializer initializer_;
+  bool initialized_ = false;
+  State init_state_;
+  ImuPropagator propagator_;
+  std::deque<ImuSample> imu_;  ///< samples from just before the newest frame on
+  FrontEnd front_end_;
+  FrontEndOutput features_;
+  Scan deskewed_;
+  std::vector<Eigen::Vector3d> xyz_;
+  VoxelMap plane_map_;
+  VoxelMap edge_map_;
+  ScanMatcher matcher_;
+  PoseManifold manifold_;
+  ceres::HuberLoss huber_;
+  std::vector<double> extrinsic_;  ///< T_imu_lidar block (7)
+  std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
+  std::deque<std::unique_ptr<Frame>> frames_;  ///< oldest first; blocks stay at fixed addresses
+  MarginalizationResult prior_;
+  bool have_keyframe_ = false;
+  Eigen::Isometry3d T_world_last_keyframe_ = Eigen::Isometry3d::Identity();
+};
+
+}  // namespace swlio::estimator

@@ -1,0 +1,429 @@
+#include "swlio/estimator/window_estimator.h"
+
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+
+#include <Eigen/Eigenvalues>
+#include <array>
+#include <cmath>
+
+#include "swlio/estimator/deskew.h"
+#include "swlio/estimator/point_to_line_factor.h"
+#include "swlio/estimator/point_to_plane_factor.h"
+
+namespace swlio::estimator {
+
+struct WindowEstimator::Frame {
+  int64_t t_ns = 0;
+  std::array<double, kPoseSize> pose{};
+  std::array<double, kSpeedBiasSize> speed_bias{};
+  std::vector<Eigen::Vector3d> planes_lidar, edges_lidar;
+  std::vector<std::unique_ptr<ceres::CostFunction>> lidar;  ///< against the local map
+  /// Once the frame is no longer the newest: its LiDAR factors linearized into 6 rows.
+  std::unique_ptr<MarginalizationPrior> lidar_linear;
+  size_t plane_factors = 0, line_factors = 0;
+  std::unique_ptr<Preintegrator> pre;  ///< previous frame → this one
+  std::unique_ptr<ImuFactor> imu;      ///< null for the first frame (or a failed interval)
+
+  Eigen::Vector3d BiasAcc() const { return Eigen::Map<const Eigen::Vector3d>(&speed_bias[3]); }
+  Eigen::Vector3d BiasGyro() const { return Eigen::Map<const Eigen::Vector3d>(&speed_bias[6]); }
+};
+
+namespace {
+
+void ToVectors(const std::vector<FeaturePoint>& in, std::vector<Eigen::Vector3d>* out) {
+  out->clear();
+  for (const FeaturePoint& f : in) out->push_back(f.xyz_m.cast<double>());
+}
+
+/// Gaussian prior r = W (x ⊟ x₀) on one or two blocks, as a MarginalizationPrior (J₀ = W).
+std::unique_ptr<MarginalizationPrior> DiagonalPrior(
+    const std::vector<std::pair<const double*, const ceres::Manifold*>>& blocks,
+    const Eigen::VectorXd& sigmas) {
+  std::vector<MarginalizationPrior::Block> b;
+  int offset = 0;
+  for (const auto& [values, manifold] : blocks) {
+    const int ambient = manifold != nullptr ? manifold->AmbientSize() : kSpeedBiasSize;
+    const int tangent = manifold != nullptr ? manifold->TangentSize() : kSpeedBiasSize;
+    b.push_back({manifold, Eigen::Map<const Eigen::VectorXd>(values, ambient), tangent, offset});
+    offset += tangent;
+  }
+  const Eigen::MatrixXd W = sigmas.cwiseInverse().asDiagonal();
+  return std::make_unique<MarginalizationPrior>(std::move(b), W,
+                                                Eigen::VectorXd::Zero(sigmas.size()));
+}
+
+ImuSample At(ImuSample s, int64_t t_ns) {
+  s.t_ns = t_ns;
+  return s;
+}
+
+}  // namespace
+
+ConfigIssues WindowEstimatorConfig::Validate() const {
+  ConfigIssues issues;
+  AppendWithPrefix(issues, "odometry", odometry.Validate());
+  CheckInRange<size_t>(issues, "window_size", window_size, 2, 50);
+  CheckInRange(issues, "max_iterations", max_iterations, 1, 50);
+  CheckInRange(issues, "reassociations", reassociations, 0, 5);
+  CheckPositive(issues, "lidar_sigma_m", lidar_sigma_m);
+  CheckPositive(issues, "huber_m", huber_m);
+  CheckPositive(issues, "extrinsic_prior_sigma_m", extrinsic_prior_sigma_m);
+  CheckPositive(issues, "extrinsic_prior_sigma_rad", extrinsic_prior_sigma_rad);
+  CheckPositive(issues, "init_sigma_position_m", init_sigma_position_m);
+  CheckPositive(issues, "init_sigma_rotation_rad", init_sigma_rotation_rad);
+  CheckPositive(issues, "init_sigma_velocity_mps", init_sigma_velocity_mps);
+  CheckPositive(issues, "init_sigma_bias_acc_mps2", init_sigma_bias_acc_mps2);
+  CheckPositive(issues, "init_sigma_bias_gyro_radps", init_sigma_bias_gyro_radps);
+  return issues;
+}
+
+WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn now_ns)
+    : config_(config),
+      now_ns_(now_ns),
+      initializer_(config.odometry.estimator),
+      propagator_(config.odometry.estimator.gravity_mps2),
+      front_end_(config.odometry.front_end),
+      plane_map_(config.odometry.plane_map),
+      edge_map_(config.odometry.edge_map),
+      matcher_(config.odometry.matcher),
+      huber_(config.huber_m / config.lidar_sigma_m),
+      extrinsic_(kPoseSize) {
+  PoseToParameters(config.odometry.T_imu_lidar, extrinsic_.data());
+  Eigen::VectorXd sigmas(kPoseTangentSize);
+  sigmas << Eigen::Vector3d::Constant(config.extrinsic_prior_sigma_m),
+      Eigen::Vector3d::Constant(config.extrinsic_prior_sigma_rad);
+  extrinsic_prior_ = DiagonalPrior({{extrinsic_.data(), &manifold_}}, sigmas);
+}
+
+WindowEstimator::~WindowEstimator() = default;
+
+void WindowEstimator::AddImu(const ImuSample& sample) {
+  if (initialized_) {
+    imu_.push_back(sample);
+    return;
+  }
+  if (initializer_.Add(sample).status == InitStatus::kInitialized) {
+    initialized_ = true;
+    init_state_ = initializer_.result().state;
+    imu_.push_back(sample);
+  }
+}
+
+State WindowEstimator::StateOf(const Frame& f) const {
+  State s;
+  s.t_ns = f.t_ns;
+  s.T_world_imu = PoseFromParameters(f.pose.data());
+  s.vel_world = Eigen::Map<const Eigen::Vector3d>(&f.speed_bias[kSbVel]);
+  s.bias_acc = f.BiasAcc();
+  s.bias_gyro = f.BiasGyro();
+  return s;
+}
+
+bool WindowEstimator::PropagateAndExtract(const Scan& scan, OdometryResult* result) {
+  propagator_.Reset(frames_.empty() ? init_state_ : StateOf(*frames_.back()));
+  for (const ImuSample& s : imu_) {
+    if (s.t_ns > scan.t_end_ns) break;
+    propagator_.Add(s);
+  }
+  propagator_.ExtrapolateTo(scan.t_end_ns);
+  const DeskewResult deskew =
+      Deskew(scan, propagator_.track(), config_.odometry.T_imu_lidar, &xyz_);
+  result->points_uncovered = deskew.uncovered;
+  deskewed_ = scan;
+  for (size_t i = 0; i < xyz_.size(); ++i) deskewed_.points[i].xyz_m = xyz_[i].cast<float>();
+  front_end_.Process(deskewed_, &features_);
+  return true;
+}
+
+std::unique_ptr<WindowEstimator::Frame> WindowEstimator::NewFrame(int64_t t_ns,
+                                                                  const State& predicted) {
+  auto f = std::make_unique<Frame>();
+  f->t_ns = t_ns;
+  PoseToParameters(predicted.T_world_imu, f->pose.data());
+  Eigen::Map<Eigen::Vector3d>(&f->speed_bias[kSbVel]) = predicted.vel_world;
+  Eigen::Map<Eigen::Vector3d>(&f->speed_bias[kSbBiasAcc]) = predicted.bias_acc;
+  Eigen::Map<Eigen::Vector3d>(&f->speed_bias[kSbBiasGyro]) = predicted.bias_gyro;
+  ToVectors(features_.features.planes, &f->planes_lidar);
+  ToVectors(features_.features.edges, &f->edges_lidar);
+  return f;
+}
+
+bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) const {
+  std::vector<ImuSample> s;
+  for (const ImuSample& x : imu_) {
+    if (x.t_ns < from.t_ns) {
+      s.assign(1, x);  // the last sample before the interval
+      continue;
+    }
+    s.push_back(x);
+    if (x.t_ns >= to->t_ns) break;
+  }
+  if (s.empty()) return false;
+  if (s.front().t_ns > from.t_ns) s.insert(s.begin(), At(s.front(), from.t_ns));
+  if (s.back().t_ns < to->t_ns) s.push_back(At(s.back(), to->t_ns));  // hold the last rates
+  to->pre = std::make_unique<Preintegrator>(config_.odometry.estimator.imu_noise, from.BiasGyro(),
+                                            from.BiasAcc());
+  if (to->pre->Integrate(s, from.t_ns, to->t_ns) != PreintegrationStatus::kOk) return false;
+  to->imu = ImuFactor::Create(to->pre->result(), config_.odometry.estimator.imu_noise,
+                              config_.odometry.estimator.gravity_mps2);
+  return to->imu != nullptr;
+}
+
+void WindowEstimator::Associate(Frame* f) {
+  std::vector<PlaneCorrespondence> planes;
+  std::vector<LineCorrespondence> lines;
+  const Eigen::Isometry3d T = PoseFromParameters(f->pose.data()) * config_.odometry.T_imu_lidar;
+  matcher_.Associate(f->planes_lidar, f->edges_lidar, plane_map_, edge_map_, T, &planes, &lines);
+  const double w = 1.0 / config_.lidar_sigma_m;
+  f->lidar.clear();
+  for (const PlaneCorrespondence& c : planes) {
+    f->lidar.push_back(
+        PointToPlaneFactor::Create(f->planes_lidar[c.index], c.normal, c.centroid, w));
+  }
+  for (const LineCorrespondence& c : lines) {
+    f->lidar.push_back(
+        PointToLineFactor::Create(f->edges_lidar[c.index], c.direction, c.centroid, w));
+  }
+  f->plane_factors = planes.size();
+  f->line_factors = lines.size();
+}
+
+void WindowEstimator::SetInitialPrior(Frame* f) {
+  Eigen::VectorXd sigmas(kPoseTangentSize + kSpeedBiasSize);
+  sigmas << Eigen::Vector3d::Constant(config_.init_sigma_position_m),
+      Eigen::Vector3d::Constant(config_.init_sigma_rotation_rad),
+      Eigen::Vector3d::Constant(config_.init_sigma_velocity_mps),
+      Eigen::Vector3d::Constant(config_.init_sigma_bias_acc_mps2),
+      Eigen::Vector3d::Constant(config_.init_sigma_bias_gyro_radps);
+  prior_ = MarginalizationResult{};
+  prior_.prior =
+      DiagonalPrior({{f->pose.data(), &manifold_}, {f->speed_bias.data(), nullptr}}, sigmas);
+  prior_.kept_blocks = {f->pose.data(), f->speed_bias.data()};
+  prior_.rank = static_cast<int>(sigmas.size());
+}
+
+int WindowEstimator::Solve(WindowResult* result) {
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.enable_fast_removal = false;
+  ceres::Problem problem(po);
+  problem.AddParameterBlock(extrinsic_.data(), kPoseSize, &manifold_);
+  if (config_.estimate_extrinsic) {
+    problem.AddResidualBlock(extrinsic_prior_.get(), nullptr, extrinsic_.data());
+  } else {
+    problem.SetParameterBlockConstant(extrinsic_.data());
+  }
+  result->lidar_factors = 0;
+  for (size_t k = 0; k < frames_.size(); ++k) {
+    Frame& f = *frames_[k];
+    problem.AddParameterBlock(f.pose.data(), kPoseSize, &manifold_);
+    problem.AddParameterBlock(f.speed_bias.data(), kSpeedBiasSize);
+    for (const auto& c : f.lidar) {
+      problem.AddResidualBlock(c.get(), &huber_, f.pose.data(), extrinsic_.data());
+    }
+    result->lidar_factors += f.lidar.size();
+    if (f.lidar_linear != nullptr) {
+      problem.AddResidualBlock(f.lidar_linear.get(), nullptr, f.pose.data());
+    }
+    if (k > 0 && f.imu != nullptr) {
+      Frame& p = *frames_[k - 1];
+      problem.AddResidualBlock(f.imu.get(), nullptr, p.pose.data(), p.speed_bias.data(),
+                               f.pose.data(), f.speed_bias.data());
+    }
+  }
+  if (prior_.prior != nullptr) {
+    problem.AddResidualBlock(prior_.prior.get(), nullptr, prior_.kept_blocks);
+  }
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  so.max_num_iterations = config_.max_iterations;
+  so.num_threads = 1;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  return static_cast<int>(summary.iterations.size());
+}
+
+void WindowEstimator::Reintegrate() {
+  for (size_t k = 1; k < frames_.size(); ++k) {
+    Frame& f = *frames_[k];
+    const Frame& p = *frames_[k - 1];
+    if (f.pre == nullptr || !f.pre->NeedsReintegration(p.BiasGyro(), p.BiasAcc())) continue;
+    f.pre->Reintegrate(p.BiasGyro(), p.BiasAcc());
+    f.imu = ImuFactor::Create(f.pre->result(), config_.odometry.estimator.imu_noise,
+                              config_.odometry.estimator.gravity_mps2);
+  }
+}
+
+void WindowEstimator::Marginalize() {
+  Frame& f0 = *frames_[0];
+  Frame& f1 = *frames_[1];
+  Marginalizer m;
+  m.AddParameterBlock(f0.pose.data(), kPoseSize, &manifold_, BlockRole::kMarginalize);
+  m.AddParameterBlock(f0.speed_bias.data(), kSpeedBiasSize, nullptr, BlockRole::kMarginalize);
+  m.AddParameterBlock(f1.pose.data(), kPoseSize, &manifold_, BlockRole::kKeep);
+  m.AddParameterBlock(f1.speed_bias.data(), kSpeedBiasSize, nullptr, BlockRole::kKeep);
+  m.AddParameterBlock(extrinsic_.data(), kPoseSize, &manifold_,
+                      config_.estimate_extrinsic ? BlockRole::kKeep : BlockRole::kConstant);
+  for (const auto& c : f0.lidar) {
+    m.AddResidualBlock(c.get(), &huber_, {f0.pose.data(), extrinsic_.data()});
+  }
+  if (f1.imu != nullptr) {
+    m.AddResidualBlock(
+        f1.imu.get(), nullptr,
+        {f0.pose.data(), f0.speed_bias.data(), f1.pose.data(), f1.speed_bias.data()});
+  }
+  if (prior_.prior != nullptr) m.AddResidualBlock(prior_.prior.get(), nullptr, prior_.kept_blocks);
+  MarginalizationResult next = m.Marginalize();
+  if (next.status == MarginalizationStatus::kOk) {
+    prior_ = std::move(next);
+  } else {
+    SetInitialPrior(&f1);  // nothing carried over: restart from frame 1 as it stands
+  }
+  frames_.pop_front();
+}
+
+WindowEstimator::LidarSystem WindowEstimator::LinearizeLidar(const Frame& f) const {
+  LidarSystem ls;
+  const PosePlusJacobian plus = PosePlusJacobianAt(f.pose.data());
+  for (const auto& c : f.lidar) {
+    // One or two rows; the unused second row stays zero.
+    Eigen::Vector2d r = Eigen::Vector2d::Zero();
+    Eigen::Matrix<double, 2, kPoseSize, Eigen::RowMajor> J =
+        Eigen::Matrix<double, 2, kPoseSize, Eigen::RowMajor>::Zero();
+    const double* params[2] = {f.pose.data(), extrinsic_.data()};
+    double* jacobians[2] = {J.data(), nullptr};
+    if (!c->Evaluate(params, r.data(), jacobians)) continue;
+    double rho[3];
+    huber_.Evaluate(r.squaredNorm(), rho);
+    const Eigen::Matrix<double, 2, kPoseTangentSize> Jt = J * plus;
+    ls.H.noalias() += rho[1] * Jt.transpose() * Jt;
+    ls.b.noalias() += rho[1] * Jt.transpose() * r;
+    ls.cost += rho[0];
+  }
+  return ls;
+}
+
+void WindowEstimator::FillLidarHessian(const Frame& f, MatchResult* match) const {
+  const LidarSystem ls = LinearizeLidar(f);
+  // In the units of ScanMatcher (unwhitened metres): scale out 1/σ².
+  const double s2 = config_.lidar_sigma_m * config_.lidar_sigma_m;
+  match->T_world_lidar = PoseFromParameters(f.pose.data()) * config_.odometry.T_imu_lidar;
+  match->plane_inliers = f.plane_factors;
+  match->edge_inliers = f.line_factors;
+  match->cost = ls.cost * s2;
+  match->hessian = ls.H * s2;
+  match->hessian_eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(
+                                   match->hessian, Eigen::EigenvaluesOnly)
+                                   .eigenvalues();
+}
+
+void WindowEstimator::CompressLidar(Frame* f) const {
+  if (f->lidar.empty()) return;
+  const LidarSystem ls = LinearizeLidar(*f);
+  // H = V Λ Vᵀ: rows U = Λ^½ Vᵀ, r₀ = Λ^-½ Vᵀ b give ½|r₀ + U δ|² = ½ δᵀHδ + bᵀδ + const;
+  // directions without information (degenerate scans) are left out.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(ls.H);
+  const double lmax = es.eigenvalues().maxCoeff();
+  std::vector<int> keep;
+  for (int i = 0; i < 6; ++i) {
+    if (es.eigenvalues()(i) > 1e-9 * lmax && es.eigenvalues()(i) > 0.0) keep.push_back(i);
+  }
+  if (keep.empty()) return;
+  const auto rows = static_cast<Eigen::Index>(keep.size());
+  Eigen::MatrixXd U(rows, kPoseTangentSize);
+  Eigen::VectorXd r0(rows);
+  for (Eigen::Index k = 0; k < rows; ++k) {
+    const double l = es.eigenvalues()(keep[static_cast<size_t>(k)]);
+    const Eigen::Vector<double, 6> v = es.eigenvectors().col(keep[static_cast<size_t>(k)]);
+    U.row(k) = std::sqrt(l) * v.transpose();
+    r0(k) = v.dot(ls.b) / std::sqrt(l);
+  }
+  std::vector<MarginalizationPrior::Block> blocks = {
+      {&manifold_, Eigen::Map<const Eigen::VectorXd>(f->pose.data(), kPoseSize), kPoseTangentSize,
+       0}};
+  f->lidar_linear = std::make_unique<MarginalizationPrior>(std::move(blocks), U, r0);
+  f->lidar.clear();
+}
+
+bool WindowEstimator::IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const {
+  if (!have_keyframe_) return true;
+  const Eigen::Isometry3d moved = T_world_last_keyframe_.inverse() * T_world_lidar;
+  return moved.translation().norm() >= config_.odometry.keyframe_distance_m ||
+         Eigen::AngleAxisd(moved.linear()).angle() >= config_.odometry.keyframe_angle_rad;
+}
+
+void WindowEstimator::InsertFeatures(const Frame& f) {
+  const Eigen::Isometry3d T = PoseFromParameters(f.pose.data()) * config_.odometry.T_imu_lidar;
+  have_keyframe_ = true;
+  T_world_last_keyframe_ = T;
+  std::vector<Eigen::Vector3d> world;
+  for (const Eigen::Vector3d& p : f.planes_lidar) world.push_back(T * p);
+  plane_map_.Insert(world);
+  world.clear();
+  for (const Eigen::Vector3d& p : f.edges_lidar) world.push_back(T * p);
+  edge_map_.Insert(world);
+  plane_map_.RemoveFar(T.translation());
+  edge_map_.RemoveFar(T.translation());
+}
+
+WindowResult WindowEstimator::AddScan(const Scan& scan) {
+  StageTimer timer(now_ns_);
+  WindowResult out;
+  OdometryResult& result = out.odometry;
+  result.points_in = scan.points.size();
+  const int64_t t_last = frames_.empty() ? init_state_.t_ns : frames_.back()->t_ns;
+  if (!initialized_ || scan.t_start_ns < t_last) return out;  // skipped
+
+  PropagateAndExtract(scan, &result);
+  std::unique_ptr<Frame> frame = NewFrame(scan.t_end_ns, propagator_.state());
+  result.planes = frame->planes_lidar.size();
+  result.edges = frame->edges_lidar.size();
+  result.times.frontend_ms = timer.Lap();
+
+  if (frames_.empty())
+    SetInitialPrior(frame.get());
+  else
+    Preintegrate(*frames_.back(), frame.get());  // without it: LiDAR and prior only
+  if (plane_map_.size() > 0) Associate(frame.get());
+  result.times.match_ms = timer.Lap();
+  frames_.push_back(std::move(frame));
+  while (imu_.size() > 1 && imu_[1].t_ns <= scan.t_end_ns) imu_.pop_front();
+
+  Frame& newest = *frames_.back();
+  if (frames_.size() > 1) {
+    out.solver_iterations += Solve(&out);
+    for (int i = 0; i < config_.reassociations && plane_map_.size() > 0; ++i) {
+      result.times.optimize_ms += timer.Lap();
+      Associate(&newest);
+      result.times.match_ms += timer.Lap();
+      out.solver_iterations += Solve(&out);
+    }
+    Reintegrate();
+  }
+  result.status = OdometryStatus::kTracking;
+  if (plane_map_.size() > 0 &&
+      newest.plane_factors + newest.line_factors < config_.odometry.min_inliers) {
+    result.status = OdometryStatus::kMatchFailed;  // the IMU carries this frame
+  }
+  const Eigen::Isometry3d T_world_lidar =
+      PoseFromParameters(newest.pose.data()) * config_.odometry.T_imu_lidar;
+  result.keyframe = IsKeyframe(T_world_lidar);
+  if (result.keyframe) InsertFeatures(newest);
+  result.state = StateOf(newest);
+  FillLidarHessian(newest, &result.match);
+  CompressLidar(&newest);
+  result.match.iterations = out.solver_iterations;
+  if (frames_.size() > config_.window_size) Marginalize();
+  out.window_frames = frames_.size();
+  out.prior_rank = prior_.rank;
+  result.times.optimize_ms += timer.Lap();
+  result.times.total_ms =
+      result.times.frontend_ms + result.times.match_ms + result.times.optimize_ms;
+  return out;
+}
+
+}  // namespace swlio::estimator

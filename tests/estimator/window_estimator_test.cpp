@@ -1,0 +1,95 @@
+// WindowEstimator's contract: initialization, the window's size and its marginalization prior,
+// configuration. Its accuracy on simulated drives is tested end to end through swlio-run
+// (tests/tools/run_tightly_coupled_test.cpp).
+
+#include "swlio/estimator/window_estimator.h"
+
+#include <gtest/gtest.h>
+
+#include "swlio/core/time.h"
+
+namespace swlio::estimator {
+namespace {
+
+ImuSample Still(int64_t t_ns) {
+  ImuSample s;
+  s.t_ns = t_ns;
+  s.acc_mps2 = Eigen::Vector3d(0.0, 0.0, 9.80665);
+  return s;
+}
+
+// A sweep of a few points on a wall: too few features for any map correspondence.
+Scan Sweep(int64_t t_start_ns) {
+  Scan scan;
+  scan.t_start_ns = t_start_ns;
+  scan.t_end_ns = t_start_ns + 99 * kNsPerMs;
+  for (int i = 0; i < 100; ++i) {
+    LidarPoint p;
+    p.xyz_m = Eigen::Vector3f(5.0f, 0.01f * static_cast<float>(i), -1.0f);
+    p.dt_ns = i * kNsPerMs;
+    scan.points.push_back(p);
+  }
+  return scan;
+}
+
+TEST(WindowEstimator, StandingStillTheImuHoldsThePoseAndTheWindowSlides) {
+  WindowEstimatorConfig config;
+  config.window_size = 4;
+  WindowEstimator estimator(config);
+  int64_t t = 0;
+  for (; t < 2 * kNsPerSec; t += 2'500'000) estimator.AddImu(Still(t));
+  ASSERT_TRUE(estimator.initialized());
+  WindowResult r;
+  for (int sweep = 0; sweep < 12; ++sweep) {
+    const int64_t t_end = t + 100 * kNsPerMs;
+    for (; t < t_end; t += 2'500'000) estimator.AddImu(Still(t));
+    r = estimator.AddScan(Sweep(t_end - 100 * kNsPerMs));
+    EXPECT_NE(r.odometry.status, OdometryStatus::kInitializing) << "sweep " << sweep;
+    EXPECT_LE(r.window_frames, config.window_size);
+  }
+  EXPECT_EQ(r.window_frames, config.window_size);
+  // After marginalization the prior spans the oldest kept frame's pose and speed/bias (15).
+  EXPECT_EQ(r.prior_rank, 15);
+  EXPECT_GT(r.solver_iterations, 0);
+  EXPECT_LT(r.odometry.state.T_world_imu.translation().norm(), 1e-3);
+  EXPECT_LT(r.odometry.state.vel_world.norm(), 1e-3);
+  EXPECT_EQ(r.odometry.times.total_ms, 0.0) << "no clock injected: no timings";
+}
+
+TEST(WindowEstimator, ABiasedGyroAtRestIsEstimatedNotIntegrated) {
+  // The static initializer takes b_g from the first second; the window must keep it.
+  WindowEstimator estimator(WindowEstimatorConfig{});
+  const Eigen::Vector3d bias(0.002, -0.003, 0.004);
+  int64_t t = 0;
+  auto sample = [&](int64_t t_ns) {
+    ImuSample s = Still(t_ns);
+    s.gyro_radps = bias;
+    return s;
+  };
+  for (; t < 2 * kNsPerSec; t += 2'500'000) estimator.AddImu(sample(t));
+  ASSERT_TRUE(estimator.initialized());
+  WindowResult r;
+  for (int sweep = 0; sweep < 20; ++sweep) {
+    const int64_t t_end = t + 100 * kNsPerMs;
+    for (; t < t_end; t += 2'500'000) estimator.AddImu(sample(t));
+    r = estimator.AddScan(Sweep(t_end - 100 * kNsPerMs));
+  }
+  EXPECT_LT((r.odometry.state.bias_gyro - bias).norm(), 1e-4);
+  EXPECT_LT(Eigen::AngleAxisd(r.odometry.state.T_world_imu.linear()).angle(), 1e-3);
+}
+
+TEST(WindowEstimatorConfig, ValidateNamesTheBadKeys) {
+  WindowEstimatorConfig config;
+  EXPECT_TRUE(config.Validate().empty());
+  config.window_size = 1;
+  config.lidar_sigma_m = 0.0;
+  config.odometry.min_inliers = 1;
+  const ConfigIssues issues = config.Validate();
+  ASSERT_EQ(issues.size(), 3u);
+  EXPECT_EQ(issues[0].key, "odometry.min_inliers");
+  EXPECT_EQ(issues[1].key, "window_size");
+  EXPECT_EQ(issues[2].key, "lidar_sigma_m");
+}
+
+}  // namespace
+}  // namespace swlio::estimator
