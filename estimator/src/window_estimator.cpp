@@ -238,7 +238,7 @@ int WindowEstimator::Solve(WindowResult* result) {
     problem.AddResidualBlock(prior_.prior.get(), nullptr, prior_.kept_blocks);
   }
   ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   so.max_num_iterations = config_.max_iterations;
   so.num_threads = 1;
   so.logging_type = ceres::SILENT;
@@ -307,8 +307,9 @@ WindowEstimator::LidarSystem WindowEstimator::LinearizeLidar(const Frame& f) con
   return ls;
 }
 
-void WindowEstimator::FillLidarHessian(const Frame& f, MatchResult* match) const {
-  const LidarSystem ls = LinearizeLidar(f);
+void WindowEstimator::FillLidarHessian(const Frame& f,
+                                       const LidarSystem& ls,
+                                       MatchResult* match) const {
   // In the units of ScanMatcher (unwhitened metres): scale out 1/σ².
   const double s2 = config_.lidar_sigma_m * config_.lidar_sigma_m;
   match->T_world_lidar = PoseFromParameters(f.pose.data()) * config_.odometry.T_imu_lidar;
@@ -321,9 +322,8 @@ void WindowEstimator::FillLidarHessian(const Frame& f, MatchResult* match) const
                                    .eigenvalues();
 }
 
-void WindowEstimator::CompressLidar(Frame* f) const {
+void WindowEstimator::CompressLidar(const LidarSystem& ls, Frame* f) const {
   if (f->lidar.empty()) return;
-  const LidarSystem ls = LinearizeLidar(*f);
   // H = V Λ Vᵀ: rows U = Λ^½ Vᵀ, r₀ = Λ^-½ Vᵀ b give ½|r₀ + U δ|² = ½ δᵀHδ + bᵀδ + const;
   // directions without information (degenerate scans) are left out.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(ls.H);
@@ -414,8 +414,9 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   result.keyframe = IsKeyframe(T_world_lidar);
   if (result.keyframe) InsertFeatures(newest);
   result.state = StateOf(newest);
-  FillLidarHessian(newest, &result.match);
-  CompressLidar(&newest);
+  const LidarSystem lidar = LinearizeLidar(newest);
+  FillLidarHessian(newest, lidar, &result.match);
+  CompressLidar(lidar, &newest);
   result.match.iterations = out.solver_iterations;
   if (frames_.size() > config_.window_size) Marginalize();
   out.window_frames = frames_.size();

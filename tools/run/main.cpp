@@ -26,6 +26,7 @@ struct Options {
   std::string dir, out, timings, config, mode = "tightly-coupled";
   size_t window_size = swlio::estimator::WindowEstimatorConfig{}.window_size;
   int iterations = swlio::estimator::WindowEstimatorConfig{}.max_iterations;
+  int reassociations = swlio::estimator::WindowEstimatorConfig{}.reassociations;
   bool estimate_extrinsic = false;
 };
 
@@ -146,6 +147,7 @@ int Run(const Options& opt) {
   window_config.odometry = config;
   window_config.window_size = opt.window_size;
   window_config.max_iterations = opt.iterations;
+  window_config.reassociations = opt.reassociations;
   window_config.estimate_extrinsic = opt.estimate_extrinsic;
   if (const auto issues = window_config.Validate(); !issues.empty()) {
     for (const auto& issue : issues)
@@ -185,6 +187,9 @@ int Main(int argc, char** argv) {
   app.add_option("--window-size", opt.window_size, "frames in the sliding window (tightly-coupled)")
       ->capture_default_str();
   app.add_option("--iterations", opt.iterations, "solver iterations per solve (tightly-coupled)")
+      ->capture_default_str();
+  app.add_option("--reassociations", opt.reassociations,
+                 "re-associations (and solves) of the newest frame per sweep (tightly-coupled)")
       ->capture_default_str();
   app.add_flag("--estimate-extrinsic", opt.estimate_extrinsic,
                "refine T_imu_lidar online (tightly-coupled; weak prior on the configured value)");

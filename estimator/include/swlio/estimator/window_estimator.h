@@ -99,8 +99,9 @@ class WindowEstimator {
     double cost = 0.0;
   };
   LidarSystem LinearizeLidar(const Frame& frame) const;
-  void FillLidarHessian(const Frame& frame, MatchResult* match) const;
-  void CompressLidar(Frame* frame) const;
+  void FillLidarHessian(const Frame& frame, const LidarSystem& lidar, MatchResult* match) const;
+  /// Replaces the frame's LiDAR factors by their linearization `lidar` (6 rows at most).
+  void CompressLidar(const LidarSystem& lidar, Frame* frame) const;
   bool IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const;
   void InsertFeatures(const Frame& frame);
 
