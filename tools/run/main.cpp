@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <deque>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -27,6 +28,7 @@ struct Options {
   size_t window_size = swlio::estimator::WindowEstimatorConfig{}.window_size;
   int iterations = swlio::estimator::WindowEstimatorConfig{}.max_iterations;
   int reassociations = swlio::estimator::WindowEstimatorConfig{}.reassociations;
+  double lidar_sigma_m = swlio::estimator::WindowEstimatorConfig{}.lidar_sigma_m;
   bool estimate_extrinsic = false;
 };
 
@@ -148,6 +150,7 @@ int Run(const Options& opt) {
   window_config.window_size = opt.window_size;
   window_config.max_iterations = opt.iterations;
   window_config.reassociations = opt.reassociations;
+  window_config.lidar_sigma_m = opt.lidar_sigma_m;
   window_config.estimate_extrinsic = opt.estimate_extrinsic;
   if (const auto issues = window_config.Validate(); !issues.empty()) {
     for (const auto& issue : issues)
@@ -157,22 +160,39 @@ int Run(const Options& opt) {
   const bool tightly_coupled = opt.mode == "tightly-coupled";
   swlio::estimator::LidarOdometry odometry(config, &ThreadCpuNs);
   swlio::estimator::WindowEstimator window(window_config, &ThreadCpuNs);
-  swlio::daemon::RecordingEvent e;
   Summary summary;
+  auto process = [&](const swlio::Scan& scan) {
+    const OdometryResult r =
+        tightly_coupled ? window.AddScan(scan).odometry : odometry.AddScan(scan);
+    summary.Add(r);
+    if (timings) WriteTimings(timings, r, scan.t_end_ns);
+    if (r.status != OdometryStatus::kInitializing) WriteTum(tum, r.state);
+  };
+  // The window pre-integrates the IMU up to each sweep's end: a sweep waits until an IMU sample
+  // past its end has arrived (serial bursts and stalls deliver samples late), else the factor
+  // would extrapolate held rates. The LiDAR-only mode takes sweeps as they come.
+  std::deque<swlio::Scan> waiting;
+  swlio::daemon::RecordingEvent e;
   while (reader->Next(&e)) {
     if (e.kind == swlio::daemon::RecordingEvent::Kind::kImu) {
-      if (tightly_coupled)
-        window.AddImu(e.imu);
-      else
+      if (!tightly_coupled) {
         odometry.AddImu(e.imu);
+        continue;
+      }
+      window.AddImu(e.imu);
+      while (!waiting.empty() && waiting.front().t_end_ns < e.imu.t_ns) {
+        process(waiting.front());
+        waiting.pop_front();
+      }
       continue;
     }
-    const OdometryResult r =
-        tightly_coupled ? window.AddScan(e.scan).odometry : odometry.AddScan(e.scan);
-    summary.Add(r);
-    if (timings) WriteTimings(timings, r, e.scan.t_end_ns);
-    if (r.status != OdometryStatus::kInitializing) WriteTum(tum, r.state);
+    if (tightly_coupled) {
+      waiting.push_back(e.scan);
+    } else {
+      process(e.scan);
+    }
   }
+  for (const swlio::Scan& scan : waiting) process(scan);
   summary.Print();
   return 0;
 }
@@ -190,6 +210,9 @@ int Main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--reassociations", opt.reassociations,
                  "re-associations (and solves) of the newest frame per sweep (tightly-coupled)")
+      ->capture_default_str();
+  app.add_option("--lidar-sigma", opt.lidar_sigma_m,
+                 "point-to-plane/line standard deviation, m (tightly-coupled)")
       ->capture_default_str();
   app.add_flag("--estimate-extrinsic", opt.estimate_extrinsic,
                "refine T_imu_lidar online (tightly-coupled; weak prior on the configured value)");
