@@ -281,6 +281,7 @@ void WindowEstimator::Marginalize() {
   if (next.status == MarginalizationStatus::kOk) {
     prior_ = std::move(next);
   } else {
+    ++marginalization_failures_;
     SetInitialPrior(&f1);  // nothing carried over: restart from frame 1 as it stands
   }
   frames_.pop_front();
@@ -421,6 +422,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   if (frames_.size() > config_.window_size) Marginalize();
   out.window_frames = frames_.size();
   out.prior_rank = prior_.rank;
+  out.marginalization_failures = marginalization_failures_;
   result.times.optimize_ms += timer.Lap();
   result.times.total_ms =
       result.times.frontend_ms + result.times.match_ms + result.times.optimize_ms;

@@ -10,8 +10,12 @@
 /// associate the sweep's features with the local map (VoxelMaps of keyframe features, world
 /// frame) at the predicted pose → one Ceres problem over the window:
 ///   - ImuFactor between consecutive frames (pre-integrated covariance, eq. 21),
-///   - point-to-plane / point-to-line factors of every window frame (each frame keeps the
-///     correspondences found when it was newest), Huber loss, σ = `lidar_sigma_m`,
+///   - point-to-plane / point-to-line factors of the newest frame (Huber, σ = `lidar_sigma_m`);
+///     once a frame is no longer the newest, its factors (correspondences fixed when it was
+///     associated) are replaced by their Gauss–Newton linearization at its pose, ≤ 6 rows
+///     (r₀ + U δ with UᵀU = H, Uᵀr₀ = b, robust weights frozen): keeping ~1000 point factors
+///     per frame made the solve 8× slower. The linearized rows act on the pose only (with
+///     `estimate_extrinsic`, only the newest frame's points inform the extrinsic),
 ///   - the marginalization prior of the frames that left (at start: a Gaussian prior on the
 ///     first frame from the static initialization, which also fixes the gauge),
 /// → solve → re-associate the newest frame at the solution and solve again
@@ -65,7 +69,9 @@ struct WindowResult {
   size_t window_frames = 0;
   int solver_iterations = 0;  ///< summed over the solves of this sweep
   int prior_rank = 0;         ///< rows of the current marginalization prior
-  size_t lidar_factors = 0;   ///< LiDAR residual blocks in the last solve (all frames)
+  size_t lidar_factors = 0;   ///< LiDAR point factors in the last solve (newest frame)
+  /// Marginalizations so far that failed (the prior then restarts from the kept frame).
+  size_t marginalization_failures = 0;
 };
 
 class WindowEstimator {
@@ -125,6 +131,7 @@ class WindowEstimator {
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
   std::deque<std::unique_ptr<Frame>> frames_;  ///< oldest first; blocks stay at fixed addresses
   MarginalizationResult prior_;
+  size_t marginalization_failures_ = 0;
   bool have_keyframe_ = false;
   Eigen::Isometry3d T_world_last_keyframe_ = Eigen::Isometry3d::Identity();
 };
