@@ -75,6 +75,8 @@ ConfigIssues WindowEstimatorConfig::Validate() const {
   CheckPositive(issues, "init_sigma_velocity_mps", init_sigma_velocity_mps);
   CheckPositive(issues, "init_sigma_bias_acc_mps2", init_sigma_bias_acc_mps2);
   CheckPositive(issues, "init_sigma_bias_gyro_radps", init_sigma_bias_gyro_radps);
+  CheckInRange(issues, "bias_prior_sigma_acc_mps2", bias_prior_sigma_acc_mps2, 0.0, 10.0);
+  CheckInRange(issues, "bias_prior_sigma_gyro_radps", bias_prior_sigma_gyro_radps, 0.0, 1.0);
   return issues;
 }
 
@@ -94,6 +96,14 @@ WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn no
   sigmas << Eigen::Vector3d::Constant(config.extrinsic_prior_sigma_m),
       Eigen::Vector3d::Constant(config.extrinsic_prior_sigma_rad);
   extrinsic_prior_ = DiagonalPrior({{extrinsic_.data(), &manifold_}}, sigmas);
+  if (config.bias_prior_sigma_acc_mps2 > 0.0 && config.bias_prior_sigma_gyro_radps > 0.0) {
+    zero_speed_bias_.assign(kSpeedBiasSize, 0.0);
+    Eigen::VectorXd sb_sigmas(kSpeedBiasSize);
+    sb_sigmas << Eigen::Vector3d::Constant(1e3),  // velocity: no information
+        Eigen::Vector3d::Constant(config.bias_prior_sigma_acc_mps2),
+        Eigen::Vector3d::Constant(config.bias_prior_sigma_gyro_radps);
+    bias_prior_ = DiagonalPrior({{zero_speed_bias_.data(), nullptr}}, sb_sigmas);
+  }
 }
 
 WindowEstimator::~WindowEstimator() = default;
@@ -189,6 +199,14 @@ void WindowEstimator::Associate(Frame* f) {
   f->line_factors = lines.size();
 }
 
+void WindowEstimator::Prealign(Frame* f) const {
+  const Eigen::Isometry3d& T_il = config_.odometry.T_imu_lidar;
+  const MatchResult m = matcher_.Match(f->planes_lidar, f->edges_lidar, plane_map_, edge_map_,
+                                       PoseFromParameters(f->pose.data()) * T_il);
+  if (m.plane_inliers + m.edge_inliers < config_.odometry.min_inliers) return;
+  PoseToParameters(m.T_world_lidar * T_il.inverse(), f->pose.data());
+}
+
 void WindowEstimator::SetInitialPrior(Frame* f) {
   Eigen::VectorXd sigmas(kPoseTangentSize + kSpeedBiasSize);
   sigmas << Eigen::Vector3d::Constant(config_.init_sigma_position_m),
@@ -221,6 +239,9 @@ int WindowEstimator::Solve(WindowResult* result) {
     Frame& f = *frames_[k];
     problem.AddParameterBlock(f.pose.data(), kPoseSize, &manifold_);
     problem.AddParameterBlock(f.speed_bias.data(), kSpeedBiasSize);
+    if (bias_prior_ != nullptr) {
+      problem.AddResidualBlock(bias_prior_.get(), nullptr, f.speed_bias.data());
+    }
     for (const auto& c : f.lidar) {
       problem.AddResidualBlock(c.get(), &huber_, f.pose.data(), extrinsic_.data());
     }
@@ -389,15 +410,29 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     SetInitialPrior(frame.get());
   else
     Preintegrate(*frames_.back(), frame.get());  // without it: LiDAR and prior only
-  if (plane_map_.size() > 0) Associate(frame.get());
+  if (plane_map_.size() > 0) {
+    if (config_.prealign) Prealign(frame.get());
+    Associate(frame.get());
+  }
   result.times.match_ms = timer.Lap();
   frames_.push_back(std::move(frame));
   while (imu_.size() > 1 && imu_[1].t_ns <= scan.t_end_ns) imu_.pop_front();
 
   Frame& newest = *frames_.back();
+  const Eigen::Isometry3d predicted = PoseFromParameters(newest.pose.data());
   if (frames_.size() > 1) {
     out.solver_iterations += Solve(&out);
+    Eigen::Isometry3d T_associated = predicted;
     for (int i = 0; i < config_.reassociations && plane_map_.size() > 0; ++i) {
+      // Again only while the solve moves the newest pose (ScanMatcher's rule).
+      const Eigen::Isometry3d T = PoseFromParameters(newest.pose.data());
+      const Eigen::Isometry3d moved = T_associated.inverse() * T;
+      if (moved.translation().norm() < config_.odometry.matcher.reassociate_translation_m &&
+          Eigen::AngleAxisd(moved.linear()).angle() <
+              config_.odometry.matcher.reassociate_rotation_rad) {
+        break;
+      }
+      T_associated = T;
       result.times.optimize_ms += timer.Lap();
       Associate(&newest);
       result.times.match_ms += timer.Lap();

@@ -29,6 +29,7 @@ struct Options {
   int iterations = swlio::estimator::WindowEstimatorConfig{}.max_iterations;
   int reassociations = swlio::estimator::WindowEstimatorConfig{}.reassociations;
   double lidar_sigma_m = swlio::estimator::WindowEstimatorConfig{}.lidar_sigma_m;
+  double bias_prior_acc = swlio::estimator::WindowEstimatorConfig{}.bias_prior_sigma_acc_mps2;
   bool estimate_extrinsic = false;
 };
 
@@ -151,6 +152,7 @@ int Run(const Options& opt) {
   window_config.max_iterations = opt.iterations;
   window_config.reassociations = opt.reassociations;
   window_config.lidar_sigma_m = opt.lidar_sigma_m;
+  window_config.bias_prior_sigma_acc_mps2 = opt.bias_prior_acc;
   window_config.estimate_extrinsic = opt.estimate_extrinsic;
   if (const auto issues = window_config.Validate(); !issues.empty()) {
     for (const auto& issue : issues)
@@ -213,6 +215,9 @@ int Main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--lidar-sigma", opt.lidar_sigma_m,
                  "point-to-plane/line standard deviation, m (tightly-coupled)")
+      ->capture_default_str();
+  app.add_option("--bias-prior-acc", opt.bias_prior_acc,
+                 "weak prior on every frame's accelerometer bias, m/s² (0: none; tightly-coupled)")
       ->capture_default_str();
   app.add_flag("--estimate-extrinsic", opt.estimate_extrinsic,
                "refine T_imu_lidar online (tightly-coupled; weak prior on the configured value)");
