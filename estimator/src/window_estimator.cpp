@@ -96,12 +96,13 @@ WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn no
   sigmas << Eigen::Vector3d::Constant(config.extrinsic_prior_sigma_m),
       Eigen::Vector3d::Constant(config.extrinsic_prior_sigma_rad);
   extrinsic_prior_ = DiagonalPrior({{extrinsic_.data(), &manifold_}}, sigmas);
-  if (config.bias_prior_sigma_acc_mps2 > 0.0 && config.bias_prior_sigma_gyro_radps > 0.0) {
+  if (config.bias_prior_sigma_acc_mps2 > 0.0 || config.bias_prior_sigma_gyro_radps > 0.0) {
+    auto sigma_or_none = [](double sigma) { return sigma > 0.0 ? sigma : 1e3; };
     zero_speed_bias_.assign(kSpeedBiasSize, 0.0);
     Eigen::VectorXd sb_sigmas(kSpeedBiasSize);
     sb_sigmas << Eigen::Vector3d::Constant(1e3),  // velocity: no information
-        Eigen::Vector3d::Constant(config.bias_prior_sigma_acc_mps2),
-        Eigen::Vector3d::Constant(config.bias_prior_sigma_gyro_radps);
+        Eigen::Vector3d::Constant(sigma_or_none(config.bias_prior_sigma_acc_mps2)),
+        Eigen::Vector3d::Constant(sigma_or_none(config.bias_prior_sigma_gyro_radps));
     bias_prior_ = DiagonalPrior({{zero_speed_bias_.data(), nullptr}}, sb_sigmas);
   }
 }
