@@ -2,15 +2,19 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "swlio/core/time.h"
+#include "test_data.h"
 
 namespace swlio::daemon {
 namespace {
@@ -216,6 +220,28 @@ TEST(SdNotifySink, NoSocketIsNotAnError) {
   unsetenv("NOTIFY_SOCKET");
   SdNotifySink sink;
   EXPECT_TRUE(sink.Send("STATUS=test"));
+}
+
+TEST(SdNotifySink, DeliversToTheNotifySocket) {
+  // Play the service manager: a datagram socket named by NOTIFY_SOCKET, as systemd provides.
+  const std::string path = (test::MakeTempDir("notify") / "notify.sock").string();
+  const int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  ASSERT_GE(fd, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  ASSERT_LT(path.size(), sizeof(addr.sun_path));
+  std::memcpy(addr.sun_path, path.c_str(), path.size() + 1);
+  ASSERT_EQ(bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof(addr)), 0);
+  ASSERT_EQ(setenv("NOTIFY_SOCKET", path.c_str(), 1), 0);
+  SdNotifySink sink;
+  SystemdNotifier notifier(&sink, nullptr, 0);
+  EXPECT_TRUE(notifier.Ready("initialized"));
+  unsetenv("NOTIFY_SOCKET");
+  char buffer[256] = {};
+  const ssize_t n = recv(fd, buffer, sizeof(buffer) - 1, MSG_DONTWAIT);
+  close(fd);
+  ASSERT_GT(n, 0);
+  EXPECT_EQ(std::string(buffer, static_cast<size_t>(n)), "READY=1\nSTATUS=initialized");
 }
 
 }  // namespace
