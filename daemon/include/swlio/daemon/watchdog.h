@@ -80,6 +80,9 @@ class Watchdog {
   };
 
   /// @param stall_timeout_ns a thread whose last beat is older than this is stalled (> 0).
+  ///        Use at most the systemd watchdog interval W: pings stop at most this long after a
+  ///        thread hangs, and systemd acts W after the last ping, so a hang is caught within
+  ///        stall_timeout_ns + W.
   /// @param clock monotonic ns source; MonotonicNowNs when empty.
   explicit Watchdog(int64_t stall_timeout_ns, Clock clock = {});
   ~Watchdog();
