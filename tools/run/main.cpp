@@ -22,7 +22,7 @@ using swlio::estimator::OdometryResult;
 using swlio::estimator::OdometryStatus;
 
 struct Options {
-  std::string dir, out, timings, config, mode = "lidar-only";
+  std::string dir, out, timings, diagnostics, config, mode = "lidar-only";
 };
 
 /// T_imu_lidar from a recording manifest (translation_m and quaternion_xyzw lines), if present:
@@ -69,6 +69,23 @@ void WriteTimings(std::ostream& out, const OdometryResult& r, int64_t t_ns) {
   std::snprintf(line, sizeof line, "%lld,%zu,%.4f,%.4f,%.4f,%.4f", static_cast<long long>(t_ns),
                 r.points_in, r.times.frontend_ms, r.times.match_ms, r.times.optimize_ms,
                 r.times.total_ms);
+  out << line << '\n';
+}
+
+constexpr const char* kDiagnosticsHeader =
+    "t_ns,status,converged,iterations,plane_inliers,edge_inliers,cost,"
+    "hessian_eig_min,hessian_eig_max,planes,edges,uncovered,keyframe";
+
+/// One line per sweep: what the registration reported (degeneracy: the smallest eigenvalue of
+/// the 6×6 Gauss–Newton Hessian against the largest).
+void WriteDiagnostics(std::ostream& out, const OdometryResult& r, int64_t t_ns) {
+  char line[512];
+  std::snprintf(line, sizeof line, "%lld,%s,%d,%d,%zu,%zu,%.6g,%.6g,%.6g,%zu,%zu,%zu,%d",
+                static_cast<long long>(t_ns), swlio::estimator::ToString(r.status),
+                r.match.converged ? 1 : 0, r.match.iterations, r.match.plane_inliers,
+                r.match.edge_inliers, r.match.cost, r.match.hessian_eigenvalues(0),
+                r.match.hessian_eigenvalues(5), r.planes, r.edges, r.points_uncovered,
+                r.keyframe ? 1 : 0);
   out << line << '\n';
 }
 
@@ -129,14 +146,21 @@ int Run(const Options& opt) {
     return 1;
   }
   std::ofstream tum(opt.out);
-  std::ofstream timings;
+  std::ofstream timings, diagnostics;
   if (!opt.timings.empty()) timings.open(opt.timings);
-  if (!tum || (!opt.timings.empty() && !timings)) {
-    std::cerr << "swlio-run: cannot write " << (!tum ? opt.out : opt.timings) << "\n";
-    return 1;
+  if (!opt.diagnostics.empty()) diagnostics.open(opt.diagnostics);
+  for (const auto& [stream, path] :
+       {std::pair<const std::ofstream*, const std::string*>{&tum, &opt.out},
+        {&timings, &opt.timings},
+        {&diagnostics, &opt.diagnostics}}) {
+    if (!path->empty() && !*stream) {
+      std::cerr << "swlio-run: cannot write " << *path << "\n";
+      return 1;
+    }
   }
   tum << "# timestamp tx ty tz qx qy qz qw  (IMU frame, host time, sweep end)\n";
   if (timings) timings << "t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms\n";
+  if (diagnostics) diagnostics << kDiagnosticsHeader << '\n';
 
   swlio::estimator::LidarOdometry odometry(config, &ThreadCpuNs);
   swlio::daemon::RecordingEvent e;
@@ -149,6 +173,7 @@ int Run(const Options& opt) {
     const OdometryResult r = odometry.AddScan(e.scan);
     summary.Add(r);
     if (timings) WriteTimings(timings, r, e.scan.t_end_ns);
+    if (diagnostics) WriteDiagnostics(diagnostics, r, e.scan.t_end_ns);
     if (r.status != OdometryStatus::kInitializing) WriteTum(tum, r.state);
   }
   summary.Print();
@@ -158,8 +183,7 @@ int Run(const Options& opt) {
 int Main(int argc, char** argv) {
   CLI::App app{"swlio-run: the estimator offline on a recording folder"};
   Options opt;
-  app.add_option("dir", opt.dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")
-      ->required();
+  app.add_option("dir", opt.dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")->required();
   app.add_option("--mode", opt.mode, "estimator mode")
       ->check(CLI::IsMember({"lidar-only"}))
       ->capture_default_str();
@@ -167,6 +191,9 @@ int Main(int argc, char** argv) {
   app.add_option("--timings", opt.timings,
                  "per-scan stage timings CSV (t_ns,points,frontend_ms,match_ms,optimize_ms,"
                  "total_ms; thread CPU time, 0 for a stage that did not run)");
+  app.add_option("--diagnostics", opt.diagnostics,
+                 "per-scan registration CSV (status, convergence, iterations, inliers, cost, "
+                 "Hessian eigenvalues, feature counts, keyframe)");
   app.add_option("--config", opt.config,
                  "daemon configuration (swlio.yaml): sensors, estimator, extrinsic (a manifest's "
                  "extrinsic wins)");
