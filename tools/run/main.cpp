@@ -91,12 +91,13 @@ void WriteDiagnostics(std::ostream& out, const OdometryResult& r, int64_t t_ns) 
 
 /// Running means for the summary line.
 struct Summary {
-  size_t scans = 0, tracked = 0, failed = 0;
+  size_t scans = 0, tracked = 0, failed = 0, skipped = 0;
   double total_ms = 0.0, planes = 0.0, edges = 0.0, inliers = 0.0, iterations = 0.0;
 
   void Add(const OdometryResult& r) {
     ++scans;
-    if (r.status == OdometryStatus::kInitializing) return;
+    skipped += r.status == OdometryStatus::kSkipped ? 1 : 0;
+    if (r.status == OdometryStatus::kInitializing || r.status == OdometryStatus::kSkipped) return;
     (r.status == OdometryStatus::kTracking ? tracked : failed)++;
     total_ms += r.times.total_ms;
     planes += static_cast<double>(r.planes);
@@ -107,10 +108,11 @@ struct Summary {
   void Print() const {
     const double n = std::max<double>(1.0, static_cast<double>(tracked + failed));
     std::printf(
-        "{\"scans\": %zu, \"tracked\": %zu, \"match_failed\": %zu, \"mean_scan_ms\": %.2f, "
+        "{\"scans\": %zu, \"tracked\": %zu, \"match_failed\": %zu, \"skipped\": %zu, "
+        "\"mean_scan_ms\": %.2f, "
         "\"mean_planes\": %.0f, \"mean_edges\": %.0f, \"mean_inliers\": %.0f, "
         "\"mean_iterations\": %.2f}\n",
-        scans, tracked, failed, total_ms / n, planes / n, edges / n, inliers / n, iterations / n);
+        scans, tracked, failed, skipped, total_ms / n, planes / n, edges / n, inliers / n, iterations / n);
   }
 };
 
@@ -174,7 +176,9 @@ int Run(const Options& opt) {
     summary.Add(r);
     if (timings) WriteTimings(timings, r, e.scan.t_end_ns);
     if (diagnostics) WriteDiagnostics(diagnostics, r, e.scan.t_end_ns);
-    if (r.status != OdometryStatus::kInitializing) WriteTum(tum, r.state);
+    if (r.status == OdometryStatus::kTracking || r.status == OdometryStatus::kMatchFailed) {
+      WriteTum(tum, r.state);
+    }
   }
   summary.Print();
   return 0;

@@ -48,7 +48,12 @@ struct LidarOdometryConfig {
   ConfigIssues Validate() const;
 };
 
-enum class OdometryStatus { kInitializing, kTracking, kMatchFailed };
+enum class OdometryStatus {
+  kInitializing,  ///< not yet initialized: the sweep was not used
+  kTracking,      ///< registered against the map
+  kMatchFailed,   ///< too few matched features: the IMU prediction was kept
+  kSkipped,       ///< starts before the current state (out of order, overlap): not used
+};
 
 const char* ToString(OdometryStatus status);
 
