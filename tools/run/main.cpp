@@ -112,7 +112,8 @@ struct Summary {
         "\"mean_scan_ms\": %.2f, "
         "\"mean_planes\": %.0f, \"mean_edges\": %.0f, \"mean_inliers\": %.0f, "
         "\"mean_iterations\": %.2f}\n",
-        scans, tracked, failed, skipped, total_ms / n, planes / n, edges / n, inliers / n, iterations / n);
+        scans, tracked, failed, skipped, total_ms / n, planes / n, edges / n, inliers / n,
+        iterations / n);
   }
 };
 
