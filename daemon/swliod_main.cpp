@@ -3,7 +3,10 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <string>
+#include <vector>
 
+#include "swlio/daemon/config_files.h"
 #include "swlio/daemon/config_loader.h"
 
 namespace {
@@ -22,6 +25,10 @@ int Run(int argc, char** argv) {
     std::cerr << check_config << ": " << loaded.errors.size() << " error(s)\n";
     return 1;
   }
+  const std::vector<std::string> file_problems = swlio::daemon::CheckReferencedFiles(loaded.config);
+  for (const std::string& problem : file_problems)
+    std::cerr << check_config << ": " << problem << "\n";
+  if (!file_problems.empty()) return 1;
   std::cout << check_config << ": OK\n";
   return 0;
 }

@@ -34,6 +34,8 @@ const char* ToString(OdometryStatus status) {
       return "tracking";
     case OdometryStatus::kMatchFailed:
       return "match_failed";
+    case OdometryStatus::kSkipped:
+      return "skipped";
   }
   return "unknown";
 }
@@ -72,7 +74,11 @@ OdometryResult LidarOdometry::AddScan(const Scan& scan) {
   StageTimer timer(now_ns_);
   OdometryResult result;
   result.points_in = scan.points.size();
-  if (!initialized_ || scan.t_start_ns < propagator_.state().t_ns) return result;  // skipped
+  if (!initialized_) return result;
+  if (scan.t_start_ns < propagator_.state().t_ns) {
+    result.status = OdometryStatus::kSkipped;
+    return result;
+  }
 
   PropagateTo(scan.t_end_ns);
   const DeskewResult deskew = Deskew(scan, propagator_.track(), config_.T_imu_lidar, &xyz_);

@@ -64,6 +64,7 @@ ConfigIssues ScanMatcherConfig::Validate() const {
   CheckPositive(issues, "huber_m", huber_m);
   CheckPositive(issues, "max_residual_m", max_residual_m);
   CheckInRange(issues, "max_iterations", max_iterations, 1, 100);
+  CheckInRange(issues, "max_associations", max_associations, 1, 100);
   CheckInRange(issues, "reassociate_translation_m", reassociate_translation_m, 0.0, 1.0);
   CheckInRange(issues, "reassociate_rotation_rad", reassociate_rotation_rad, 0.0, 0.5);
   return issues;
@@ -154,6 +155,7 @@ MatchResult ScanMatcher::Match(const std::vector<Eigen::Vector3d>& planar_lidar,
   std::vector<LineCorrespondence> lines;
   Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, &planes, &lines);
   bool fresh = true;
+  int associations = 1;
   Normal ne;
   for (int it = 0; it < config_.max_iterations; ++it) {
     ne = Normal{};
@@ -163,18 +165,21 @@ MatchResult ScanMatcher::Match(const std::vector<Eigen::Vector3d>& planar_lidar,
     const Eigen::Matrix<double, 6, 1> delta = ne.H.ldlt().solve(-ne.b);
     if (!delta.allFinite()) break;
     T = T * lie::ExpSE3(delta);
-    if (fresh && delta.head<3>().norm() < config_.converged_translation_m &&
+    const bool final_set = associations >= config_.max_associations;
+    if ((fresh || final_set) && delta.head<3>().norm() < config_.converged_translation_m &&
         delta.tail<3>().norm() < config_.converged_rotation_rad) {
       result.converged = true;
       break;
     }
     const Eigen::Isometry3d moved = T_associated.inverse() * T;
-    fresh = moved.translation().norm() > config_.reassociate_translation_m ||
-            Eigen::AngleAxisd(moved.linear()).angle() > config_.reassociate_rotation_rad ||
-            delta.head<3>().norm() < config_.converged_translation_m;
+    fresh = !final_set &&
+            (moved.translation().norm() > config_.reassociate_translation_m ||
+             Eigen::AngleAxisd(moved.linear()).angle() > config_.reassociate_rotation_rad ||
+             delta.head<3>().norm() < config_.converged_translation_m);
     if (fresh) {
       Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, &planes, &lines);
       T_associated = T;
+      ++associations;
     }
   }
   result.T_world_lidar = T;

@@ -3,9 +3,9 @@
 // (this test binary only).
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
+#include <memory>
+
+#include "allocation_counter.h"
 
 #include "labelled_scan.h"
 #include "sim_setup.h"
@@ -13,22 +13,14 @@
 #include "swlio/estimator/segmentation.h"
 #include "swlio/estimator/voxel_filter.h"
 
-namespace {
-std::atomic<int64_t> g_allocations{0};
-}  // namespace
-
-[[gnu::noinline]] void* operator new(size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-// Not inlined: GCC would otherwise pair an inlined free() with `new` and warn
-// (-Wmismatched-new-delete) although both sides are the replacements here.
-[[gnu::noinline]] void operator delete(void* p) noexcept { std::free(p); }
-[[gnu::noinline]] void operator delete(void* p, size_t) noexcept { std::free(p); }
-
 namespace swlio::estimator {
 namespace {
+
+TEST(AllocationCounter, SeesOperatorNew) {  // else the tests below could not fail
+  const int64_t before = test::HeapAllocations();
+  auto p = std::make_unique<int>(1);
+  EXPECT_EQ(test::HeapAllocations() - before, 1);
+}
 
 TEST(FrontEnd, SecondPassOverASweepDoesNotAllocate) {
   auto setup = sim::MakeSimSetup("short", 1, 1.0);
@@ -51,10 +43,10 @@ TEST(FrontEnd, SecondPassOverASweepDoesNotAllocate) {
   };
   run();
   const size_t planes = features.planes.size();
-  const int64_t before = g_allocations.load();
+  const int64_t before = test::HeapAllocations();
   ASSERT_GT(before, 0);  // the counter sees the first pass grow its buffers
   run();
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(test::HeapAllocations() - before, 0);
   EXPECT_EQ(features.planes.size(), planes);  // and the same result
   EXPECT_GT(planes, 0u);
 }

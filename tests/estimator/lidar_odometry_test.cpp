@@ -51,6 +51,8 @@ TEST(LidarOdometry, SweepsBeforeAStandingStartAreSkipped) {
   EXPECT_EQ(r.state.t_ns, t + 99 * kNsPerMs);
   EXPECT_LT(r.state.T_world_imu.translation().norm(), 1e-3) << "standing: no motion";
   EXPECT_EQ(r.times.total_ms, 0.0) << "no clock injected: no timings";
+  // A sweep that starts before the state it would follow is reported, not used.
+  EXPECT_EQ(odometry.AddScan(Sweep(t + 50 * kNsPerMs)).status, OdometryStatus::kSkipped);
 }
 
 TEST(LidarOdometry, StageTimesComeFromTheInjectedClock) {

@@ -4,28 +4,12 @@
 // serialized sample with malloc, which this counter does not see. Domain 119.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
+#include "allocation_counter.h"
 
 #include "ipc_test_util.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
 #include "swlio/ipc/subscriber.h"
-
-namespace {
-std::atomic<int64_t> g_allocations{0};
-}  // namespace
-
-[[gnu::noinline]] void* operator new(size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-// Not inlined: GCC would otherwise pair an inlined free() with `new` and warn
-// (-Wmismatched-new-delete) although both sides are the replacements here.
-[[gnu::noinline]] void operator delete(void* p) noexcept { std::free(p); }
-[[gnu::noinline]] void operator delete(void* p, size_t) noexcept { std::free(p); }
 
 namespace swlio::ipc {
 namespace {
@@ -49,7 +33,7 @@ TEST(IpcPublish, PoseAndOdometryDoNotAllocate) {
   odometry.frame_id = pose.frame_id;
   odometry.child_frame_id = "another frame name longer than a small-string buffer";
 
-  const int64_t before = g_allocations.load();
+  const int64_t before = test::HeapAllocations();
   ASSERT_GT(before, 0);  // the counter sees the set-up's allocations
   for (int i = 0; i < 100; ++i) {
     pose.t_ns += 2'500'000;
@@ -57,7 +41,7 @@ TEST(IpcPublish, PoseAndOdometryDoNotAllocate) {
     ASSERT_TRUE(publisher->PublishPose(pose));
     ASSERT_TRUE(publisher->PublishOdometry(odometry));
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(test::HeapAllocations() - before, 0);
   // The samples did go out: the subscriber (which allocates, after counting) takes them.
   EXPECT_TRUE(test_util::WaitFor([&] { return subscriber->TakePoses().size() > 0; }));
 }

@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -15,16 +14,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path DecodeTool() { return fs::read_symlink("/proc/self/exe").parent_path() / "swlio-decode"; }
-
 std::string RunDecode(const std::string& args) {
-  std::string out;
-  std::FILE* p = ::popen((DecodeTool().string() + " " + args + " 2>&1").c_str(), "r");
-  if (p == nullptr) return out;
-  char buf[4096];
-  for (size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-  ::pclose(p);
-  return out;
+  const fs::path tool = fs::read_symlink("/proc/self/exe").parent_path() / "swlio-decode";
+  return swlio::test::RunCommand(tool.string() + " " + args + " 2>&1");
 }
 
 bool Has(const std::string& json, const std::string& fragment) {

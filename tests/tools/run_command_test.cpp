@@ -39,16 +39,28 @@ TEST(RunCommand, LidarOnlyFollowsTheSimulatedDrive) {
   ASSERT_TRUE(sim::WriteRecording(*setup, dir, &stats, &error)) << error;
 
   int code = 0;
-  const std::string out = test::RunCommand(
-      tool.string() + " " + dir.string() + " --mode lidar-only --out " +
-          (dir / "est.tum").string() + " --timings " + (dir / "t.csv").string() + " 2>&1",
-      &code);
+  const std::string out =
+      test::RunCommand(tool.string() + " " + dir.string() + " --mode lidar-only --out " +
+                           (dir / "est.tum").string() + " --timings " + (dir / "t.csv").string() +
+                           " --diagnostics " + (dir / "d.csv").string() + " 2>&1",
+                       &code);
   ASSERT_EQ(code, 0) << out;
   std::string header;
   const size_t timing_lines = CountLines(dir / "t.csv", &header);
   EXPECT_EQ(header, "t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms");
   EXPECT_GE(timing_lines, 240u);  // one per sweep (10 Hz) plus the header
   EXPECT_GE(CountLines(dir / "est.tum", nullptr), 200u);
+  EXPECT_EQ(CountLines(dir / "d.csv", &header), timing_lines);
+  EXPECT_EQ(header.rfind("t_ns,status,converged,iterations,", 0), 0u) << header;
+  std::ifstream diag(dir / "d.csv");
+  std::string line;
+  size_t tracking = 0, initializing = 0;
+  while (std::getline(diag, line)) {
+    tracking += line.find(",tracking,1,") != std::string::npos ? 1 : 0;  // converged
+    initializing += line.find(",initializing,") != std::string::npos ? 1 : 0;
+  }
+  EXPECT_GE(initializing, 1u) << "the drive starts standing";
+  EXPECT_GE(tracking, 180u);
 
   eval::ApeOptions options;
   options.alignment = eval::Alignment::kSe3;

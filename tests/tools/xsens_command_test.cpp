@@ -17,21 +17,9 @@ namespace {
 namespace fs = std::filesystem;
 
 /// build/bin/swlio-decode, beside this test program; empty when not built.
-fs::path DecodeTool() {
-  const fs::path tool = fs::read_symlink("/proc/self/exe").parent_path() / "swlio-decode";
-  return fs::exists(tool) ? tool : fs::path{};
-}
+fs::path DecodeTool() { return test::ToolPath("swlio-decode"); }
 
-std::string RunCommand(const std::string& command) {
-  std::string out;
-  std::FILE* p = ::popen(command.c_str(), "r");
-  if (p == nullptr) return out;
-  char buf[4096];
-  size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  ::pclose(p);
-  return out;
-}
+using test::RunCommand;
 
 TEST(XsensCommand, SummaryJsonHasTheRequiredCounters) {
   SWLIO_REQUIRE_DATA(bin, "xsens_einride_mti-g-710/1/output.bin");

@@ -24,7 +24,7 @@ using swlio::estimator::OdometryResult;
 using swlio::estimator::OdometryStatus;
 
 struct Options {
-  std::string dir, out, timings, config, mode = "tightly-coupled";
+  std::string dir, out, timings, diagnostics, config, mode = "tightly-coupled";
   size_t window_size = swlio::estimator::WindowEstimatorConfig{}.window_size;
   int iterations = swlio::estimator::WindowEstimatorConfig{}.max_iterations;
   int reassociations = swlio::estimator::WindowEstimatorConfig{}.reassociations;
@@ -80,14 +80,32 @@ void WriteTimings(std::ostream& out, const OdometryResult& r, int64_t t_ns) {
   out << line << '\n';
 }
 
+constexpr const char* kDiagnosticsHeader =
+    "t_ns,status,converged,iterations,plane_inliers,edge_inliers,cost,"
+    "hessian_eig_min,hessian_eig_max,planes,edges,uncovered,keyframe";
+
+/// One line per sweep: what the registration reported (degeneracy: the smallest eigenvalue of
+/// the 6×6 Gauss–Newton Hessian against the largest).
+void WriteDiagnostics(std::ostream& out, const OdometryResult& r, int64_t t_ns) {
+  char line[512];
+  std::snprintf(line, sizeof line, "%lld,%s,%d,%d,%zu,%zu,%.6g,%.6g,%.6g,%zu,%zu,%zu,%d",
+                static_cast<long long>(t_ns), swlio::estimator::ToString(r.status),
+                r.match.converged ? 1 : 0, r.match.iterations, r.match.plane_inliers,
+                r.match.edge_inliers, r.match.cost, r.match.hessian_eigenvalues(0),
+                r.match.hessian_eigenvalues(5), r.planes, r.edges, r.points_uncovered,
+                r.keyframe ? 1 : 0);
+  out << line << '\n';
+}
+
 /// Running means for the summary line.
 struct Summary {
-  size_t scans = 0, tracked = 0, failed = 0;
+  size_t scans = 0, tracked = 0, failed = 0, skipped = 0;
   double total_ms = 0.0, planes = 0.0, edges = 0.0, inliers = 0.0, iterations = 0.0;
 
   void Add(const OdometryResult& r) {
     ++scans;
-    if (r.status == OdometryStatus::kInitializing) return;
+    skipped += r.status == OdometryStatus::kSkipped ? 1 : 0;
+    if (r.status == OdometryStatus::kInitializing || r.status == OdometryStatus::kSkipped) return;
     (r.status == OdometryStatus::kTracking ? tracked : failed)++;
     total_ms += r.times.total_ms;
     planes += static_cast<double>(r.planes);
@@ -98,10 +116,12 @@ struct Summary {
   void Print() const {
     const double n = std::max<double>(1.0, static_cast<double>(tracked + failed));
     std::printf(
-        "{\"scans\": %zu, \"tracked\": %zu, \"match_failed\": %zu, \"mean_scan_ms\": %.2f, "
+        "{\"scans\": %zu, \"tracked\": %zu, \"match_failed\": %zu, \"skipped\": %zu, "
+        "\"mean_scan_ms\": %.2f, "
         "\"mean_planes\": %.0f, \"mean_edges\": %.0f, \"mean_inliers\": %.0f, "
         "\"mean_iterations\": %.2f}\n",
-        scans, tracked, failed, total_ms / n, planes / n, edges / n, inliers / n, iterations / n);
+        scans, tracked, failed, skipped, total_ms / n, planes / n, edges / n, inliers / n,
+        iterations / n);
   }
 };
 
@@ -137,14 +157,21 @@ int Run(const Options& opt) {
     return 1;
   }
   std::ofstream tum(opt.out);
-  std::ofstream timings;
+  std::ofstream timings, diagnostics;
   if (!opt.timings.empty()) timings.open(opt.timings);
-  if (!tum || (!opt.timings.empty() && !timings)) {
-    std::cerr << "swlio-run: cannot write " << (!tum ? opt.out : opt.timings) << "\n";
-    return 1;
+  if (!opt.diagnostics.empty()) diagnostics.open(opt.diagnostics);
+  for (const auto& [stream, path] :
+       {std::pair<const std::ofstream*, const std::string*>{&tum, &opt.out},
+        {&timings, &opt.timings},
+        {&diagnostics, &opt.diagnostics}}) {
+    if (!path->empty() && !*stream) {
+      std::cerr << "swlio-run: cannot write " << *path << "\n";
+      return 1;
+    }
   }
   tum << "# timestamp tx ty tz qx qy qz qw  (IMU frame, host time, sweep end)\n";
   if (timings) timings << "t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms\n";
+  if (diagnostics) diagnostics << kDiagnosticsHeader << '\n';
 
   swlio::estimator::WindowEstimatorConfig window_config;
   window_config.odometry = config;
@@ -168,7 +195,10 @@ int Run(const Options& opt) {
         tightly_coupled ? window.AddScan(scan).odometry : odometry.AddScan(scan);
     summary.Add(r);
     if (timings) WriteTimings(timings, r, scan.t_end_ns);
-    if (r.status != OdometryStatus::kInitializing) WriteTum(tum, r.state);
+    if (diagnostics) WriteDiagnostics(diagnostics, r, scan.t_end_ns);
+    if (r.status == OdometryStatus::kTracking || r.status == OdometryStatus::kMatchFailed) {
+      WriteTum(tum, r.state);
+    }
   };
   // The window pre-integrates the IMU up to each sweep's end: a sweep waits until an IMU sample
   // past its end has arrived (serial bursts and stalls deliver samples late), else the factor
@@ -225,6 +255,9 @@ int Main(int argc, char** argv) {
   app.add_option("--timings", opt.timings,
                  "per-scan stage timings CSV (t_ns,points,frontend_ms,match_ms,optimize_ms,"
                  "total_ms; thread CPU time, 0 for a stage that did not run)");
+  app.add_option("--diagnostics", opt.diagnostics,
+                 "per-scan registration CSV (status, convergence, iterations, inliers, cost, "
+                 "Hessian eigenvalues, feature counts, keyframe)");
   app.add_option("--config", opt.config,
                  "daemon configuration (swlio.yaml): sensors, estimator, extrinsic (a manifest's "
                  "extrinsic wins)");

@@ -72,11 +72,21 @@ bool OpenEndpoints(const LiveOptions& options, Endpoints* ep, std::string* error
 }
 
 /// Waits (up to `timeout_s`) until the reader has taken every byte written to the pty: closing
-/// the master hangs the line up and would discard what is still queued.
+/// the master hangs the line up and would discard what is still queued. The queue must stay
+/// empty for 50 ms: bytes still in the pty's flip buffer (pushed to the line discipline by a
+/// kernel worker, late under load) are not counted by FIONREAD yet.
 void WaitForPtyDrained(int slave_fd, double timeout_s) {
   const int64_t deadline = MonotonicNs() + SecToNs(timeout_s);
+  int64_t empty_since = -1;
   int queued = 0;
-  while (ioctl(slave_fd, FIONREAD, &queued) == 0 && queued > 0 && MonotonicNs() < deadline) {
+  while (ioctl(slave_fd, FIONREAD, &queued) == 0 && MonotonicNs() < deadline) {
+    if (queued > 0) {
+      empty_since = -1;
+    } else if (empty_since < 0) {
+      empty_since = MonotonicNs();
+    } else if (MonotonicNs() - empty_since >= 50 * kNsPerMs) {
+      return;
+    }
     SleepUntil(MonotonicNs() + kNsPerMs);
   }
 }

@@ -8,11 +8,11 @@
 /// sample) → de-skew into the sweep-end LiDAR frame → front end (segmentation, edge/planar
 /// features, voxel filter) → point-to-plane and point-to-line registration against the plane
 /// and edge maps from the propagated guess → correct the state → insert the features into the
-/// maps when the sweep is a keyframe. The corrected velocity is the propagated one plus the position correction spread over
-/// the sweep period (the IMU cannot be trusted for more in this mode).
-/// Initialization: standing still (StaticInitializer); sweeps before that are skipped.
-/// Pure library: the caller supplies samples and sweeps in time order (host ns) and, for
-/// stage timings, a clock.
+/// maps when the sweep is a keyframe. The corrected velocity is the propagated one plus the
+/// position correction spread over the sweep period (the IMU cannot be trusted for more in this
+/// mode). Initialization: standing still (StaticInitializer); sweeps before that are skipped. Pure
+/// library: the caller supplies samples and sweeps in time order (host ns) and, for stage timings,
+/// a clock.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -48,7 +48,12 @@ struct LidarOdometryConfig {
   ConfigIssues Validate() const;
 };
 
-enum class OdometryStatus { kInitializing, kTracking, kMatchFailed };
+enum class OdometryStatus {
+  kInitializing,  ///< not yet initialized: the sweep was not used
+  kTracking,      ///< registered against the map
+  kMatchFailed,   ///< too few matched features: the IMU prediction was kept
+  kSkipped,       ///< starts before the current state (out of order, overlap): not used
+};
 
 const char* ToString(OdometryStatus status);
 

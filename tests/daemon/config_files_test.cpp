@@ -1,0 +1,44 @@
+#include "swlio/daemon/config_files.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "swlio/daemon/config_loader.h"
+#include "test_data.h"
+
+namespace swlio::daemon {
+namespace {
+
+TEST(CheckReferencedFiles, ShippedConfigIsComplete) {
+  const LoadedConfig loaded = LoadConfigFile(test::SourceDir() / "config" / "swlio.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.ErrorReport();
+  EXPECT_TRUE(CheckReferencedFiles(loaded.config).empty());
+}
+
+TEST(CheckReferencedFiles, MissingDdsXmlIsReported) {
+  DaemonConfig config;
+  config.ipc.dds_config_file = (test::MakeTempDir("cfgfiles") / "absent.xml").string();
+  const auto problems = CheckReferencedFiles(config);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("cannot read"), std::string::npos) << problems[0];
+  EXPECT_NE(problems[0].find("absent.xml"), std::string::npos) << problems[0];
+}
+
+TEST(CheckReferencedFiles, NonLoopbackXmlIsReportedOnlyWhenLoopbackIsRequired) {
+  const auto path = test::MakeTempDir("cfgfiles") / "external.xml";
+  std::ofstream(path) << "<CycloneDDS><Domain><General><Interfaces>"
+                         "<NetworkInterface name=\"eth0\"/></Interfaces></General></Domain>"
+                         "</CycloneDDS>\n";
+  DaemonConfig config;
+  config.ipc.dds_config_file = path.string();
+  config.ipc.require_loopback = true;
+  const auto problems = CheckReferencedFiles(config);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("not loopback-only"), std::string::npos) << problems[0];
+  config.ipc.require_loopback = false;
+  EXPECT_TRUE(CheckReferencedFiles(config).empty());
+}
+
+}  // namespace
+}  // namespace swlio::daemon
