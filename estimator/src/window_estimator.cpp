@@ -3,7 +3,9 @@
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <array>
 #include <cmath>
 
@@ -18,9 +20,10 @@ struct WindowEstimator::Frame {
   std::array<double, kPoseSize> pose{};
   std::array<double, kSpeedBiasSize> speed_bias{};
   std::vector<Eigen::Vector3d> planes_lidar, edges_lidar;
-  std::vector<std::unique_ptr<ceres::CostFunction>> lidar;  ///< against the local map
-  /// Once the frame is no longer the newest: its LiDAR factors linearized into 6 rows.
+  /// Its point-to-plane/line factors against the local map, linearized at the newest-frame
+  /// registration (≤ 6 rows, or ≤ 12 with the extrinsic); null without LiDAR information.
   std::unique_ptr<MarginalizationPrior> lidar_linear;
+  Eigen::Isometry3d T_linearized = Eigen::Isometry3d::Identity();  ///< pose of lidar_linear
   size_t plane_factors = 0, line_factors = 0;
   std::unique_ptr<Preintegrator> pre;  ///< previous frame → this one
   std::unique_ptr<ImuFactor> imu;      ///< null for the first frame (or a failed interval)
@@ -68,6 +71,9 @@ ConfigIssues WindowEstimatorConfig::Validate() const {
   CheckInRange(issues, "reassociations", reassociations, 0, 5);
   CheckPositive(issues, "lidar_sigma_m", lidar_sigma_m);
   CheckPositive(issues, "huber_m", huber_m);
+  CheckPositive(issues, "degenerate_eigenvalue", degenerate_eigenvalue);
+  CheckInRange(issues, "lidar_floor_sigma_m", lidar_floor_sigma_m, 0.0, 1.0);
+  CheckInRange(issues, "lidar_floor_sigma_rad", lidar_floor_sigma_rad, 0.0, 0.5);
   CheckPositive(issues, "extrinsic_prior_sigma_m", extrinsic_prior_sigma_m);
   CheckPositive(issues, "extrinsic_prior_sigma_rad", extrinsic_prior_sigma_rad);
   CheckPositive(issues, "init_sigma_position_m", init_sigma_position_m);
@@ -181,19 +187,19 @@ bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) const {
   return to->imu != nullptr;
 }
 
-void WindowEstimator::Associate(Frame* f) {
+void WindowEstimator::Associate(Frame* f, LidarFactors* factors) const {
   std::vector<PlaneCorrespondence> planes;
   std::vector<LineCorrespondence> lines;
   const Eigen::Isometry3d T = PoseFromParameters(f->pose.data()) * config_.odometry.T_imu_lidar;
   matcher_.Associate(f->planes_lidar, f->edges_lidar, plane_map_, edge_map_, T, &planes, &lines);
   const double w = 1.0 / config_.lidar_sigma_m;
-  f->lidar.clear();
+  factors->clear();
   for (const PlaneCorrespondence& c : planes) {
-    f->lidar.push_back(
+    factors->push_back(
         PointToPlaneFactor::Create(f->planes_lidar[c.index], c.normal, c.centroid, w));
   }
   for (const LineCorrespondence& c : lines) {
-    f->lidar.push_back(
+    factors->push_back(
         PointToLineFactor::Create(f->edges_lidar[c.index], c.direction, c.centroid, w));
   }
   f->plane_factors = planes.size();
@@ -243,12 +249,9 @@ int WindowEstimator::Solve(WindowResult* result) {
     if (bias_prior_ != nullptr) {
       problem.AddResidualBlock(bias_prior_.get(), nullptr, f.speed_bias.data());
     }
-    for (const auto& c : f.lidar) {
-      problem.AddResidualBlock(c.get(), &huber_, f.pose.data(), extrinsic_.data());
-    }
-    result->lidar_factors += f.lidar.size();
+    result->lidar_factors += f.plane_factors + f.line_factors;
     if (f.lidar_linear != nullptr) {
-      problem.AddResidualBlock(f.lidar_linear.get(), nullptr, f.pose.data());
+      problem.AddResidualBlock(f.lidar_linear.get(), nullptr, LidarBlocks(&f));
     }
     if (k > 0 && f.imu != nullptr) {
       Frame& p = *frames_[k - 1];
@@ -290,8 +293,11 @@ void WindowEstimator::Marginalize() {
   m.AddParameterBlock(f1.speed_bias.data(), kSpeedBiasSize, nullptr, BlockRole::kKeep);
   m.AddParameterBlock(extrinsic_.data(), kPoseSize, &manifold_,
                       config_.estimate_extrinsic ? BlockRole::kKeep : BlockRole::kConstant);
-  for (const auto& c : f0.lidar) {
-    m.AddResidualBlock(c.get(), &huber_, {f0.pose.data(), extrinsic_.data()});
+  // The frame's LiDAR rows: without them the prior would keep only IMU terms against a free
+  // pose, which carry no memory of the gravity direction or the accelerometer bias.
+  if (f0.lidar_linear != nullptr) {
+    const std::vector<double*> blocks = LidarBlocks(&f0);
+    m.AddResidualBlock(f0.lidar_linear.get(), nullptr, {blocks.begin(), blocks.end()});
   }
   if (f1.imu != nullptr) {
     m.AddResidualBlock(
@@ -309,20 +315,28 @@ void WindowEstimator::Marginalize() {
   frames_.pop_front();
 }
 
-WindowEstimator::LidarSystem WindowEstimator::LinearizeLidar(const Frame& f) const {
+std::vector<double*> WindowEstimator::LidarBlocks(Frame* f) {
+  if (f->lidar_linear->blocks().size() == 1) return {f->pose.data()};
+  return {f->pose.data(), extrinsic_.data()};
+}
+
+WindowEstimator::LidarSystem WindowEstimator::LinearizeLidar(const Frame& f,
+                                                            const LidarFactors& factors) const {
   LidarSystem ls;
-  const PosePlusJacobian plus = PosePlusJacobianAt(f.pose.data());
-  for (const auto& c : f.lidar) {
+  const PosePlusJacobian plus_pose = PosePlusJacobianAt(f.pose.data());
+  const PosePlusJacobian plus_extrinsic = PosePlusJacobianAt(extrinsic_.data());
+  using Jacobian = Eigen::Matrix<double, 2, kPoseSize, Eigen::RowMajor>;
+  for (const auto& c : factors) {
     // One or two rows; the unused second row stays zero.
     Eigen::Vector2d r = Eigen::Vector2d::Zero();
-    Eigen::Matrix<double, 2, kPoseSize, Eigen::RowMajor> J =
-        Eigen::Matrix<double, 2, kPoseSize, Eigen::RowMajor>::Zero();
+    Jacobian J_pose = Jacobian::Zero(), J_extrinsic = Jacobian::Zero();
     const double* params[2] = {f.pose.data(), extrinsic_.data()};
-    double* jacobians[2] = {J.data(), nullptr};
+    double* jacobians[2] = {J_pose.data(), J_extrinsic.data()};
     if (!c->Evaluate(params, r.data(), jacobians)) continue;
     double rho[3];
     huber_.Evaluate(r.squaredNorm(), rho);
-    const Eigen::Matrix<double, 2, kPoseTangentSize> Jt = J * plus;
+    Eigen::Matrix<double, 2, 2 * kPoseTangentSize> Jt;
+    Jt << J_pose * plus_pose, J_extrinsic * plus_extrinsic;
     ls.H.noalias() += rho[1] * Jt.transpose() * Jt;
     ls.b.noalias() += rho[1] * Jt.transpose() * r;
     ls.cost += rho[0];
@@ -330,8 +344,7 @@ WindowEstimator::LidarSystem WindowEstimator::LinearizeLidar(const Frame& f) con
   return ls;
 }
 
-void WindowEstimator::FillLidarHessian(const Frame& f,
-                                       const LidarSystem& ls,
+void WindowEstimator::FillLidarHessian(const Frame& f, const LidarSystem& ls,
                                        MatchResult* match) const {
   // In the units of ScanMatcher (unwhitened metres): scale out 1/σ².
   const double s2 = config_.lidar_sigma_m * config_.lidar_sigma_m;
@@ -339,37 +352,61 @@ void WindowEstimator::FillLidarHessian(const Frame& f,
   match->plane_inliers = f.plane_factors;
   match->edge_inliers = f.line_factors;
   match->cost = ls.cost * s2;
-  match->hessian = ls.H * s2;
+  match->hessian = ls.H.topLeftCorner<kPoseTangentSize, kPoseTangentSize>() * s2;
   match->hessian_eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(
                                    match->hessian, Eigen::EigenvaluesOnly)
                                    .eigenvalues();
 }
 
-void WindowEstimator::CompressLidar(const LidarSystem& ls, Frame* f) const {
-  if (f->lidar.empty()) return;
-  // H = V Λ Vᵀ: rows U = Λ^½ Vᵀ, r₀ = Λ^-½ Vᵀ b give ½|r₀ + U δ|² = ½ δᵀHδ + bᵀδ + const;
-  // directions without information (degenerate scans) are left out.
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(ls.H);
-  const double lmax = es.eigenvalues().maxCoeff();
-  std::vector<int> keep;
-  for (int i = 0; i < 6; ++i) {
-    if (es.eigenvalues()(i) > 1e-9 * lmax && es.eigenvalues()(i) > 0.0) keep.push_back(i);
+int WindowEstimator::CompressLidar(const LidarSystem& ls, Frame* f) const {
+  f->lidar_linear.reset();
+  if (f->plane_factors + f->line_factors == 0) return 0;
+  // The frame's LiDAR term ½δᵀHδ + bᵀδ (δ: pose tangent, and the extrinsic's when estimated)
+  // is replaced by a Gaussian on δ about its optimum δ* = −H⁺b:
+  //  - directions whose eigenvalue of H (in ScanMatcher units, 1/σ² scaled out) is below
+  //    `degenerate_eigenvalue` are left out: the scan does not constrain them and the IMU
+  //    carries the estimate there (Zhang et al., "On degeneracy of optimization-based state
+  //    estimation problems", ICRA 2016);
+  //  - in the others the covariance is H⁻¹ plus a floor F (lidar_floor_sigma_*): a scan's pose
+  //    against the local map is never more certain than the map itself, however many points
+  //    matched (the map's own tilt error is what made b_a and velocity run away without it).
+  // Rows: with S = V_kᵀ(H⁻¹ + F)V_k = L⁻ᵀL⁻¹ (I_k = S⁻¹ = L Lᵀ), r(δ) = LᵀV_kᵀ(δ − δ*).
+  const int n = config_.estimate_extrinsic ? 2 * kPoseTangentSize : kPoseTangentSize;
+  const Eigen::MatrixXd H = ls.H.topLeftCorner(n, n);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
+  const double s2 = config_.lidar_sigma_m * config_.lidar_sigma_m;
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (es.eigenvalues()(i) * s2 >= config_.degenerate_eigenvalue) keep.push_back(i);
   }
-  if (keep.empty()) return;
-  const auto rows = static_cast<Eigen::Index>(keep.size());
-  Eigen::MatrixXd U(rows, kPoseTangentSize);
-  Eigen::VectorXd r0(rows);
-  for (Eigen::Index k = 0; k < rows; ++k) {
-    const double l = es.eigenvalues()(keep[static_cast<size_t>(k)]);
-    const Eigen::Vector<double, 6> v = es.eigenvectors().col(keep[static_cast<size_t>(k)]);
-    U.row(k) = std::sqrt(l) * v.transpose();
-    r0(k) = v.dot(ls.b) / std::sqrt(l);
+  const int degenerate = n - static_cast<int>(keep.size());
+  if (keep.empty()) return degenerate;
+  const auto k = static_cast<Eigen::Index>(keep.size());
+  Eigen::MatrixXd Vk(n, k);
+  Eigen::VectorXd inv_lambda(k);
+  for (Eigen::Index j = 0; j < k; ++j) {
+    Vk.col(j) = es.eigenvectors().col(keep[static_cast<size_t>(j)]);
+    inv_lambda(j) = 1.0 / es.eigenvalues()(keep[static_cast<size_t>(j)]);
   }
+  const Eigen::VectorXd delta_opt = -Vk * inv_lambda.asDiagonal() * (Vk.transpose() * ls.b.head(n));
+  Eigen::VectorXd floor = Eigen::VectorXd::Zero(n);
+  floor.head<3>().setConstant(config_.lidar_floor_sigma_m * config_.lidar_floor_sigma_m);
+  floor.segment<3>(3).setConstant(config_.lidar_floor_sigma_rad * config_.lidar_floor_sigma_rad);
+  const Eigen::MatrixXd S = Eigen::MatrixXd(inv_lambda.asDiagonal()) +
+                            Vk.transpose() * floor.asDiagonal() * Vk;
+  const Eigen::LLT<Eigen::MatrixXd> llt(S.inverse());
+  if (llt.info() != Eigen::Success) return degenerate;
+  const Eigen::MatrixXd U = Eigen::MatrixXd(llt.matrixL()).transpose() * Vk.transpose();
+  const Eigen::VectorXd r0 = -U * delta_opt;
   std::vector<MarginalizationPrior::Block> blocks = {
       {&manifold_, Eigen::Map<const Eigen::VectorXd>(f->pose.data(), kPoseSize), kPoseTangentSize,
        0}};
+  if (config_.estimate_extrinsic) {
+    blocks.push_back({&manifold_, Eigen::Map<const Eigen::VectorXd>(extrinsic_.data(), kPoseSize),
+                      kPoseTangentSize, kPoseTangentSize});
+  }
   f->lidar_linear = std::make_unique<MarginalizationPrior>(std::move(blocks), U, r0);
-  f->lidar.clear();
+  return degenerate;
 }
 
 bool WindowEstimator::IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const {
@@ -393,6 +430,21 @@ void WindowEstimator::InsertFeatures(const Frame& f) {
   edge_map_.RemoveFar(T.translation());
 }
 
+void WindowEstimator::Relinearize(Frame* f, MatchResult* match, int* degenerate) {
+  Associate(f, &factors_);
+  const LidarSystem ls = LinearizeLidar(*f, factors_);
+  FillLidarHessian(*f, ls, match);
+  *degenerate = CompressLidar(ls, f);
+  f->T_linearized = PoseFromParameters(f->pose.data());
+}
+
+bool WindowEstimator::MovedFromLinearization(const Frame& f) const {
+  const Eigen::Isometry3d moved = f.T_linearized.inverse() * PoseFromParameters(f.pose.data());
+  return moved.translation().norm() >= config_.odometry.matcher.reassociate_translation_m ||
+         Eigen::AngleAxisd(moved.linear()).angle() >=
+             config_.odometry.matcher.reassociate_rotation_rad;
+}
+
 WindowResult WindowEstimator::AddScan(const Scan& scan) {
   StageTimer timer(now_ns_);
   WindowResult out;
@@ -411,39 +463,32 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     SetInitialPrior(frame.get());
   else
     Preintegrate(*frames_.back(), frame.get());  // without it: LiDAR and prior only
-  if (plane_map_.size() > 0) {
+  int degenerate = 0;
+  const bool have_map = plane_map_.size() > 0;
+  if (have_map) {
     if (config_.prealign) Prealign(frame.get());
-    Associate(frame.get());
+    Relinearize(frame.get(), &result.match, &degenerate);
   }
   result.times.match_ms = timer.Lap();
   frames_.push_back(std::move(frame));
   while (imu_.size() > 1 && imu_[1].t_ns <= scan.t_end_ns) imu_.pop_front();
 
   Frame& newest = *frames_.back();
-  const Eigen::Isometry3d predicted = PoseFromParameters(newest.pose.data());
   if (frames_.size() > 1) {
     out.solver_iterations += Solve(&out);
-    Eigen::Isometry3d T_associated = predicted;
-    for (int i = 0; i < config_.reassociations && plane_map_.size() > 0; ++i) {
-      // Again only while the solve moves the newest pose (ScanMatcher's rule).
-      const Eigen::Isometry3d T = PoseFromParameters(newest.pose.data());
-      const Eigen::Isometry3d moved = T_associated.inverse() * T;
-      if (moved.translation().norm() < config_.odometry.matcher.reassociate_translation_m &&
-          Eigen::AngleAxisd(moved.linear()).angle() <
-              config_.odometry.matcher.reassociate_rotation_rad) {
-        break;
-      }
-      T_associated = T;
+    // The LiDAR rows are exact to second order near their linearization: associate again
+    // only where the window solve moved the newest pose (ScanMatcher's rule).
+    for (int i = 0; i < config_.reassociations && have_map && MovedFromLinearization(newest);
+         ++i) {
       result.times.optimize_ms += timer.Lap();
-      Associate(&newest);
+      Relinearize(&newest, &result.match, &degenerate);
       result.times.match_ms += timer.Lap();
       out.solver_iterations += Solve(&out);
     }
     Reintegrate();
   }
   result.status = OdometryStatus::kTracking;
-  if (plane_map_.size() > 0 &&
-      newest.plane_factors + newest.line_factors < config_.odometry.min_inliers) {
+  if (have_map && newest.plane_factors + newest.line_factors < config_.odometry.min_inliers) {
     result.status = OdometryStatus::kMatchFailed;  // the IMU carries this frame
   }
   const Eigen::Isometry3d T_world_lidar =
@@ -451,10 +496,9 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   result.keyframe = IsKeyframe(T_world_lidar);
   if (result.keyframe) InsertFeatures(newest);
   result.state = StateOf(newest);
-  const LidarSystem lidar = LinearizeLidar(newest);
-  FillLidarHessian(newest, lidar, &result.match);
-  CompressLidar(lidar, &newest);
+  result.match.T_world_lidar = T_world_lidar;
   result.match.iterations = out.solver_iterations;
+  result.match.degenerate_directions = degenerate;
   if (frames_.size() > config_.window_size) Marginalize();
   out.window_frames = frames_.size();
   out.prior_rank = prior_.rank;

@@ -30,6 +30,9 @@ struct Options {
   int reassociations = swlio::estimator::WindowEstimatorConfig{}.reassociations;
   double lidar_sigma_m = swlio::estimator::WindowEstimatorConfig{}.lidar_sigma_m;
   double bias_prior_acc = swlio::estimator::WindowEstimatorConfig{}.bias_prior_sigma_acc_mps2;
+  double degenerate_eigenvalue = swlio::estimator::WindowEstimatorConfig{}.degenerate_eigenvalue;
+  double floor_m = swlio::estimator::WindowEstimatorConfig{}.lidar_floor_sigma_m;
+  double floor_rad = swlio::estimator::WindowEstimatorConfig{}.lidar_floor_sigma_rad;
   bool estimate_extrinsic = false;
 };
 
@@ -82,18 +85,26 @@ void WriteTimings(std::ostream& out, const OdometryResult& r, int64_t t_ns) {
 
 constexpr const char* kDiagnosticsHeader =
     "t_ns,status,converged,iterations,plane_inliers,edge_inliers,cost,"
-    "hessian_eig_min,hessian_eig_max,planes,edges,uncovered,keyframe";
+    "hessian_eig_min,hessian_eig_max,degenerate_directions,planes,edges,uncovered,keyframe,"
+    "vel_x,vel_y,vel_z,bias_acc_x,bias_acc_y,bias_acc_z,bias_gyro_x,bias_gyro_y,bias_gyro_z";
 
 /// One line per sweep: what the registration reported (degeneracy: the smallest eigenvalue of
-/// the 6×6 Gauss–Newton Hessian against the largest).
+/// the 6×6 Gauss–Newton Hessian against the largest), then the state's velocity (world, m/s)
+/// and biases (m/s², rad/s).
 void WriteDiagnostics(std::ostream& out, const OdometryResult& r, int64_t t_ns) {
-  char line[512];
-  std::snprintf(line, sizeof line, "%lld,%s,%d,%d,%zu,%zu,%.6g,%.6g,%.6g,%zu,%zu,%zu,%d",
+  char line[768];
+  std::snprintf(line, sizeof line, "%lld,%s,%d,%d,%zu,%zu,%.6g,%.6g,%.6g,%d,%zu,%zu,%zu,%d",
                 static_cast<long long>(t_ns), swlio::estimator::ToString(r.status),
                 r.match.converged ? 1 : 0, r.match.iterations, r.match.plane_inliers,
                 r.match.edge_inliers, r.match.cost, r.match.hessian_eigenvalues(0),
-                r.match.hessian_eigenvalues(5), r.planes, r.edges, r.points_uncovered,
+                r.match.hessian_eigenvalues(5), r.match.degenerate_directions, r.planes, r.edges, r.points_uncovered,
                 r.keyframe ? 1 : 0);
+  out << line;
+  const swlio::State& x = r.state;
+  std::snprintf(line, sizeof line, ",%.5f,%.5f,%.5f,%.6f,%.6f,%.6f,%.7f,%.7f,%.7f",
+                x.vel_world.x(), x.vel_world.y(), x.vel_world.z(), x.bias_acc.x(),
+                x.bias_acc.y(), x.bias_acc.z(), x.bias_gyro.x(), x.bias_gyro.y(),
+                x.bias_gyro.z());
   out << line << '\n';
 }
 
@@ -181,6 +192,9 @@ int Run(const Options& opt) {
   window_config.lidar_sigma_m = opt.lidar_sigma_m;
   window_config.bias_prior_sigma_acc_mps2 = opt.bias_prior_acc;
   window_config.estimate_extrinsic = opt.estimate_extrinsic;
+  window_config.degenerate_eigenvalue = opt.degenerate_eigenvalue;
+  window_config.lidar_floor_sigma_m = opt.floor_m;
+  window_config.lidar_floor_sigma_rad = opt.floor_rad;
   if (const auto issues = window_config.Validate(); !issues.empty()) {
     for (const auto& issue : issues)
       std::cerr << "swlio-run: " << issue.key << ": " << issue.reason << "\n";
@@ -224,7 +238,8 @@ int Run(const Options& opt) {
       process(e.scan);
     }
   }
-  for (const swlio::Scan& scan : waiting) process(scan);
+  // Sweeps the IMU stream never covered (the recording's last ones) are not processed.
+  if (!waiting.empty()) std::cerr << "swlio-run: " << waiting.size() << " last sweep(s) without IMU coverage not processed\n";
   summary.Print();
   return 0;
 }
@@ -248,6 +263,16 @@ int Main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--bias-prior-acc", opt.bias_prior_acc,
                  "weak prior on every frame's accelerometer bias, m/s² (0: none; tightly-coupled)")
+      ->capture_default_str();
+  app.add_option("--degenerate-eigenvalue", opt.degenerate_eigenvalue,
+                 "LiDAR Hessian eigenvalue below which a direction is left to the IMU "
+                 "(tightly-coupled)")
+      ->capture_default_str();
+  app.add_option("--lidar-floor-m", opt.floor_m,
+                 "floor under a sweep's LiDAR position standard deviation, m (tightly-coupled)")
+      ->capture_default_str();
+  app.add_option("--lidar-floor-rad", opt.floor_rad,
+                 "floor under a sweep's LiDAR attitude standard deviation, rad (tightly-coupled)")
       ->capture_default_str();
   app.add_flag("--estimate-extrinsic", opt.estimate_extrinsic,
                "refine T_imu_lidar online (tightly-coupled; weak prior on the configured value)");

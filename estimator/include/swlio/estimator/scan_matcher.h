@@ -59,6 +59,9 @@ struct MatchResult {
   Eigen::Matrix<double, 6, 6> hessian = Eigen::Matrix<double, 6, 6>::Zero();  ///< [ρ; φ] order
   Eigen::Matrix<double, 6, 1> hessian_eigenvalues =
       Eigen::Matrix<double, 6, 1>::Zero();  ///< ascending
+  /// Directions left to the IMU because the scan does not constrain them (the window
+  /// estimator's degeneracy test; 0 from ScanMatcher itself).
+  int degenerate_directions = 0;
 };
 
 /// A feature point (index into its input vector) paired with a plane or a line of the map.

@@ -28,6 +28,7 @@
 /// the prior carry the estimate, as they are part of the same problem.
 /// Pure library: no clock (StageTimes through NowNsFn), no printing.
 
+#include <ceres/cost_function.h>
 #include <ceres/loss_function.h>
 
 #include <Eigen/Core>
@@ -57,6 +58,15 @@ struct WindowEstimatorConfig {
   int reassociations = 1;
   double lidar_sigma_m = 0.05;  ///< point-to-plane / point-to-line standard deviation
   double huber_m = 0.1;         ///< Huber kernel width (metres of residual)
+  /// A direction of the newest frame's LiDAR Hessian (ScanMatcher units: Σ JᵀJ over unwhitened
+  /// residuals in metres, tangent [δp; δφ]) with a smaller eigenvalue is degenerate: its LiDAR
+  /// row is left out and the IMU carries the estimate there (σ along it would be
+  /// lidar_sigma_m / √eigenvalue).
+  double degenerate_eigenvalue = 5.0;
+  /// Floor under the covariance of a frame's LiDAR pose (per axis; see CompressLidar): the
+  /// local map's own error, which more matched points do not reduce.
+  double lidar_floor_sigma_m = 0.01;
+  double lidar_floor_sigma_rad = 0.03;
   bool estimate_extrinsic = false;
   double extrinsic_prior_sigma_m = 0.02;  ///< weak prior when estimated online
   double extrinsic_prior_sigma_rad = 0.01;
@@ -106,22 +116,28 @@ class WindowEstimator {
   bool PropagateAndExtract(const Scan& scan, OdometryResult* result);
   std::unique_ptr<Frame> NewFrame(int64_t t_ns, const State& predicted);
   bool Preintegrate(const Frame& from, Frame* to) const;
-  void Associate(Frame* frame);
+  using LidarFactors = std::vector<std::unique_ptr<ceres::CostFunction>>;
+  void Associate(Frame* frame, LidarFactors* factors) const;
   void Prealign(Frame* frame) const;
+  void SetInitialPrior(Frame* frame);
+  State StateOf(const Frame& frame) const;
   int Solve(WindowResult* result);
   void Reintegrate();
   void Marginalize();
-  void SetInitialPrior(Frame* frame);
-  State StateOf(const Frame& frame) const;
-  struct LidarSystem {  ///< robust Gauss–Newton system of one frame's LiDAR factors (tangent)
-    Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
-    Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
+  /// Robust Gauss–Newton system of one frame's LiDAR factors over [pose; extrinsic] tangents.
+  struct LidarSystem {
+    Eigen::Matrix<double, 12, 12> H = Eigen::Matrix<double, 12, 12>::Zero();
+    Eigen::Matrix<double, 12, 1> b = Eigen::Matrix<double, 12, 1>::Zero();
     double cost = 0.0;
   };
-  LidarSystem LinearizeLidar(const Frame& frame) const;
+  LidarSystem LinearizeLidar(const Frame& frame, const LidarFactors& factors) const;
   void FillLidarHessian(const Frame& frame, const LidarSystem& lidar, MatchResult* match) const;
-  /// Replaces the frame's LiDAR factors by their linearization `lidar` (6 rows at most).
-  void CompressLidar(const LidarSystem& lidar, Frame* frame) const;
+  /// Replaces the frame's LiDAR rows; returns the number of degenerate directions left out.
+  int CompressLidar(const LidarSystem& lidar, Frame* frame) const;
+  /// Associates the frame at its pose and linearizes its LiDAR factors there.
+  void Relinearize(Frame* frame, MatchResult* match, int* degenerate);
+  bool MovedFromLinearization(const Frame& frame) const;
+  std::vector<double*> LidarBlocks(Frame* frame);
   bool IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const;
   void InsertFeatures(const Frame& frame);
 
@@ -144,6 +160,7 @@ class WindowEstimator {
   std::vector<double> extrinsic_;  ///< T_imu_lidar block (7)
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
   std::vector<double> zero_speed_bias_;
+  LidarFactors factors_;  ///< the newest frame's, reused
   std::unique_ptr<MarginalizationPrior> bias_prior_;  ///< null when disabled
   std::deque<std::unique_ptr<Frame>> frames_;  ///< oldest first; blocks stay at fixed addresses
   MarginalizationResult prior_;
