@@ -11,12 +11,16 @@
 //                   window is not there yet, so the work is the LiDAR-only per-sweep pipeline
 //                   (FrontEnd + ScanMatcher against a VoxelMap, ≈ 7 ms on one core) repeated on
 //                   successive simulated sweeps until the CPU budget is spent.
-// Nothing is pinned and no real-time priority is asked for: the figure is what a plain
-// SCHED_OTHER process gets on the machine as it is (its load average is printed).
+// By default nothing is pinned and no real-time priority is asked for: the figure is what a plain
+// SCHED_OTHER process gets on the machine as it is (its load average is printed). --fifo P gives
+// the producer and propagator threads SCHED_FIFO priority P, as systemd/swliod-realtime.conf
+// allows the daemon.
 //
-//   swlio_imu_rate_latency_bench [--seconds 30] [--work-ms 30] [--optimizer-nice 0]
+//   swlio_imu_rate_latency_bench [--seconds 30] [--work-ms 30] [--optimizer-nice 0] [--fifo 0]
 
+#include <pthread.h>
 #include <readerwriterqueue.h>
+#include <sched.h>
 #include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
@@ -53,6 +57,7 @@ struct Options {
   double seconds = 30.0;
   double work_ms = 30.0;   ///< optimizer CPU time per sweep
   int optimizer_nice = 0;  ///< added to the optimizer thread's nice value (≥ 0: no privilege)
+  int fifo_priority = 0;   ///< > 0: SCHED_FIFO for the producer and propagator (CAP_SYS_NICE)
 };
 
 struct TimedSample {
@@ -144,6 +149,16 @@ bool LoadWorkload(Workload* w) {
   return !w->scans.empty();
 }
 
+// As the daemon would with swliod-realtime.conf: real-time priority for the rx and propagator
+// threads only (they sleep almost all the time); the optimizer stays SCHED_OTHER.
+void MaybeRealtime(int priority, const char* thread) {
+  if (priority <= 0) return;
+  sched_param param{};
+  param.sched_priority = priority;
+  const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
+  if (err != 0) std::fprintf(stderr, "%s: SCHED_FIFO refused: %s\n", thread, std::strerror(err));
+}
+
 // ---- the three threads --------------------------------------------------------------------
 
 using SampleQueue = moodycamel::BlockingReaderWriterQueue<TimedSample>;
@@ -159,7 +174,8 @@ struct Run {
   ImuRateOutput last;
 };
 
-void Producer(Run* run) {
+void Producer(Run* run, int fifo_priority) {
+  MaybeRealtime(fifo_priority, "producer");
   for (int64_t t = run->t0_ns; t < run->end_ns; t += kImuPeriodNs) {
     SleepUntil(t);
     TimedSample ts{TurnSample(t), 0};
@@ -188,7 +204,8 @@ void Optimizer(Run* run, Workload* work, const Options& options) {
   }
 }
 
-void Propagator(Run* run) {
+void Propagator(Run* run, int fifo_priority) {
+  MaybeRealtime(fifo_priority, "propagator");
   ImuRatePropagator prop(ImuRatePropagatorConfig{.gravity_mps2 = kG, .buffer_samples = 800});
   State start = TurnState(0.0);
   start.t_ns = run->t0_ns;
@@ -264,6 +281,7 @@ Options ParseOptions(int argc, char** argv) {
     if (key == "--seconds") o.seconds = value;
     if (key == "--work-ms") o.work_ms = value;
     if (key == "--optimizer-nice") o.optimizer_nice = static_cast<int>(value);
+    if (key == "--fifo") o.fifo_priority = static_cast<int>(value);
   }
   return o;
 }
@@ -286,9 +304,9 @@ int main(int argc, char** argv) {
   PrintLoad("before");
   run.t0_ns = NowNs() + 50 * kNsPerMs;
   run.end_ns = run.t0_ns + SecToNs(options.seconds);
-  std::thread propagator(Propagator, &run);
+  std::thread propagator(Propagator, &run, options.fifo_priority);
   std::thread optimizer(Optimizer, &run, &work, std::cref(options));
-  std::thread producer(Producer, &run);
+  std::thread producer(Producer, &run, options.fifo_priority);
   producer.join();
   optimizer.join();
   propagator.join();
