@@ -170,6 +170,7 @@ struct Run {
   StateQueue states{64};      ///< producer: optimizer thread; consumer: propagator thread
   std::atomic<uint64_t> sample_drops{0}, state_drops{0};
   std::vector<int64_t> latency_ns, add_ns, set_state_ns, work_wall_ns;
+  std::vector<int64_t> timer_late_ns;  ///< producer: wake-up − due time (OS/VM stalls)
   ImuRateCounters counters;
   ImuRateOutput last;
 };
@@ -180,6 +181,7 @@ void Producer(Run* run, int fifo_priority) {
     SleepUntil(t);
     TimedSample ts{TurnSample(t), 0};
     ts.enqueue_ns = NowNs();
+    run->timer_late_ns.push_back(ts.enqueue_ns - t);
     if (!run->samples.try_enqueue(ts)) ++run->sample_drops;
   }
   while (!run->samples.try_enqueue(TimedSample{ImuSample{}, -1})) SleepUntil(NowNs() + kNsPerMs);
@@ -250,6 +252,7 @@ void Report(const Run& run) {
   PrintStats("latency sample->output", run.latency_ns, 1e3, "us");
   PrintStats("  of which Add()", run.add_ns, 1e3, "us");
   PrintStats("SetState (re-propagation)", run.set_state_ns, 1e3, "us");
+  PrintStats("producer timer lateness", run.timer_late_ns, 1e3, "us");
   PrintStats("optimizer work per sweep", run.work_wall_ns, 1e6, "ms wall");
   const ImuRateCounters& c = run.counters;
   std::printf(
@@ -296,6 +299,7 @@ int main(int argc, char** argv) {
   const auto n = static_cast<size_t>(options.seconds * 400.0 * 1.1) + 16;
   run.latency_ns.reserve(n);
   run.add_ns.reserve(n);
+  run.timer_late_ns.reserve(n);
   run.set_state_ns.reserve(n / 40);
   run.work_wall_ns.reserve(n / 40);
   std::printf(
