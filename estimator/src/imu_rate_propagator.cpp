@@ -43,6 +43,13 @@ ImuRateOutput ImuRatePropagator::Output(const ImuSample* newest) const {
   return out;
 }
 
+void ImuRatePropagator::Clear() {
+  head_ = 0;
+  size_ = 0;
+  has_state_ = false;
+  optimized_t_ns_ = 0;
+}
+
 std::optional<ImuRateOutput> ImuRatePropagator::SetState(const State& optimized) {
   if (has_state_ && optimized.t_ns < optimized_t_ns_) {
     ++counters_.stale_states;

@@ -186,6 +186,21 @@ TEST(ImuRatePropagator, AStateOlderThanThePreviousIsRejected) {
   EXPECT_EQ(out->since_optimized_ns, kStepNs);
 }
 
+TEST(ImuRatePropagator, ClearForgetsTheStateAndTheSamples) {
+  ImuRatePropagator rate(Config());
+  State newer = TurnStart();
+  newer.t_ns = 10 * kStepNs;
+  rate.SetState(newer);
+  for (int i = 11; i <= 20; ++i) ASSERT_TRUE(rate.Add(TurnSample(i * kStepNs)).has_value());
+  rate.Clear();
+  EXPECT_FALSE(rate.has_state());
+  EXPECT_EQ(rate.buffered(), 0u);
+  EXPECT_FALSE(rate.Add(TurnSample(kStepNs)).has_value()) << "no state: buffered only";
+  EXPECT_EQ(rate.counters().out_of_order, 0u) << "an earlier time is accepted after Clear";
+  ASSERT_TRUE(rate.SetState(TurnStart()).has_value()) << "an older state is accepted too";
+  EXPECT_EQ(rate.counters().stale_states, 0u);
+}
+
 TEST(ImuRatePropagator, NoHeapAllocationPerSampleOrState) {
   ImuRatePropagator rate(Config(100));
   rate.SetState(TurnStart());

@@ -65,6 +65,9 @@ class ImuRatePropagator {
   /// is out of order (dropped), or when there is no state yet or the state is newer (buffered).
   std::optional<ImuRateOutput> Add(const ImuSample& sample);
 
+  /// Forgets the state and the buffered samples (the estimator restarted); counters are kept.
+  void Clear();
+
   bool has_state() const { return has_state_; }
   size_t buffered() const { return size_; }
   const ImuRateCounters& counters() const { return counters_; }
