@@ -17,6 +17,14 @@
 
 namespace swlio::estimator {
 
+/// One interval of the formulas above: integrates `state` from its time to `sample.t_ns`, with
+/// `previous` (the sample before, or null) for the trapezoidal mean of the rates. Returns false,
+/// leaving `state` unchanged, when the sample is not newer than the state.
+bool StrapdownStep(double gravity_mps2,
+                   const ImuSample* previous,
+                   const ImuSample& sample,
+                   State* state);
+
 class ImuPropagator {
  public:
   explicit ImuPropagator(double gravity_mps2) : gravity_mps2_(gravity_mps2) {}
@@ -33,8 +41,6 @@ class ImuPropagator {
   const PoseTrack& track() const { return track_; }
 
  private:
-  void Step(const Eigen::Vector3d& gyro_radps, const Eigen::Vector3d& acc_mps2, int64_t t_ns);
-
   double gravity_mps2_;
   State state_;
   ImuSample last_;
