@@ -287,6 +287,9 @@ void Align(const std::vector<Frame>& frames,
   const Vec3 g_free = free.x.segment<3>(free_layout.g);
   res.gravity_norm_free_mps2 = g_free.norm();
   if (!g_free.allFinite() || g_free.norm() < 0.1 * G) return;
+  const Vec3 u = g_free.normalized();
+  res.gravity_norm_free_std_mps2 =
+      std::sqrt(u.dot(free.P.block<3, 3>(free_layout.g, free_layout.g) * u));
 
   const Layout L(n, true);
   GravityModel m = RefineModel(g_free, G);
@@ -315,19 +318,27 @@ void Align(const std::vector<Frame>& frames,
   }
 }
 
+/// Normalized residuals first (valid however weak the constraints), then the constraint
+/// strength, then the plausibility of |g| and b_g (judged with their own uncertainty).
 DynamicInitStatus Classify(const DynamicInitResult& r,
                            double G,
                            const DynamicInitializer::Options& o) {
-  if (r.states.empty() || std::abs(r.gravity_norm_free_mps2 - G) > o.max_gravity_norm_error_mps2 ||
-      r.rotation_rms_rad > o.max_rotation_rms_rad || r.position_rms_m > o.max_position_rms_m) {
-    return DynamicInitStatus::kInconsistent;
+  using enum DynamicInitStatus;
+  if (r.states.empty() || r.rotation_rms_rad > o.max_normalized_rms * o.rotation_sigma_rad ||
+      r.normalized_cost > o.max_normalized_rms * o.max_normalized_rms) {
+    return kInconsistent;
   }
   if (r.gravity_tilt_std_rad > o.max_gravity_tilt_std_rad ||
-      r.velocity_std_mps > o.max_velocity_std_mps ||
-      (o.require_acc_bias && !r.acc_bias_observable)) {
-    return DynamicInitStatus::kPoorlyConstrained;
+      r.velocity_std_mps > o.max_velocity_std_mps) {
+    return kPoorlyConstrained;
   }
-  return DynamicInitStatus::kOk;
+  const double g_error = std::abs(r.gravity_norm_free_mps2 - G);
+  if (g_error > o.max_gravity_norm_error_mps2 + 3.0 * r.gravity_norm_free_std_mps2 ||
+      r.bias_gyro.norm() > o.max_gyro_bias_radps + 3.0 * r.bias_gyro_std.norm()) {
+    return kInconsistent;
+  }
+  if (o.require_acc_bias && !r.acc_bias_observable) return kPoorlyConstrained;
+  return kOk;
 }
 
 }  // namespace
