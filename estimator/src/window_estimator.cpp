@@ -3,13 +3,12 @@
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-#include <Eigen/LU>
 #include <array>
 #include <cmath>
 
 #include "swlio/estimator/deskew.h"
+#include "swlio/estimator/lidar_rows.h"
 #include "swlio/estimator/point_to_line_factor.h"
 #include "swlio/estimator/point_to_plane_factor.h"
 
@@ -73,7 +72,8 @@ ConfigIssues WindowEstimatorConfig::Validate() const {
   CheckPositive(issues, "huber_m", huber_m);
   CheckPositive(issues, "degenerate_eigenvalue", degenerate_eigenvalue);
   CheckInRange(issues, "lidar_floor_sigma_m", lidar_floor_sigma_m, 0.0, 1.0);
-  CheckInRange(issues, "lidar_floor_sigma_rad", lidar_floor_sigma_rad, 0.0, 0.5);
+  CheckInRange(issues, "lidar_floor_sigma_tilt_rad", lidar_floor_sigma_tilt_rad, 0.0, 0.5);
+  CheckInRange(issues, "lidar_floor_sigma_yaw_rad", lidar_floor_sigma_yaw_rad, 0.0, 0.5);
   CheckPositive(issues, "extrinsic_prior_sigma_m", extrinsic_prior_sigma_m);
   CheckPositive(issues, "extrinsic_prior_sigma_rad", extrinsic_prior_sigma_rad);
   CheckPositive(issues, "init_sigma_position_m", init_sigma_position_m);
@@ -265,10 +265,12 @@ int WindowEstimator::Solve(WindowResult* result) {
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   so.max_num_iterations = config_.max_iterations;
+  so.initial_trust_region_radius = 1e12;  // nearly Gauss–Newton: the problem is close to linear
   so.num_threads = 1;
   so.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
+
   return static_cast<int>(summary.iterations.size());
 }
 
@@ -321,7 +323,7 @@ std::vector<double*> WindowEstimator::LidarBlocks(Frame* f) {
 }
 
 WindowEstimator::LidarSystem WindowEstimator::LinearizeLidar(const Frame& f,
-                                                            const LidarFactors& factors) const {
+                                                             const LidarFactors& factors) const {
   LidarSystem ls;
   const PosePlusJacobian plus_pose = PosePlusJacobianAt(f.pose.data());
   const PosePlusJacobian plus_extrinsic = PosePlusJacobianAt(extrinsic_.data());
@@ -344,7 +346,8 @@ WindowEstimator::LidarSystem WindowEstimator::LinearizeLidar(const Frame& f,
   return ls;
 }
 
-void WindowEstimator::FillLidarHessian(const Frame& f, const LidarSystem& ls,
+void WindowEstimator::FillLidarHessian(const Frame& f,
+                                       const LidarSystem& ls,
                                        MatchResult* match) const {
   // In the units of ScanMatcher (unwhitened metres): scale out 1/σ².
   const double s2 = config_.lidar_sigma_m * config_.lidar_sigma_m;
@@ -358,46 +361,31 @@ void WindowEstimator::FillLidarHessian(const Frame& f, const LidarSystem& ls,
                                    .eigenvalues();
 }
 
+Eigen::MatrixXd WindowEstimator::LidarFloor(const Frame& f, int n) const {
+  // Position floor per world axis; attitude floor in the world frame (tilt about x and y, yaw
+  // about z) rotated into the tangent's body frame (q ⊞ δ = q ⊗ Exp(δφ)): Rᵀ D R.
+  Eigen::MatrixXd F = Eigen::MatrixXd::Zero(n, n);
+  F.topLeftCorner<3, 3>().diagonal().setConstant(config_.lidar_floor_sigma_m *
+                                                 config_.lidar_floor_sigma_m);
+  const Eigen::Matrix3d R = PoseFromParameters(f.pose.data()).linear();
+  const Eigen::Vector3d d(config_.lidar_floor_sigma_tilt_rad * config_.lidar_floor_sigma_tilt_rad,
+                          config_.lidar_floor_sigma_tilt_rad * config_.lidar_floor_sigma_tilt_rad,
+                          config_.lidar_floor_sigma_yaw_rad * config_.lidar_floor_sigma_yaw_rad);
+  F.block<3, 3>(3, 3) = R.transpose() * d.asDiagonal() * R;
+  return F;
+}
+
 int WindowEstimator::CompressLidar(const LidarSystem& ls, Frame* f) const {
   f->lidar_linear.reset();
   if (f->plane_factors + f->line_factors == 0) return 0;
-  // The frame's LiDAR term ½δᵀHδ + bᵀδ (δ: pose tangent, and the extrinsic's when estimated)
-  // is replaced by a Gaussian on δ about its optimum δ* = −H⁺b:
-  //  - directions whose eigenvalue of H (in ScanMatcher units, 1/σ² scaled out) is below
-  //    `degenerate_eigenvalue` are left out: the scan does not constrain them and the IMU
-  //    carries the estimate there (Zhang et al., "On degeneracy of optimization-based state
-  //    estimation problems", ICRA 2016);
-  //  - in the others the covariance is H⁻¹ plus a floor F (lidar_floor_sigma_*): a scan's pose
-  //    against the local map is never more certain than the map itself, however many points
-  //    matched (the map's own tilt error is what made b_a and velocity run away without it).
-  // Rows: with S = V_kᵀ(H⁻¹ + F)V_k = L⁻ᵀL⁻¹ (I_k = S⁻¹ = L Lᵀ), r(δ) = LᵀV_kᵀ(δ − δ*).
+  // lidar_rows.h: degenerate directions are left to the IMU; the others get a covariance floor
+  // (without it the local map's tilt, claimed as certain by ~1000 points, made b_a and the
+  // velocity run away on the simulated drives). The threshold is in ScanMatcher units.
   const int n = config_.estimate_extrinsic ? 2 * kPoseTangentSize : kPoseTangentSize;
-  const Eigen::MatrixXd H = ls.H.topLeftCorner(n, n);
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
   const double s2 = config_.lidar_sigma_m * config_.lidar_sigma_m;
-  std::vector<Eigen::Index> keep;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (es.eigenvalues()(i) * s2 >= config_.degenerate_eigenvalue) keep.push_back(i);
-  }
-  const int degenerate = n - static_cast<int>(keep.size());
-  if (keep.empty()) return degenerate;
-  const auto k = static_cast<Eigen::Index>(keep.size());
-  Eigen::MatrixXd Vk(n, k);
-  Eigen::VectorXd inv_lambda(k);
-  for (Eigen::Index j = 0; j < k; ++j) {
-    Vk.col(j) = es.eigenvectors().col(keep[static_cast<size_t>(j)]);
-    inv_lambda(j) = 1.0 / es.eigenvalues()(keep[static_cast<size_t>(j)]);
-  }
-  const Eigen::VectorXd delta_opt = -Vk * inv_lambda.asDiagonal() * (Vk.transpose() * ls.b.head(n));
-  Eigen::VectorXd floor = Eigen::VectorXd::Zero(n);
-  floor.head<3>().setConstant(config_.lidar_floor_sigma_m * config_.lidar_floor_sigma_m);
-  floor.segment<3>(3).setConstant(config_.lidar_floor_sigma_rad * config_.lidar_floor_sigma_rad);
-  const Eigen::MatrixXd S = Eigen::MatrixXd(inv_lambda.asDiagonal()) +
-                            Vk.transpose() * floor.asDiagonal() * Vk;
-  const Eigen::LLT<Eigen::MatrixXd> llt(S.inverse());
-  if (llt.info() != Eigen::Success) return degenerate;
-  const Eigen::MatrixXd U = Eigen::MatrixXd(llt.matrixL()).transpose() * Vk.transpose();
-  const Eigen::VectorXd r0 = -U * delta_opt;
+  const LidarRows rows = CompressToRows(ls.H.topLeftCorner(n, n), ls.b.head(n), LidarFloor(*f, n),
+                                        config_.degenerate_eigenvalue / s2);
+  if (rows.U.rows() == 0) return rows.degenerate;
   std::vector<MarginalizationPrior::Block> blocks = {
       {&manifold_, Eigen::Map<const Eigen::VectorXd>(f->pose.data(), kPoseSize), kPoseTangentSize,
        0}};
@@ -405,8 +393,8 @@ int WindowEstimator::CompressLidar(const LidarSystem& ls, Frame* f) const {
     blocks.push_back({&manifold_, Eigen::Map<const Eigen::VectorXd>(extrinsic_.data(), kPoseSize),
                       kPoseTangentSize, kPoseTangentSize});
   }
-  f->lidar_linear = std::make_unique<MarginalizationPrior>(std::move(blocks), U, r0);
-  return degenerate;
+  f->lidar_linear = std::make_unique<MarginalizationPrior>(std::move(blocks), rows.U, rows.r0);
+  return rows.degenerate;
 }
 
 bool WindowEstimator::IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const {
@@ -466,8 +454,14 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   int degenerate = 0;
   const bool have_map = plane_map_.size() > 0;
   if (have_map) {
+    // The LiDAR rows are linearized at the scan's own registration (from the IMU prediction);
+    // the window solve then starts again from the prediction, which agrees with the IMU
+    // factor: starting from the registered pose put a 10⁸ cost on that factor, which the
+    // solver did not work off in its iterations.
+    const std::array<double, kPoseSize> predicted = frame->pose;
     if (config_.prealign) Prealign(frame.get());
     Relinearize(frame.get(), &result.match, &degenerate);
+    frame->pose = predicted;
   }
   result.times.match_ms = timer.Lap();
   frames_.push_back(std::move(frame));
@@ -478,8 +472,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     out.solver_iterations += Solve(&out);
     // The LiDAR rows are exact to second order near their linearization: associate again
     // only where the window solve moved the newest pose (ScanMatcher's rule).
-    for (int i = 0; i < config_.reassociations && have_map && MovedFromLinearization(newest);
-         ++i) {
+    for (int i = 0; i < config_.reassociations && have_map && MovedFromLinearization(newest); ++i) {
       result.times.optimize_ms += timer.Lap();
       Relinearize(&newest, &result.match, &degenerate);
       result.times.match_ms += timer.Lap();

@@ -32,7 +32,8 @@ struct Options {
   double bias_prior_acc = swlio::estimator::WindowEstimatorConfig{}.bias_prior_sigma_acc_mps2;
   double degenerate_eigenvalue = swlio::estimator::WindowEstimatorConfig{}.degenerate_eigenvalue;
   double floor_m = swlio::estimator::WindowEstimatorConfig{}.lidar_floor_sigma_m;
-  double floor_rad = swlio::estimator::WindowEstimatorConfig{}.lidar_floor_sigma_rad;
+  double floor_tilt_rad = swlio::estimator::WindowEstimatorConfig{}.lidar_floor_sigma_tilt_rad;
+  double floor_yaw_rad = swlio::estimator::WindowEstimatorConfig{}.lidar_floor_sigma_yaw_rad;
   bool estimate_extrinsic = false;
 };
 
@@ -97,14 +98,13 @@ void WriteDiagnostics(std::ostream& out, const OdometryResult& r, int64_t t_ns) 
                 static_cast<long long>(t_ns), swlio::estimator::ToString(r.status),
                 r.match.converged ? 1 : 0, r.match.iterations, r.match.plane_inliers,
                 r.match.edge_inliers, r.match.cost, r.match.hessian_eigenvalues(0),
-                r.match.hessian_eigenvalues(5), r.match.degenerate_directions, r.planes, r.edges, r.points_uncovered,
-                r.keyframe ? 1 : 0);
+                r.match.hessian_eigenvalues(5), r.match.degenerate_directions, r.planes, r.edges,
+                r.points_uncovered, r.keyframe ? 1 : 0);
   out << line;
   const swlio::State& x = r.state;
-  std::snprintf(line, sizeof line, ",%.5f,%.5f,%.5f,%.6f,%.6f,%.6f,%.7f,%.7f,%.7f",
-                x.vel_world.x(), x.vel_world.y(), x.vel_world.z(), x.bias_acc.x(),
-                x.bias_acc.y(), x.bias_acc.z(), x.bias_gyro.x(), x.bias_gyro.y(),
-                x.bias_gyro.z());
+  std::snprintf(line, sizeof line, ",%.5f,%.5f,%.5f,%.6f,%.6f,%.6f,%.7f,%.7f,%.7f", x.vel_world.x(),
+                x.vel_world.y(), x.vel_world.z(), x.bias_acc.x(), x.bias_acc.y(), x.bias_acc.z(),
+                x.bias_gyro.x(), x.bias_gyro.y(), x.bias_gyro.z());
   out << line << '\n';
 }
 
@@ -194,7 +194,8 @@ int Run(const Options& opt) {
   window_config.estimate_extrinsic = opt.estimate_extrinsic;
   window_config.degenerate_eigenvalue = opt.degenerate_eigenvalue;
   window_config.lidar_floor_sigma_m = opt.floor_m;
-  window_config.lidar_floor_sigma_rad = opt.floor_rad;
+  window_config.lidar_floor_sigma_tilt_rad = opt.floor_tilt_rad;
+  window_config.lidar_floor_sigma_yaw_rad = opt.floor_yaw_rad;
   if (const auto issues = window_config.Validate(); !issues.empty()) {
     for (const auto& issue : issues)
       std::cerr << "swlio-run: " << issue.key << ": " << issue.reason << "\n";
@@ -239,7 +240,9 @@ int Run(const Options& opt) {
     }
   }
   // Sweeps the IMU stream never covered (the recording's last ones) are not processed.
-  if (!waiting.empty()) std::cerr << "swlio-run: " << waiting.size() << " last sweep(s) without IMU coverage not processed\n";
+  if (!waiting.empty())
+    std::cerr << "swlio-run: " << waiting.size()
+              << " last sweep(s) without IMU coverage not processed\n";
   summary.Print();
   return 0;
 }
@@ -271,8 +274,11 @@ int Main(int argc, char** argv) {
   app.add_option("--lidar-floor-m", opt.floor_m,
                  "floor under a sweep's LiDAR position standard deviation, m (tightly-coupled)")
       ->capture_default_str();
-  app.add_option("--lidar-floor-rad", opt.floor_rad,
-                 "floor under a sweep's LiDAR attitude standard deviation, rad (tightly-coupled)")
+  app.add_option("--lidar-floor-tilt", opt.floor_tilt_rad,
+                 "floor under a sweep's LiDAR roll/pitch standard deviation, rad (tightly-coupled)")
+      ->capture_default_str();
+  app.add_option("--lidar-floor-yaw", opt.floor_yaw_rad,
+                 "floor under a sweep's LiDAR yaw standard deviation, rad (tightly-coupled)")
       ->capture_default_str();
   app.add_flag("--estimate-extrinsic", opt.estimate_extrinsic,
                "refine T_imu_lidar online (tightly-coupled; weak prior on the configured value)");

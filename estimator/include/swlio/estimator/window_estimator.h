@@ -63,10 +63,13 @@ struct WindowEstimatorConfig {
   /// row is left out and the IMU carries the estimate there (σ along it would be
   /// lidar_sigma_m / √eigenvalue).
   double degenerate_eigenvalue = 5.0;
-  /// Floor under the covariance of a frame's LiDAR pose (per axis; see CompressLidar): the
-  /// local map's own error, which more matched points do not reduce.
+  /// Floor under the covariance of a frame's LiDAR pose (see CompressLidar): the local map's own
+  /// error, which more matched points do not reduce. Per world axis for position; for attitude
+  /// split into tilt (roll/pitch, which gravity observes through the IMU: a loose floor lets the
+  /// IMU keep the map level) and yaw (which only the LiDAR observes).
   double lidar_floor_sigma_m = 0.01;
-  double lidar_floor_sigma_rad = 0.03;
+  double lidar_floor_sigma_tilt_rad = 0.03;
+  double lidar_floor_sigma_yaw_rad = 0.003;
   bool estimate_extrinsic = false;
   double extrinsic_prior_sigma_m = 0.02;  ///< weak prior when estimated online
   double extrinsic_prior_sigma_rad = 0.01;
@@ -134,6 +137,7 @@ class WindowEstimator {
   void FillLidarHessian(const Frame& frame, const LidarSystem& lidar, MatchResult* match) const;
   /// Replaces the frame's LiDAR rows; returns the number of degenerate directions left out.
   int CompressLidar(const LidarSystem& lidar, Frame* frame) const;
+  Eigen::MatrixXd LidarFloor(const Frame& frame, int n) const;
   /// Associates the frame at its pose and linearizes its LiDAR factors there.
   void Relinearize(Frame* frame, MatchResult* match, int* degenerate);
   bool MovedFromLinearization(const Frame& frame) const;
@@ -160,7 +164,7 @@ class WindowEstimator {
   std::vector<double> extrinsic_;  ///< T_imu_lidar block (7)
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
   std::vector<double> zero_speed_bias_;
-  LidarFactors factors_;  ///< the newest frame's, reused
+  LidarFactors factors_;                              ///< the newest frame's, reused
   std::unique_ptr<MarginalizationPrior> bias_prior_;  ///< null when disabled
   std::deque<std::unique_ptr<Frame>> frames_;  ///< oldest first; blocks stay at fixed addresses
   MarginalizationResult prior_;
