@@ -187,31 +187,34 @@ bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) const {
   return to->imu != nullptr;
 }
 
-void WindowEstimator::Associate(Frame* f, LidarFactors* factors) const {
-  std::vector<PlaneCorrespondence> planes;
-  std::vector<LineCorrespondence> lines;
+void WindowEstimator::Associate(Frame* f) {
   const Eigen::Isometry3d T = PoseFromParameters(f->pose.data()) * config_.odometry.T_imu_lidar;
-  matcher_.Associate(f->planes_lidar, f->edges_lidar, plane_map_, edge_map_, T, &planes, &lines);
-  const double w = 1.0 / config_.lidar_sigma_m;
-  factors->clear();
-  for (const PlaneCorrespondence& c : planes) {
-    factors->push_back(
-        PointToPlaneFactor::Create(f->planes_lidar[c.index], c.normal, c.centroid, w));
-  }
-  for (const LineCorrespondence& c : lines) {
-    factors->push_back(
-        PointToLineFactor::Create(f->edges_lidar[c.index], c.direction, c.centroid, w));
-  }
-  f->plane_factors = planes.size();
-  f->line_factors = lines.size();
+  matcher_.Associate(f->planes_lidar, f->edges_lidar, plane_map_, edge_map_, T, &planes_, &lines_);
 }
 
-void WindowEstimator::Prealign(Frame* f) const {
+void WindowEstimator::BuildFactors(Frame* f) {
+  const double w = 1.0 / config_.lidar_sigma_m;
+  factors_.clear();
+  for (const PlaneCorrespondence& c : planes_) {
+    factors_.push_back(
+        PointToPlaneFactor::Create(f->planes_lidar[c.index], c.normal, c.centroid, w));
+  }
+  for (const LineCorrespondence& c : lines_) {
+    factors_.push_back(
+        PointToLineFactor::Create(f->edges_lidar[c.index], c.direction, c.centroid, w));
+  }
+  f->plane_factors = planes_.size();
+  f->line_factors = lines_.size();
+}
+
+bool WindowEstimator::Prealign(Frame* f) {
   const Eigen::Isometry3d& T_il = config_.odometry.T_imu_lidar;
-  const MatchResult m = matcher_.Match(f->planes_lidar, f->edges_lidar, plane_map_, edge_map_,
-                                       PoseFromParameters(f->pose.data()) * T_il);
-  if (m.plane_inliers + m.edge_inliers < config_.odometry.min_inliers) return;
+  const MatchResult m =
+      matcher_.Match(f->planes_lidar, f->edges_lidar, plane_map_, edge_map_,
+                     PoseFromParameters(f->pose.data()) * T_il, &planes_, &lines_);
+  if (m.plane_inliers + m.edge_inliers < config_.odometry.min_inliers) return false;
   PoseToParameters(m.T_world_lidar * T_il.inverse(), f->pose.data());
+  return true;
 }
 
 void WindowEstimator::SetInitialPrior(Frame* f) {
@@ -418,8 +421,9 @@ void WindowEstimator::InsertFeatures(const Frame& f) {
   edge_map_.RemoveFar(T.translation());
 }
 
-void WindowEstimator::Relinearize(Frame* f, MatchResult* match, int* degenerate) {
-  Associate(f, &factors_);
+void WindowEstimator::Relinearize(Frame* f, bool associated, MatchResult* match, int* degenerate) {
+  if (!associated) Associate(f);
+  BuildFactors(f);
   const LidarSystem ls = LinearizeLidar(*f, factors_);
   FillLidarHessian(*f, ls, match);
   *degenerate = CompressLidar(ls, f);
@@ -459,8 +463,8 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     // factor: starting from the registered pose put a 10⁸ cost on that factor, which the
     // solver did not work off in its iterations.
     const std::array<double, kPoseSize> predicted = frame->pose;
-    if (config_.prealign) Prealign(frame.get());
-    Relinearize(frame.get(), &result.match, &degenerate);
+    const bool associated = config_.prealign && Prealign(frame.get());
+    Relinearize(frame.get(), associated, &result.match, &degenerate);
     frame->pose = predicted;
   }
   result.times.match_ms = timer.Lap();
@@ -474,7 +478,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     // only where the window solve moved the newest pose (ScanMatcher's rule).
     for (int i = 0; i < config_.reassociations && have_map && MovedFromLinearization(newest); ++i) {
       result.times.optimize_ms += timer.Lap();
-      Relinearize(&newest, &result.match, &degenerate);
+      Relinearize(&newest, false, &result.match, &degenerate);
       result.times.match_ms += timer.Lap();
       out.solver_iterations += Solve(&out);
     }

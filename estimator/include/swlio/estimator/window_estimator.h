@@ -120,8 +120,11 @@ class WindowEstimator {
   std::unique_ptr<Frame> NewFrame(int64_t t_ns, const State& predicted);
   bool Preintegrate(const Frame& from, Frame* to) const;
   using LidarFactors = std::vector<std::unique_ptr<ceres::CostFunction>>;
-  void Associate(Frame* frame, LidarFactors* factors) const;
-  void Prealign(Frame* frame) const;
+  void Associate(Frame* frame);     ///< into planes_ / lines_
+  void BuildFactors(Frame* frame);  ///< factors_ from planes_ / lines_
+  /// Registers the frame alone (ScanMatcher) from its pose; true (pose and planes_ / lines_
+  /// set) when enough features matched.
+  bool Prealign(Frame* frame);
   void SetInitialPrior(Frame* frame);
   State StateOf(const Frame& frame) const;
   int Solve(WindowResult* result);
@@ -139,7 +142,7 @@ class WindowEstimator {
   int CompressLidar(const LidarSystem& lidar, Frame* frame) const;
   Eigen::MatrixXd LidarFloor(const Frame& frame, int n) const;
   /// Associates the frame at its pose and linearizes its LiDAR factors there.
-  void Relinearize(Frame* frame, MatchResult* match, int* degenerate);
+  void Relinearize(Frame* frame, bool associated, MatchResult* match, int* degenerate);
   bool MovedFromLinearization(const Frame& frame) const;
   std::vector<double*> LidarBlocks(Frame* frame);
   bool IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const;
@@ -165,6 +168,8 @@ class WindowEstimator {
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
   std::vector<double> zero_speed_bias_;
   LidarFactors factors_;                              ///< the newest frame's, reused
+  std::vector<PlaneCorrespondence> planes_;  ///< the newest frame's correspondences
+  std::vector<LineCorrespondence> lines_;
   std::unique_ptr<MarginalizationPrior> bias_prior_;  ///< null when disabled
   std::deque<std::unique_ptr<Frame>> frames_;  ///< oldest first; blocks stay at fixed addresses
   MarginalizationResult prior_;
