@@ -145,7 +145,7 @@ bool WindowEstimator::PropagateAndExtract(const Scan& scan, OdometryResult* resu
   }
   propagator_.ExtrapolateTo(scan.t_end_ns);
   const DeskewResult deskew =
-      Deskew(scan, propagator_.track(), config_.odometry.T_imu_lidar, &xyz_);
+      Deskew(scan, propagator_.track(), T_imu_lidar(), &xyz_);
   result->points_uncovered = deskew.uncovered;
   deskewed_ = scan;
   for (size_t i = 0; i < xyz_.size(); ++i) deskewed_.points[i].xyz_m = xyz_[i].cast<float>();
@@ -188,7 +188,7 @@ bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) const {
 }
 
 void WindowEstimator::Associate(Frame* f) {
-  const Eigen::Isometry3d T = PoseFromParameters(f->pose.data()) * config_.odometry.T_imu_lidar;
+  const Eigen::Isometry3d T = PoseFromParameters(f->pose.data()) * T_imu_lidar();
   matcher_.Associate(f->planes_lidar, f->edges_lidar, plane_map_, edge_map_, T, &planes_, &lines_);
 }
 
@@ -208,7 +208,7 @@ void WindowEstimator::BuildFactors(Frame* f) {
 }
 
 bool WindowEstimator::Prealign(Frame* f) {
-  const Eigen::Isometry3d& T_il = config_.odometry.T_imu_lidar;
+  const Eigen::Isometry3d T_il = T_imu_lidar();
   const MatchResult m =
       matcher_.Match(f->planes_lidar, f->edges_lidar, plane_map_, edge_map_,
                      PoseFromParameters(f->pose.data()) * T_il, &planes_, &lines_);
@@ -354,7 +354,7 @@ void WindowEstimator::FillLidarHessian(const Frame& f,
                                        MatchResult* match) const {
   // In the units of ScanMatcher (unwhitened metres): scale out 1/σ².
   const double s2 = config_.lidar_sigma_m * config_.lidar_sigma_m;
-  match->T_world_lidar = PoseFromParameters(f.pose.data()) * config_.odometry.T_imu_lidar;
+  match->T_world_lidar = PoseFromParameters(f.pose.data()) * T_imu_lidar();
   match->plane_inliers = f.plane_factors;
   match->edge_inliers = f.line_factors;
   match->cost = ls.cost * s2;
@@ -408,7 +408,7 @@ bool WindowEstimator::IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const {
 }
 
 void WindowEstimator::InsertFeatures(const Frame& f) {
-  const Eigen::Isometry3d T = PoseFromParameters(f.pose.data()) * config_.odometry.T_imu_lidar;
+  const Eigen::Isometry3d T = PoseFromParameters(f.pose.data()) * T_imu_lidar();
   have_keyframe_ = true;
   T_world_last_keyframe_ = T;
   std::vector<Eigen::Vector3d> world;
@@ -489,7 +489,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     result.status = OdometryStatus::kMatchFailed;  // the IMU carries this frame
   }
   const Eigen::Isometry3d T_world_lidar =
-      PoseFromParameters(newest.pose.data()) * config_.odometry.T_imu_lidar;
+      PoseFromParameters(newest.pose.data()) * T_imu_lidar();
   result.keyframe = IsKeyframe(T_world_lidar);
   if (result.keyframe) InsertFeatures(newest);
   result.state = StateOf(newest);

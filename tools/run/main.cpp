@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <vector>
 
 #include "swlio/core/lie.h"
 #include "swlio/daemon/config_loader.h"
@@ -35,6 +36,7 @@ struct Options {
   double floor_tilt_rad = swlio::estimator::WindowEstimatorConfig{}.lidar_floor_sigma_tilt_rad;
   double floor_yaw_rad = swlio::estimator::WindowEstimatorConfig{}.lidar_floor_sigma_yaw_rad;
   bool estimate_extrinsic = false;
+  std::vector<double> extrinsic_offset;  ///< dx dy dz (m) droll dpitch dyaw (deg)
 };
 
 /// T_imu_lidar from a recording manifest (translation_m and quaternion_xyzw lines), if present:
@@ -148,6 +150,20 @@ bool LoadDaemonConfig(const Options& opt, swlio::daemon::DaemonConfig* config) {
   return true;
 }
 
+/// The extrinsic at the end, and how far it is from the one the recording or config gave
+/// (the truth for simulator recordings, which is what --extrinsic-offset perturbs).
+void PrintExtrinsic(const Eigen::Isometry3d& T_final, const Eigen::Isometry3d& T_given) {
+  const Eigen::Isometry3d d = T_given.inverse() * T_final;
+  const Eigen::Quaterniond q(T_final.linear());
+  std::printf(
+      "{\"extrinsic_T_imu_lidar\": {\"translation_m\": [%.4f, %.4f, %.4f], "
+      "\"quaternion_xyzw\": [%.6f, %.6f, %.6f, %.6f]}, \"from_given_translation_m\": %.4f, "
+      "\"from_given_rotation_deg\": %.3f}\n",
+      T_final.translation().x(), T_final.translation().y(), T_final.translation().z(), q.x(), q.y(),
+      q.z(), q.w(), d.translation().norm(),
+      Eigen::AngleAxisd(d.linear()).angle() * 180.0 / 3.14159265358979323846);
+}
+
 int Run(const Options& opt) {
   swlio::daemon::DaemonConfig daemon_config;
   if (!LoadDaemonConfig(opt, &daemon_config)) return 1;
@@ -156,6 +172,17 @@ int Run(const Options& opt) {
   const auto manifest_extrinsic = ExtrinsicFromManifest(opt.dir);
   config.T_imu_lidar =
       manifest_extrinsic.value_or(config.estimator.extrinsic_imu_lidar.ToIsometry());
+  const Eigen::Isometry3d T_imu_lidar_given = config.T_imu_lidar;
+  if (opt.extrinsic_offset.size() == 6) {
+    const auto& o = opt.extrinsic_offset;
+    constexpr double kDeg = 3.14159265358979323846 / 180.0;
+    config.T_imu_lidar.translation() += Eigen::Vector3d(o[0], o[1], o[2]);
+    config.T_imu_lidar.linear() =
+        config.T_imu_lidar.linear() * (Eigen::AngleAxisd(o[5] * kDeg, Eigen::Vector3d::UnitZ()) *
+                                       Eigen::AngleAxisd(o[4] * kDeg, Eigen::Vector3d::UnitY()) *
+                                       Eigen::AngleAxisd(o[3] * kDeg, Eigen::Vector3d::UnitX()))
+                                          .toRotationMatrix();
+  }
   if (!manifest_extrinsic && opt.config.empty()) {
     std::cerr << "swlio-run: no extrinsic in " << opt.dir
               << "/manifest.yaml and no --config; using identity\n";
@@ -244,6 +271,9 @@ int Run(const Options& opt) {
     std::cerr << "swlio-run: " << waiting.size()
               << " last sweep(s) without IMU coverage not processed\n";
   summary.Print();
+  if (tightly_coupled && (opt.estimate_extrinsic || !opt.extrinsic_offset.empty())) {
+    PrintExtrinsic(window.T_imu_lidar(), T_imu_lidar_given);
+  }
   return 0;
 }
 
@@ -280,6 +310,10 @@ int Main(int argc, char** argv) {
   app.add_option("--lidar-floor-yaw", opt.floor_yaw_rad,
                  "floor under a sweep's LiDAR yaw standard deviation, rad (tightly-coupled)")
       ->capture_default_str();
+  app.add_option("--extrinsic-offset", opt.extrinsic_offset,
+                 "perturb the given extrinsic: dx dy dz (m) droll dpitch dyaw (deg), e.g. to test "
+                 "--estimate-extrinsic")
+      ->expected(6);
   app.add_flag("--estimate-extrinsic", opt.estimate_extrinsic,
                "refine T_imu_lidar online (tightly-coupled; weak prior on the configured value)");
   app.add_option("--out", opt.out, "trajectory (TUM, IMU frame)")->required();

@@ -112,6 +112,8 @@ class WindowEstimator {
 
   bool initialized() const { return initialized_; }
   size_t window_frames() const { return frames_.size(); }
+  /// The extrinsic in use: the configured one, or its online estimate (`estimate_extrinsic`).
+  Eigen::Isometry3d T_imu_lidar() const { return PoseFromParameters(extrinsic_.data()); }
 
  private:
   struct Frame;
