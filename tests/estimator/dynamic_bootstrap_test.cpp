@@ -90,7 +90,8 @@ class RawSweeps {
 };
 
 struct BootRun {
-  int sweeps = 0;  ///< sweeps fed until ready (or all)
+  int sweeps = 0;                         ///< sweeps fed until ready (or all)
+  std::vector<BootstrapStatus> statuses;  ///< of the sweeps given to AddScan
   bool ready = false;
   double tilt_rad = 0.0;          ///< angle between estimated and true "up" in the IMU frame
   double velocity_err_mps = 0.0;  ///< |v_imu − v_imu true|, IMU-frame velocity
@@ -108,8 +109,14 @@ DynamicBootstrapConfig ConfigFor(const sim::SimSetup& setup) {
   return config;
 }
 
-/// Feeds IMU and sweeps from `t0_s` for at most `max_sweeps`, stopping when ready.
-BootRun Feed(const sim::SimSetup& setup, double t0_s, int max_sweeps, DynamicBootstrap* boot) {
+/// Feeds IMU and sweeps from `t0_s` for at most `max_sweeps`, stopping when ready. The sweeps
+/// numbered [drop_from, drop_from + drop_count) are not given to AddScan (lost sweeps).
+BootRun Feed(const sim::SimSetup& setup,
+             double t0_s,
+             int max_sweeps,
+             DynamicBootstrap* boot,
+             int drop_from = -1,
+             int drop_count = 0) {
   const std::vector<sim::SimImuSample> sim_imu =
       sim::SimulateImu(*setup.trajectory, setup.imu, setup.seed);
   const std::vector<ImuSample> imu = test::ToImuSamples(sim_imu);
@@ -123,7 +130,9 @@ BootRun Feed(const sim::SimSetup& setup, double t0_s, int max_sweeps, DynamicBoo
       boot->AddImu(imu[next]);
     }
     ++run.sweeps;
-    if (boot->AddScan(scan) == BootstrapStatus::kReady) break;
+    if (run.sweeps > drop_from && run.sweeps <= drop_from + drop_count) continue;
+    run.statuses.push_back(boot->AddScan(scan));
+    if (run.statuses.back() == BootstrapStatus::kReady) break;
   }
   run.ready = boot->ready();
   const DynamicInitResult& init = run.ready ? boot->result().init : boot->last_attempt();
@@ -245,6 +254,23 @@ TEST(DynamicBootstrap, StandingStillNeverReportsAWrongAnswer) {
     EXPECT_LT(run.velocity_err_mps, 0.1);
     EXPECT_LT(boot.result().state.vel_world.norm(), 0.1);
   }
+}
+
+// Half a second of lost sweeps after 1 s: the odometry starts over and the window refills.
+TEST(DynamicBootstrap, LostSweepsRestartTheOdometry) {
+  auto setup = sim::MakeSimSetup("aggressive", 3, 25.0);
+  ASSERT_TRUE(setup);
+  DynamicBootstrap boot(ConfigFor(*setup));
+  const BootRun run = Feed(*setup, 20.0, 40, &boot, 10, 5);
+  SCOPED_TRACE(run.figures);
+  ASSERT_GE(run.statuses.size(), 11u);
+  EXPECT_EQ(run.statuses[9], BootstrapStatus::kCollecting);
+  EXPECT_EQ(run.statuses[10], BootstrapStatus::kRestarted);
+  EXPECT_EQ(boot.restarts(), 1u);
+  ASSERT_TRUE(run.ready);
+  EXPECT_EQ(run.sweeps, 15 + 21) << "a full window after the restart (its first sweep anchors)";
+  EXPECT_LT(run.tilt_rad, 0.5 * kDeg);
+  EXPECT_LT(run.velocity_err_mps, 0.1);
 }
 
 // Figures over seeds 1–8 of both routes (~16 s): run with --gtest_also_run_disabled_tests.
