@@ -149,11 +149,7 @@ class DynamicBootstrap {
   VoxelMap edge_map_;
   std::deque<ImuSample> imu_;
   // Odometry state.
-  bool tracking_ = false;           ///< a map and a last pose exist
-  bool have_velocity_ = false;      ///< before_last_ is valid
-  bool velocity_deskewed_ = false;  ///< the map comes from sweeps de-skewed with a velocity
   ImuPose last_, before_last_;
-  bool have_keyframe_ = false;
   Eigen::Isometry3d T_w0_last_keyframe_ = Eigen::Isometry3d::Identity();
   std::deque<Frame> frames_;  ///< the newest window_frames poses, oldest first
   // Scratch, reused sweep after sweep.
@@ -165,12 +161,17 @@ class DynamicBootstrap {
   std::vector<StampedLidarPose> poses_;
   std::vector<ImuSample> imu_window_;
   // Outcome.
-  bool ready_ = false;
   BootstrapResult result_;
   std::vector<BootstrapKeyframe> keyframes_;
   DynamicInitResult last_attempt_;
   size_t attempts_ = 0;
   size_t restarts_ = 0;
+  // Flags last (padding).
+  bool tracking_ = false;           ///< a map and a last pose exist
+  bool have_velocity_ = false;      ///< before_last_ is valid
+  bool velocity_deskewed_ = false;  ///< the map comes from sweeps de-skewed with a velocity
+  bool have_keyframe_ = false;
+  bool ready_ = false;
 };
 
 }  // namespace swlio::estimator

@@ -153,7 +153,6 @@ class WindowEstimator {
   WindowEstimatorConfig config_;
   NowNsFn now_ns_;
   StaticInitializer initializer_;
-  bool initialized_ = false;
   State init_state_;
   ImuPropagator propagator_;
   std::deque<ImuSample> imu_;  ///< samples from just before the newest frame on
@@ -169,15 +168,17 @@ class WindowEstimator {
   std::vector<double> extrinsic_;  ///< T_imu_lidar block (7)
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
   std::vector<double> zero_speed_bias_;
-  LidarFactors factors_;                              ///< the newest frame's, reused
+  LidarFactors factors_;                     ///< the newest frame's, reused
   std::vector<PlaneCorrespondence> planes_;  ///< the newest frame's correspondences
   std::vector<LineCorrespondence> lines_;
   std::unique_ptr<MarginalizationPrior> bias_prior_;  ///< null when disabled
   std::deque<std::unique_ptr<Frame>> frames_;  ///< oldest first; blocks stay at fixed addresses
   MarginalizationResult prior_;
   size_t marginalization_failures_ = 0;
-  bool have_keyframe_ = false;
   Eigen::Isometry3d T_world_last_keyframe_ = Eigen::Isometry3d::Identity();
+  // Flags last (padding).
+  bool initialized_ = false;
+  bool have_keyframe_ = false;
 };
 
 }  // namespace swlio::estimator
