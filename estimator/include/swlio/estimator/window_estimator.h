@@ -6,26 +6,27 @@
 /// [v, b_a, b_g] (9); the extrinsic T_imu_lidar is one more block, constant unless
 /// `estimate_extrinsic` (then tied to its configured value by a weak prior).
 ///
-/// Per sweep: propagate the IMU from the newest optimized frame → de-skew → front end →
-/// associate the sweep's features with the local map (VoxelMaps of keyframe features, world
-/// frame) at the predicted pose → one Ceres problem over the window:
-///   - ImuFactor between consecutive frames (pre-integrated covariance, eq. 21),
-///   - point-to-plane / point-to-line factors of the newest frame (Huber, σ = `lidar_sigma_m`);
-///     once a frame is no longer the newest, its factors (correspondences fixed when it was
-///     associated) are replaced by their Gauss–Newton linearization at its pose, ≤ 6 rows
-///     (r₀ + U δ with UᵀU = H, Uᵀr₀ = b, robust weights frozen): keeping ~1000 point factors
-///     per frame made the solve 8× slower. The linearized rows act on the pose only (with
-///     `estimate_extrinsic`, only the newest frame's points inform the extrinsic),
-///   - the marginalization prior of the frames that left (at start: a Gaussian prior on the
-///     first frame from the static initialization, which also fixes the gauge),
-/// → solve → re-associate the newest frame at the solution and solve again
-/// (`reassociations` times) → re-integrate IMU factors whose frame-i biases moved past
-/// Preintegrator::NeedsReintegration → keyframe features into the maps at the optimized pose
-/// → when the window holds more than `window_size` frames, marginalize the oldest
-/// (Marginalizer: its LiDAR factors, its IMU factor and the previous prior).
-/// Degeneracy: the 6×6 LiDAR Hessian of the newest frame (tangent [δp; δφ] of T_world_imu)
-/// and its eigenvalues are reported in every result; in weak directions the IMU factors and
-/// the prior carry the estimate, as they are part of the same problem.
+/// Per sweep (ARCHITECTURE.md, "tightly coupled sliding window"):
+///  1. propagate the IMU from the newest optimized frame → de-skew → front end;
+///  2. register the sweep alone from the IMU prediction (ScanMatcher::Match), associate its
+///     features with the local map (VoxelMaps of keyframe features, world frame) there, and
+///     linearize its point-to-plane / point-to-line factors (eq. 17–18, Huber, σ
+///     `lidar_sigma_m`) into ≤ 6 rows (≤ 12 with the extrinsic): lidar_rows.h, with
+///     degenerate directions left out and a covariance floor (`lidar_floor_sigma_*`);
+///  3. one Ceres problem over the window, started from the IMU prediction: ImuFactor between
+///     consecutive frames (eq. 21, pre-integrated covariance), every frame's LiDAR rows, the
+///     marginalization prior (at start: a Gaussian prior on the first frame from the static
+///     initialization, which also fixes the gauge) and a weak per-frame b_a prior; where the
+///     solve moved the newest pose past the re-association thresholds, associate and
+///     linearize again and re-solve (`reassociations`);
+///  4. re-integrate IMU factors whose frame-i biases moved past
+///     Preintegrator::NeedsReintegration; keyframe features into the maps at the optimized pose;
+///  5. when the window holds more than `window_size` frames, marginalize the oldest
+///     (Marginalizer: its LiDAR rows, its IMU factor and the previous prior).
+/// A frame's LiDAR term is relinearized only while it is the newest (LIO-Mapping evaluates
+/// every frame's point factors in every iteration, which is what made it slow).
+/// Degeneracy: the 6×6 LiDAR Hessian of the newest frame (tangent [δp; δφ] of T_world_imu),
+/// its eigenvalues and the number of directions left to the IMU are reported in every result.
 /// Pure library: no clock (StageTimes through NowNsFn), no printing.
 
 #include <ceres/cost_function.h>
@@ -124,8 +125,8 @@ class WindowEstimator {
   using LidarFactors = std::vector<std::unique_ptr<ceres::CostFunction>>;
   void Associate(Frame* frame);     ///< into planes_ / lines_
   void BuildFactors(Frame* frame);  ///< factors_ from planes_ / lines_
-  /// Registers the frame alone (ScanMatcher) from its pose; true (pose and planes_ / lines_
-  /// set) when enough features matched.
+  /// Registers the frame alone (ScanMatcher) from its pose; true (pose set) when enough
+  /// features matched.
   bool Prealign(Frame* frame);
   void SetInitialPrior(Frame* frame);
   State StateOf(const Frame& frame) const;
@@ -144,7 +145,7 @@ class WindowEstimator {
   int CompressLidar(const LidarSystem& lidar, Frame* frame) const;
   Eigen::MatrixXd LidarFloor(const Frame& frame, int n) const;
   /// Associates the frame at its pose and linearizes its LiDAR factors there.
-  void Relinearize(Frame* frame, bool associated, MatchResult* match, int* degenerate);
+  void Relinearize(Frame* frame, MatchResult* match, int* degenerate);
   bool MovedFromLinearization(const Frame& frame) const;
   std::vector<double*> LidarBlocks(Frame* frame);
   bool IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const;
