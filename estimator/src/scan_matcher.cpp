@@ -147,9 +147,7 @@ MatchResult ScanMatcher::Match(const std::vector<Eigen::Vector3d>& planar_lidar,
                                const std::vector<Eigen::Vector3d>& edge_lidar,
                                const VoxelMap& plane_map,
                                const VoxelMap& edge_map,
-                               const Eigen::Isometry3d& T_init,
-                               std::vector<PlaneCorrespondence>* planes_out,
-                               std::vector<LineCorrespondence>* lines_out) const {
+                               const Eigen::Isometry3d& T_init) const {
   MatchResult result;
   Eigen::Isometry3d T = T_init;
   Eigen::Isometry3d T_associated = T_init;
@@ -185,8 +183,6 @@ MatchResult ScanMatcher::Match(const std::vector<Eigen::Vector3d>& planar_lidar,
     }
   }
   result.T_world_lidar = T;
-  if (planes_out != nullptr) *planes_out = std::move(planes);
-  if (lines_out != nullptr) *lines_out = std::move(lines);
   result.plane_inliers = ne.planes;
   result.edge_inliers = ne.edges;
   result.cost = ne.cost;

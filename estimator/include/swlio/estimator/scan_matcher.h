@@ -81,15 +81,11 @@ class ScanMatcher {
   explicit ScanMatcher(const ScanMatcherConfig& config = {});
 
   /// Registers LiDAR-frame features against the maps (either may be empty) from `T_init`.
-  /// `planes`/`lines` (optional) receive the last correspondences it used (found within the
-  /// re-association thresholds of the result).
   MatchResult Match(const std::vector<Eigen::Vector3d>& planar_lidar,
                     const std::vector<Eigen::Vector3d>& edge_lidar,
                     const VoxelMap& plane_map,
                     const VoxelMap& edge_map,
-                    const Eigen::Isometry3d& T_init,
-                    std::vector<PlaneCorrespondence>* planes = nullptr,
-                    std::vector<LineCorrespondence>* lines = nullptr) const;
+                    const Eigen::Isometry3d& T_init) const;
 
   /// Pairs every feature, placed at `T_world_lidar`, with the plane or line its map
   /// neighbours form (validity checks as above); features without one are left out.
