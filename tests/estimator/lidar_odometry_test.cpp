@@ -6,53 +6,38 @@
 #include <gtest/gtest.h>
 
 #include "swlio/core/time.h"
+#include "wall_sweep.h"
 
 namespace swlio::estimator {
 namespace {
 
-ImuSample Sample(int64_t t_ns, double acc_x) {
-  ImuSample s;
-  s.t_ns = t_ns;
-  s.acc_mps2 = Eigen::Vector3d(acc_x, 0.0, 9.80665);
-  return s;
-}
-
-Scan Sweep(int64_t t_start_ns) {
-  Scan scan;
-  scan.t_start_ns = t_start_ns;
-  scan.t_end_ns = t_start_ns + 99 * kNsPerMs;
-  for (int i = 0; i < 100; ++i) {
-    LidarPoint p;
-    p.xyz_m = Eigen::Vector3f(5.0f, 0.01f * static_cast<float>(i), -1.0f);
-    p.dt_ns = i * kNsPerMs;
-    scan.points.push_back(p);
-  }
-  return scan;
-}
+using test::LevelImu;
+using test::WallSweep;
 
 TEST(LidarOdometry, SweepsBeforeAStandingStartAreSkipped) {
   LidarOdometry odometry(LidarOdometryConfig{});
   // Shaking (alternating ±1 m/s²) for 3 s: never still long enough to initialize.
   for (int64_t t = 0; t < 3 * kNsPerSec; t += 2'500'000) {
-    odometry.AddImu(Sample(t, (t / 2'500'000) % 2 == 0 ? 1.0 : -1.0));
+    odometry.AddImu(LevelImu(t, (t / 2'500'000) % 2 == 0 ? 1.0 : -1.0));
     if (t % (100 * kNsPerMs) == 0 && t > 0) {
-      EXPECT_EQ(odometry.AddScan(Sweep(t - 100 * kNsPerMs)).status, OdometryStatus::kInitializing);
+      EXPECT_EQ(odometry.AddScan(WallSweep(t - 100 * kNsPerMs)).status,
+                OdometryStatus::kInitializing);
     }
   }
   EXPECT_FALSE(odometry.initialized());
   // Standing still: initialized, and the next sweep is used (the first one builds the map).
   int64_t t = 3 * kNsPerSec;
-  for (; t < 6 * kNsPerSec; t += 2'500'000) odometry.AddImu(Sample(t, 0.0));
+  for (; t < 6 * kNsPerSec; t += 2'500'000) odometry.AddImu(LevelImu(t, 0.0));
   ASSERT_TRUE(odometry.initialized());
-  for (int64_t u = t; u < t + 200 * kNsPerMs; u += 2'500'000) odometry.AddImu(Sample(u, 0.0));
-  const OdometryResult r = odometry.AddScan(Sweep(t));
+  for (int64_t u = t; u < t + 200 * kNsPerMs; u += 2'500'000) odometry.AddImu(LevelImu(u, 0.0));
+  const OdometryResult r = odometry.AddScan(WallSweep(t));
   EXPECT_EQ(r.status, OdometryStatus::kTracking);
   EXPECT_EQ(r.points_in, 100u);
   EXPECT_EQ(r.state.t_ns, t + 99 * kNsPerMs);
   EXPECT_LT(r.state.T_world_imu.translation().norm(), 1e-3) << "standing: no motion";
   EXPECT_EQ(r.times.total_ms, 0.0) << "no clock injected: no timings";
   // A sweep that starts before the state it would follow is reported, not used.
-  EXPECT_EQ(odometry.AddScan(Sweep(t + 50 * kNsPerMs)).status, OdometryStatus::kSkipped);
+  EXPECT_EQ(odometry.AddScan(WallSweep(t + 50 * kNsPerMs)).status, OdometryStatus::kSkipped);
 }
 
 TEST(LidarOdometry, StageTimesComeFromTheInjectedClock) {
@@ -60,10 +45,10 @@ TEST(LidarOdometry, StageTimesComeFromTheInjectedClock) {
   const NowNsFn clock = [] { return fake_ns += 1'000'000; };  // +1 ms per reading
   LidarOdometry odometry(LidarOdometryConfig{}, clock);
   int64_t t = 0;
-  for (; t < 3 * kNsPerSec; t += 2'500'000) odometry.AddImu(Sample(t, 0.0));
+  for (; t < 3 * kNsPerSec; t += 2'500'000) odometry.AddImu(LevelImu(t, 0.0));
   ASSERT_TRUE(odometry.initialized());
-  for (int64_t u = t; u < t + 200 * kNsPerMs; u += 2'500'000) odometry.AddImu(Sample(u, 0.0));
-  const OdometryResult r = odometry.AddScan(Sweep(t));
+  for (int64_t u = t; u < t + 200 * kNsPerMs; u += 2'500'000) odometry.AddImu(LevelImu(u, 0.0));
+  const OdometryResult r = odometry.AddScan(WallSweep(t));
   EXPECT_DOUBLE_EQ(r.times.frontend_ms, 1.0);
   EXPECT_DOUBLE_EQ(r.times.match_ms, 0.0) << "first sweep: nothing to match against";
   EXPECT_DOUBLE_EQ(r.times.total_ms, 2.0);

@@ -7,43 +7,26 @@
 #include <gtest/gtest.h>
 
 #include "swlio/core/time.h"
+#include "wall_sweep.h"
 
 namespace swlio::estimator {
 namespace {
 
-ImuSample Still(int64_t t_ns) {
-  ImuSample s;
-  s.t_ns = t_ns;
-  s.acc_mps2 = Eigen::Vector3d(0.0, 0.0, 9.80665);
-  return s;
-}
-
-// A sweep of a few points on a wall: too few features for any map correspondence.
-Scan Sweep(int64_t t_start_ns) {
-  Scan scan;
-  scan.t_start_ns = t_start_ns;
-  scan.t_end_ns = t_start_ns + 99 * kNsPerMs;
-  for (int i = 0; i < 100; ++i) {
-    LidarPoint p;
-    p.xyz_m = Eigen::Vector3f(5.0f, 0.01f * static_cast<float>(i), -1.0f);
-    p.dt_ns = i * kNsPerMs;
-    scan.points.push_back(p);
-  }
-  return scan;
-}
+using test::LevelImu;
+using test::WallSweep;
 
 TEST(WindowEstimator, StandingStillTheImuHoldsThePoseAndTheWindowSlides) {
   WindowEstimatorConfig config;
   config.window_size = 4;
   WindowEstimator estimator(config);
   int64_t t = 0;
-  for (; t < 2 * kNsPerSec; t += 2'500'000) estimator.AddImu(Still(t));
+  for (; t < 2 * kNsPerSec; t += 2'500'000) estimator.AddImu(LevelImu(t));
   ASSERT_TRUE(estimator.initialized());
   WindowResult r;
   for (int sweep = 0; sweep < 12; ++sweep) {
     const int64_t t_end = t + 100 * kNsPerMs;
-    for (; t < t_end; t += 2'500'000) estimator.AddImu(Still(t));
-    r = estimator.AddScan(Sweep(t_end - 100 * kNsPerMs));
+    for (; t < t_end; t += 2'500'000) estimator.AddImu(LevelImu(t));
+    r = estimator.AddScan(WallSweep(t_end - 100 * kNsPerMs));
     EXPECT_NE(r.odometry.status, OdometryStatus::kInitializing) << "sweep " << sweep;
     EXPECT_LE(r.window_frames, config.window_size);
   }
@@ -62,7 +45,7 @@ TEST(WindowEstimator, ABiasedGyroAtRestIsEstimatedNotIntegrated) {
   const Eigen::Vector3d bias(0.002, -0.003, 0.004);
   int64_t t = 0;
   auto sample = [&](int64_t t_ns) {
-    ImuSample s = Still(t_ns);
+    ImuSample s = LevelImu(t_ns);
     s.gyro_radps = bias;
     return s;
   };
@@ -72,7 +55,7 @@ TEST(WindowEstimator, ABiasedGyroAtRestIsEstimatedNotIntegrated) {
   for (int sweep = 0; sweep < 20; ++sweep) {
     const int64_t t_end = t + 100 * kNsPerMs;
     for (; t < t_end; t += 2'500'000) estimator.AddImu(sample(t));
-    r = estimator.AddScan(Sweep(t_end - 100 * kNsPerMs));
+    r = estimator.AddScan(WallSweep(t_end - 100 * kNsPerMs));
   }
   EXPECT_LT((r.odometry.state.bias_gyro - bias).norm(), 1e-4);
   EXPECT_LT(Eigen::AngleAxisd(r.odometry.state.T_world_imu.linear()).angle(), 1e-3);
