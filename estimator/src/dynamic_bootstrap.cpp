@@ -295,4 +295,10 @@ void DynamicBootstrap::Finish(const DynamicInitResult& init) {
   ready_ = true;
 }
 
+double DynamicBootstrap::registered_speed_mps() const {
+  if (!have_velocity_ || last_.t_ns <= before_last_.t_ns) return -1.0;
+  return (last_.T_w0_imu.translation() - before_last_.T_w0_imu.translation()).norm() /
+         (1e-9 * static_cast<double>(last_.t_ns - before_last_.t_ns));
+}
+
 }  // namespace swlio::estimator

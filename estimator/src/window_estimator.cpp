@@ -4,9 +4,11 @@
 #include <ceres/solver.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <array>
 #include <cmath>
 
+#include "swlio/core/time.h"
 #include "swlio/estimator/deskew.h"
 #include "swlio/estimator/lidar_rows.h"
 #include "swlio/estimator/point_to_line_factor.h"
@@ -60,16 +62,31 @@ ImuSample At(ImuSample s, int64_t t_ns) {
   return s;
 }
 
+DynamicBootstrapConfig BootstrapConfig(const WindowEstimatorConfig& config) {
+  DynamicBootstrapConfig c = config.bootstrap;
+  c.odometry = config.odometry;
+  return c;
+}
+
 }  // namespace
 
 ConfigIssues WindowEstimatorConfig::Validate() const {
   ConfigIssues issues;
   AppendWithPrefix(issues, "odometry", odometry.Validate());
+  if (dynamic_init) {
+    DynamicBootstrapConfig b = bootstrap;
+    b.odometry = odometry;  // as the estimator uses it (its own keys are checked above)
+    for (const ConfigIssue& issue : b.Validate()) {
+      if (issue.key.rfind("odometry.", 0) != 0)
+        issues.push_back({"bootstrap." + issue.key, issue.reason});
+    }
+  }
   CheckInRange<size_t>(issues, "window_size", window_size, 2, 50);
   CheckInRange(issues, "max_iterations", max_iterations, 1, 50);
   CheckInRange(issues, "reassociations", reassociations, 0, 5);
   CheckPositive(issues, "lidar_sigma_m", lidar_sigma_m);
   CheckPositive(issues, "huber_m", huber_m);
+  CheckPositive(issues, "static_max_speed_mps", static_max_speed_mps);
   CheckPositive(issues, "degenerate_eigenvalue", degenerate_eigenvalue);
   CheckInRange(issues, "lidar_floor_sigma_m", lidar_floor_sigma_m, 0.0, 1.0);
   CheckInRange(issues, "lidar_floor_sigma_tilt_rad", lidar_floor_sigma_tilt_rad, 0.0, 0.5);
@@ -90,6 +107,10 @@ WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn no
     : config_(config),
       now_ns_(now_ns),
       initializer_(config.odometry.estimator),
+      bootstrap_(BootstrapConfig(config)),
+      init_sigma_velocity_mps_(config.init_sigma_velocity_mps),
+      init_sigma_tilt_rad_(config.init_sigma_rotation_rad),
+      init_sigma_bias_acc_mps2_(config.init_sigma_bias_acc_mps2),
       propagator_(config.odometry.estimator.gravity_mps2),
       front_end_(config.odometry.front_end),
       plane_map_(config.odometry.plane_map),
@@ -120,11 +141,47 @@ void WindowEstimator::AddImu(const ImuSample& sample) {
     imu_.push_back(sample);
     return;
   }
-  if (initializer_.Add(sample).status == InitStatus::kInitialized) {
+  // Constant velocity feels like standing still to an IMU: with the moving start enabled, a
+  // static result is refused while the LiDAR registers motion (measured: `aggressive` entered
+  // at 20 s, 1.5 m/s, initialized "at rest", the velocity took 1 s to converge). Without a
+  // registration (too few features) the IMU's judgement stands.
+  const double speed_mps = bootstrap_.registered_speed_mps();
+  const bool lidar_agrees =
+      !config_.dynamic_init || speed_mps < 0.0 || speed_mps < config_.static_max_speed_mps;
+  if (initializer_.Add(sample).status == InitStatus::kInitialized && lidar_agrees) {
     initialized_ = true;
     init_state_ = initializer_.result().state;
-    imu_.push_back(sample);
+    imu_.assign(1, sample);
+    bootstrap_.Reset();
+    return;
   }
+  if (!config_.dynamic_init) return;
+  bootstrap_.AddImu(sample);
+  // Kept for the first IMU factor after a moving start (a second is plenty).
+  imu_.push_back(sample);
+  while (!imu_.empty() && imu_.front().t_ns < sample.t_ns - kNsPerSec) imu_.pop_front();
+}
+
+void WindowEstimator::StartFromBootstrap() {
+  const BootstrapResult& r = bootstrap_.result();
+  initialized_ = true;
+  init_state_ = r.state;
+  // The first frame's prior from the alignment's own uncertainty (never tighter than the
+  // configured static one).
+  init_sigma_velocity_mps_ = std::max(config_.init_sigma_velocity_mps, r.velocity_std_mps);
+  init_sigma_tilt_rad_ = std::max(config_.init_sigma_rotation_rad, r.gravity_tilt_std_rad);
+  init_sigma_bias_acc_mps2_ = std::max(config_.init_sigma_bias_acc_mps2, r.bias_acc_std.maxCoeff());
+  for (const BootstrapKeyframe& kf : bootstrap_.keyframes()) {
+    std::vector<Eigen::Vector3d> world;
+    for (const Eigen::Vector3d& p : kf.planes_lidar) world.push_back(kf.T_world_lidar * p);
+    plane_map_.Insert(world);
+    world.clear();
+    for (const Eigen::Vector3d& p : kf.edges_lidar) world.push_back(kf.T_world_lidar * p);
+    edge_map_.Insert(world);
+    have_keyframe_ = true;
+    T_world_last_keyframe_ = kf.T_world_lidar;
+  }
+  while (imu_.size() > 1 && imu_[1].t_ns <= init_state_.t_ns) imu_.pop_front();
 }
 
 State WindowEstimator::StateOf(const Frame& f) const {
@@ -218,9 +275,9 @@ bool WindowEstimator::Prealign(Frame* f) {
 void WindowEstimator::SetInitialPrior(Frame* f) {
   Eigen::VectorXd sigmas(kPoseTangentSize + kSpeedBiasSize);
   sigmas << Eigen::Vector3d::Constant(config_.init_sigma_position_m),
-      Eigen::Vector3d::Constant(config_.init_sigma_rotation_rad),
-      Eigen::Vector3d::Constant(config_.init_sigma_velocity_mps),
-      Eigen::Vector3d::Constant(config_.init_sigma_bias_acc_mps2),
+      Eigen::Vector3d(init_sigma_tilt_rad_, init_sigma_tilt_rad_, config_.init_sigma_rotation_rad),
+      Eigen::Vector3d::Constant(init_sigma_velocity_mps_),
+      Eigen::Vector3d::Constant(init_sigma_bias_acc_mps2_),
       Eigen::Vector3d::Constant(config_.init_sigma_bias_gyro_radps);
   prior_ = MarginalizationResult{};
   prior_.prior =
@@ -444,7 +501,14 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   OdometryResult& result = out.odometry;
   result.points_in = scan.points.size();
   const int64_t t_last = frames_.empty() ? init_state_.t_ns : frames_.back()->t_ns;
-  if (!initialized_ || scan.t_start_ns < t_last) return out;  // skipped
+  if (!initialized_) {
+    // A moving start: LiDAR-only registration aligned to the IMU (dynamic_bootstrap.h).
+    if (config_.dynamic_init && bootstrap_.AddScan(scan) == BootstrapStatus::kReady) {
+      StartFromBootstrap();
+    }
+    return out;
+  }
+  if (scan.t_start_ns < t_last) return out;  // skipped
 
   PropagateAndExtract(scan, &result);
   std::unique_ptr<Frame> frame = NewFrame(scan.t_end_ns, propagator_.state());

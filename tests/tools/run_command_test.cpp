@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "sim_recording.h"
 #include "sim_setup.h"
@@ -127,6 +129,46 @@ TEST_F(RunOnShortDrive, TightlyCoupledFollowsTheSimulatedDrive) {
   // LiDAR-only measures 0.02 m here (run_command_test.cpp); the window must not be worse.
   EXPECT_LT(ape.stats.rmse, 0.05) << out;
   EXPECT_LT(ape.stats.max, 0.15) << out;
+}
+
+// Started 12 s into the drive, at speed: the window starts from the LiDAR-IMU alignment
+// (DynamicBootstrap), not from a "standing" IMU, so its first state already moves.
+TEST_F(RunOnShortDrive, TightlyCoupledStartsWhileMoving) {
+  const fs::path dir = *dir_ / "moving-start";
+  fs::create_directories(dir);
+  int code = 0;
+  const std::string out = test::RunCommand(
+      tool_.string() + " " + dir_->string() + " --start-s 12 --out " + (dir / "est.tum").string() +
+          " --diagnostics " + (dir / "d.csv").string() + " 2>&1",
+      &code);
+  ASSERT_EQ(code, 0) << out;
+  std::ifstream diag(dir / "d.csv");
+  std::string line;
+  std::getline(diag, line);
+  double first_speed = -1.0;
+  size_t initializing = 0;
+  while (std::getline(diag, line) && first_speed < 0.0) {
+    if (line.find(",initializing,") != std::string::npos) {
+      ++initializing;
+      continue;
+    }
+    // vel_x,vel_y,vel_z are the 14th–16th columns.
+    std::vector<double> v;
+    size_t pos = 0;
+    for (int col = 0; col < 16 && pos != std::string::npos; ++col) {
+      const size_t next = line.find(',', pos);
+      if (col >= 13) v.push_back(std::stod(line.substr(pos, next - pos)));
+      pos = next == std::string::npos ? next : next + 1;
+    }
+    ASSERT_EQ(v.size(), 3u) << line;
+    first_speed = std::hypot(v[0], v[1], v[2]);
+  }
+  EXPECT_GE(initializing, 10u) << "about 2 s of sweeps for the alignment";
+  EXPECT_LE(initializing, 40u) << out;
+  EXPECT_GT(first_speed, 0.8) << "the simulated robot drives at 1.2 m/s here";
+  const eval::Evaluation ape = Ape(dir / "est.tum");
+  EXPECT_GE(ape.errors.size(), 60u);
+  EXPECT_LT(ape.stats.rmse, 0.10) << out;
 }
 
 TEST(RunCommand, MissingFolderIsAClearError) {

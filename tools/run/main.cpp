@@ -24,19 +24,27 @@ namespace {
 using swlio::estimator::OdometryResult;
 using swlio::estimator::OdometryStatus;
 
+/// The window estimator's defaults (one object: temporaries of the large config per field made
+/// GCC warn about maybe-uninitialized strings).
+const swlio::estimator::WindowEstimatorConfig& WindowDefaults() {
+  static const swlio::estimator::WindowEstimatorConfig defaults;
+  return defaults;
+}
+
 struct Options {
   std::string dir, out, timings, diagnostics, config, mode = "tightly-coupled";
-  size_t window_size = swlio::estimator::WindowEstimatorConfig{}.window_size;
-  int iterations = swlio::estimator::WindowEstimatorConfig{}.max_iterations;
-  int reassociations = swlio::estimator::WindowEstimatorConfig{}.reassociations;
-  double lidar_sigma_m = swlio::estimator::WindowEstimatorConfig{}.lidar_sigma_m;
-  double bias_prior_acc = swlio::estimator::WindowEstimatorConfig{}.bias_prior_sigma_acc_mps2;
-  double degenerate_eigenvalue = swlio::estimator::WindowEstimatorConfig{}.degenerate_eigenvalue;
-  double floor_m = swlio::estimator::WindowEstimatorConfig{}.lidar_floor_sigma_m;
-  double floor_tilt_rad = swlio::estimator::WindowEstimatorConfig{}.lidar_floor_sigma_tilt_rad;
-  double floor_yaw_rad = swlio::estimator::WindowEstimatorConfig{}.lidar_floor_sigma_yaw_rad;
+  size_t window_size = WindowDefaults().window_size;
+  int iterations = WindowDefaults().max_iterations;
+  int reassociations = WindowDefaults().reassociations;
+  double lidar_sigma_m = WindowDefaults().lidar_sigma_m;
+  double bias_prior_acc = WindowDefaults().bias_prior_sigma_acc_mps2;
+  double degenerate_eigenvalue = WindowDefaults().degenerate_eigenvalue;
+  double floor_m = WindowDefaults().lidar_floor_sigma_m;
+  double floor_tilt_rad = WindowDefaults().lidar_floor_sigma_tilt_rad;
+  double floor_yaw_rad = WindowDefaults().lidar_floor_sigma_yaw_rad;
   bool estimate_extrinsic = false;
   std::vector<double> extrinsic_offset;  ///< dx dy dz (m) droll dpitch dyaw (deg)
+  double start_s = 0.0;
 };
 
 /// T_imu_lidar from a recording manifest (translation_m and quaternion_xyzw lines), if present:
@@ -247,8 +255,15 @@ int Run(const Options& opt) {
   // would extrapolate held rates. The LiDAR-only mode takes sweeps as they come.
   std::deque<swlio::Scan> waiting;
   swlio::daemon::RecordingEvent e;
+  // --start-s: the estimator sees nothing before that many seconds into the recording (the
+  // decoders and clock models do: as a daemon started while the robot is already driving).
+  int64_t start_ns = -1;
   while (reader->Next(&e)) {
-    if (e.kind == swlio::daemon::RecordingEvent::Kind::kImu) {
+    const bool imu = e.kind == swlio::daemon::RecordingEvent::Kind::kImu;
+    const int64_t t_ns = imu ? e.imu.t_ns : e.scan.t_start_ns;
+    if (start_ns < 0) start_ns = t_ns + static_cast<int64_t>(opt.start_s * 1e9);
+    if (t_ns < start_ns) continue;
+    if (imu) {
       if (!tightly_coupled) {
         odometry.AddImu(e.imu);
         continue;
@@ -310,6 +325,9 @@ int Main(int argc, char** argv) {
   app.add_option("--lidar-floor-yaw", opt.floor_yaw_rad,
                  "floor under a sweep's LiDAR yaw standard deviation, rad (tightly-coupled)")
       ->capture_default_str();
+  app.add_option("--start-s", opt.start_s,
+                 "skip this many seconds at the start of the recording (a start while moving)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--extrinsic-offset", opt.extrinsic_offset,
                  "perturb the given extrinsic: dx dy dz (m) droll dpitch dyaw (deg), e.g. to test "
                  "--estimate-extrinsic")

@@ -38,6 +38,7 @@
 #include <memory>
 #include <vector>
 
+#include "swlio/estimator/dynamic_bootstrap.h"
 #include "swlio/estimator/imu_factor.h"
 #include "swlio/estimator/lidar_odometry.h"
 #include "swlio/estimator/marginalization.h"
@@ -88,6 +89,14 @@ struct WindowEstimatorConfig {
   /// initializer's b_g away (window_estimator_test).
   double bias_prior_sigma_gyro_radps = 0.0;
 
+  /// A robot already moving at start: until the static initializer sees it stand still,
+  /// sweeps go through DynamicBootstrap (LiDAR-only registration aligned to the IMU); the first
+  /// of the two to finish initializes the window. `bootstrap.odometry` is taken from `odometry`.
+  bool dynamic_init = true;
+  /// …and then a static initialization needs the LiDAR to agree: registered speed below this.
+  double static_max_speed_mps = 0.05;
+  DynamicBootstrapConfig bootstrap;
+
   ConfigIssues Validate() const;
 };
 
@@ -129,6 +138,7 @@ class WindowEstimator {
   /// features matched.
   bool Prealign(Frame* frame);
   void SetInitialPrior(Frame* frame);
+  void StartFromBootstrap();
   State StateOf(const Frame& frame) const;
   int Solve(WindowResult* result);
   void Reintegrate();
@@ -154,6 +164,8 @@ class WindowEstimator {
   WindowEstimatorConfig config_;
   NowNsFn now_ns_;
   StaticInitializer initializer_;
+  DynamicBootstrap bootstrap_;
+  double init_sigma_velocity_mps_, init_sigma_tilt_rad_, init_sigma_bias_acc_mps2_;
   State init_state_;
   ImuPropagator propagator_;
   std::deque<ImuSample> imu_;  ///< samples from just before the newest frame on
