@@ -172,14 +172,7 @@ void WindowEstimator::StartFromBootstrap() {
   init_sigma_tilt_rad_ = std::max(config_.init_sigma_rotation_rad, r.gravity_tilt_std_rad);
   init_sigma_bias_acc_mps2_ = std::max(config_.init_sigma_bias_acc_mps2, r.bias_acc_std.maxCoeff());
   for (const BootstrapKeyframe& kf : bootstrap_.keyframes()) {
-    std::vector<Eigen::Vector3d> world;
-    for (const Eigen::Vector3d& p : kf.planes_lidar) world.push_back(kf.T_world_lidar * p);
-    plane_map_.Insert(world);
-    world.clear();
-    for (const Eigen::Vector3d& p : kf.edges_lidar) world.push_back(kf.T_world_lidar * p);
-    edge_map_.Insert(world);
-    have_keyframe_ = true;
-    T_world_last_keyframe_ = kf.T_world_lidar;
+    InsertKeyframe(kf.T_world_lidar, kf.planes_lidar, kf.edges_lidar);
   }
   while (imu_.size() > 1 && imu_[1].t_ns <= init_state_.t_ns) imu_.pop_front();
 }
@@ -463,17 +456,22 @@ bool WindowEstimator::IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const {
 }
 
 void WindowEstimator::InsertFeatures(const Frame& f) {
-  const Eigen::Isometry3d T = PoseFromParameters(f.pose.data()) * T_imu_lidar();
+  InsertKeyframe(PoseFromParameters(f.pose.data()) * T_imu_lidar(), f.planes_lidar, f.edges_lidar);
+}
+
+void WindowEstimator::InsertKeyframe(const Eigen::Isometry3d& T_world_lidar,
+                                     const std::vector<Eigen::Vector3d>& planes_lidar,
+                                     const std::vector<Eigen::Vector3d>& edges_lidar) {
   have_keyframe_ = true;
-  T_world_last_keyframe_ = T;
+  T_world_last_keyframe_ = T_world_lidar;
   std::vector<Eigen::Vector3d> world;
-  for (const Eigen::Vector3d& p : f.planes_lidar) world.push_back(T * p);
+  for (const Eigen::Vector3d& p : planes_lidar) world.push_back(T_world_lidar * p);
   plane_map_.Insert(world);
   world.clear();
-  for (const Eigen::Vector3d& p : f.edges_lidar) world.push_back(T * p);
+  for (const Eigen::Vector3d& p : edges_lidar) world.push_back(T_world_lidar * p);
   edge_map_.Insert(world);
-  plane_map_.RemoveFar(T.translation());
-  edge_map_.RemoveFar(T.translation());
+  plane_map_.RemoveFar(T_world_lidar.translation());
+  edge_map_.RemoveFar(T_world_lidar.translation());
 }
 
 void WindowEstimator::Relinearize(Frame* f, MatchResult* match, int* degenerate) {

@@ -160,6 +160,9 @@ class WindowEstimator {
   std::vector<double*> LidarBlocks(Frame* frame);
   bool IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const;
   void InsertFeatures(const Frame& frame);
+  void InsertKeyframe(const Eigen::Isometry3d& T_world_lidar,
+                      const std::vector<Eigen::Vector3d>& planes_lidar,
+                      const std::vector<Eigen::Vector3d>& edges_lidar);
 
   WindowEstimatorConfig config_;
   NowNsFn now_ns_;
