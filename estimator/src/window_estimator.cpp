@@ -464,12 +464,14 @@ void WindowEstimator::InsertKeyframe(const Eigen::Isometry3d& T_world_lidar,
                                      const std::vector<Eigen::Vector3d>& edges_lidar) {
   have_keyframe_ = true;
   T_world_last_keyframe_ = T_world_lidar;
-  std::vector<Eigen::Vector3d> world;
-  for (const Eigen::Vector3d& p : planes_lidar) world.push_back(T_world_lidar * p);
-  plane_map_.Insert(world);
-  world.clear();
-  for (const Eigen::Vector3d& p : edges_lidar) world.push_back(T_world_lidar * p);
-  edge_map_.Insert(world);
+  const auto to_world = [&T_world_lidar](const std::vector<Eigen::Vector3d>& points_lidar) {
+    std::vector<Eigen::Vector3d> points_world;
+    points_world.reserve(points_lidar.size());
+    for (const Eigen::Vector3d& p : points_lidar) points_world.push_back(T_world_lidar * p);
+    return points_world;
+  };
+  plane_map_.Insert(to_world(planes_lidar));
+  edge_map_.Insert(to_world(edges_lidar));
   plane_map_.RemoveFar(T_world_lidar.translation());
   edge_map_.RemoveFar(T_world_lidar.translation());
 }
