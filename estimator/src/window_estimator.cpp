@@ -1,8 +1,10 @@
 #include "swlio/estimator/window_estimator.h"
 
+#include <ceres/covariance.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
@@ -10,6 +12,7 @@
 
 #include "swlio/core/time.h"
 #include "swlio/estimator/deskew.h"
+#include "swlio/estimator/initial_prior.h"
 #include "swlio/estimator/lidar_rows.h"
 #include "swlio/estimator/point_to_line_factor.h"
 #include "swlio/estimator/point_to_plane_factor.h"
@@ -40,10 +43,11 @@ void ToVectors(const std::vector<FeaturePoint>& in, std::vector<Eigen::Vector3d>
   for (const FeaturePoint& f : in) out->push_back(f.xyz_m.cast<double>());
 }
 
+using PriorBlocks = std::vector<std::pair<const double*, const ceres::Manifold*>>;
+
 /// Gaussian prior r = W (x ⊟ x₀) on one or two blocks, as a MarginalizationPrior (J₀ = W).
-std::unique_ptr<MarginalizationPrior> DiagonalPrior(
-    const std::vector<std::pair<const double*, const ceres::Manifold*>>& blocks,
-    const Eigen::VectorXd& sigmas) {
+std::unique_ptr<MarginalizationPrior> GaussianPrior(const PriorBlocks& blocks,
+                                                    const Eigen::MatrixXd& W) {
   std::vector<MarginalizationPrior::Block> b;
   int offset = 0;
   for (const auto& [values, manifold] : blocks) {
@@ -52,9 +56,12 @@ std::unique_ptr<MarginalizationPrior> DiagonalPrior(
     b.push_back({manifold, Eigen::Map<const Eigen::VectorXd>(values, ambient), tangent, offset});
     offset += tangent;
   }
-  const Eigen::MatrixXd W = sigmas.cwiseInverse().asDiagonal();
-  return std::make_unique<MarginalizationPrior>(std::move(b), W,
-                                                Eigen::VectorXd::Zero(sigmas.size()));
+  return std::make_unique<MarginalizationPrior>(std::move(b), W, Eigen::VectorXd::Zero(W.rows()));
+}
+
+std::unique_ptr<MarginalizationPrior> DiagonalPrior(const PriorBlocks& blocks,
+                                                    const Eigen::VectorXd& sigmas) {
+  return GaussianPrior(blocks, sigmas.cwiseInverse().asDiagonal());
 }
 
 ImuSample At(ImuSample s, int64_t t_ns) {
@@ -266,26 +273,34 @@ bool WindowEstimator::Prealign(Frame* f) {
 }
 
 void WindowEstimator::SetInitialPrior(Frame* f) {
-  Eigen::VectorXd sigmas(kPoseTangentSize + kSpeedBiasSize);
-  sigmas << Eigen::Vector3d::Constant(config_.init_sigma_position_m),
-      Eigen::Vector3d(init_sigma_tilt_rad_, init_sigma_tilt_rad_, config_.init_sigma_rotation_rad),
-      Eigen::Vector3d::Constant(init_sigma_velocity_mps_),
-      Eigen::Vector3d::Constant(init_sigma_bias_acc_mps2_),
-      Eigen::Vector3d::Constant(config_.init_sigma_bias_gyro_radps);
+  // Tilt and accelerometer bias correlated as the initialization left them (initial_prior.h).
+  InitialStdDevs sigma;
+  sigma.position_m = config_.init_sigma_position_m;
+  sigma.yaw_rad = config_.init_sigma_rotation_rad;
+  sigma.tilt_measured_rad = init_sigma_tilt_rad_;
+  sigma.velocity_mps = init_sigma_velocity_mps_;
+  sigma.bias_acc_mps2 = init_sigma_bias_acc_mps2_;
+  sigma.bias_gyro_radps = config_.init_sigma_bias_gyro_radps;
+  const Eigen::MatrixXd Sigma = InitialCovariance(PoseFromParameters(f->pose.data()).linear(),
+                                                  config_.odometry.estimator.gravity_mps2, sigma);
+  const Eigen::MatrixXd W =
+      Sigma.llt().matrixL().solve(Eigen::MatrixXd::Identity(Sigma.rows(), Sigma.cols()));
   prior_ = MarginalizationResult{};
-  prior_.prior =
-      DiagonalPrior({{f->pose.data(), &manifold_}, {f->speed_bias.data(), nullptr}}, sigmas);
+  prior_.prior = GaussianPrior({{f->pose.data(), &manifold_}, {f->speed_bias.data(), nullptr}}, W);
   prior_.kept_blocks = {f->pose.data(), f->speed_bias.data()};
-  prior_.rank = static_cast<int>(sigmas.size());
+  prior_.rank = static_cast<int>(W.rows());
 }
 
-int WindowEstimator::Solve(WindowResult* result) {
+ceres::Problem::Options WindowEstimator::ProblemOptions() {
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   po.enable_fast_removal = false;
-  ceres::Problem problem(po);
+  return po;
+}
+
+void WindowEstimator::BuildProblem(ceres::Problem& problem, WindowResult* result) {
   problem.AddParameterBlock(extrinsic_.data(), kPoseSize, &manifold_);
   if (config_.estimate_extrinsic) {
     problem.AddResidualBlock(extrinsic_prior_.get(), nullptr, extrinsic_.data());
@@ -313,6 +328,11 @@ int WindowEstimator::Solve(WindowResult* result) {
   if (prior_.prior != nullptr) {
     problem.AddResidualBlock(prior_.prior.get(), nullptr, prior_.kept_blocks);
   }
+}
+
+int WindowEstimator::Solve(WindowResult* result) {
+  ceres::Problem problem(ProblemOptions());
+  BuildProblem(problem, result);
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   so.max_num_iterations = config_.max_iterations;
@@ -323,6 +343,27 @@ int WindowEstimator::Solve(WindowResult* result) {
   ceres::Solve(so, &problem, &summary);
 
   return static_cast<int>(summary.iterations.size());
+}
+
+StateCovariance WindowEstimator::NewestCovariance() {
+  // The marginal covariance of the newest frame's blocks over the whole window problem (the
+  // inverse of its information after every other block is eliminated), at the solution.
+  StateCovariance out;
+  ceres::Problem problem(ProblemOptions());
+  WindowResult unused;
+  BuildProblem(problem, &unused);
+  Frame& f = *frames_.back();
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::DENSE_SVD;  // tiny problem; reports rank deficiency
+  options.num_threads = 1;
+  ceres::Covariance covariance(options);
+  const std::vector<const double*> blocks = {f.pose.data(), f.speed_bias.data()};
+  if (!covariance.Compute(blocks, &problem)) return out;
+  Eigen::Matrix<double, kStateCovSize, kStateCovSize, Eigen::RowMajor> C;
+  if (!covariance.GetCovarianceMatrixInTangentSpace(blocks, C.data())) return out;
+  out.P = ToWorldRotationAxes(C, PoseFromParameters(f.pose.data()).linear());
+  out.valid = out.P.allFinite();
+  return out;
 }
 
 void WindowEstimator::Reintegrate() {
@@ -549,6 +590,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     }
     Reintegrate();
   }
+  if (config_.covariance) out.covariance = NewestCovariance();
   result.status = OdometryStatus::kTracking;
   if (have_map && newest.plane_factors + newest.line_factors < config_.odometry.min_inliers) {
     result.status = OdometryStatus::kMatchFailed;  // the IMU carries this frame

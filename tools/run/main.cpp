@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "swlio/core/lie.h"
@@ -32,7 +33,7 @@ const swlio::estimator::WindowEstimatorConfig& WindowDefaults() {
 }
 
 struct Options {
-  std::string dir, out, timings, diagnostics, config, mode = "tightly-coupled";
+  std::string dir, out, timings, diagnostics, covariance, config, mode = "tightly-coupled";
   size_t window_size = WindowDefaults().window_size;
   int iterations = WindowDefaults().max_iterations;
   int reassociations = WindowDefaults().reassociations;
@@ -116,6 +117,40 @@ void WriteDiagnostics(std::ostream& out, const OdometryResult& r, int64_t t_ns) 
                 x.vel_world.y(), x.vel_world.z(), x.bias_acc.x(), x.bias_acc.y(), x.bias_acc.z(),
                 x.bias_gyro.x(), x.bias_gyro.y(), x.bias_gyro.z());
   out << line << '\n';
+}
+
+/// Header of --covariance: the newest state and its marginal covariance P (state_covariance.h:
+/// [δp_world, δθ_world, δv_world, δb_a, δb_g]), upper triangle row by row.
+std::string CovarianceHeader() {
+  std::string h = "t_ns,px,py,pz,qx,qy,qz,qw,vx,vy,vz";
+  for (int i = 0; i < swlio::estimator::kStateCovSize; ++i) {
+    for (int j = i; j < swlio::estimator::kStateCovSize; ++j) {
+      h += ",P_" + std::to_string(i) + "_" + std::to_string(j);
+    }
+  }
+  return h;
+}
+
+void WriteCovariance(std::ostream& out,
+                     const swlio::State& x,
+                     const swlio::estimator::StateCovariance& c) {
+  const Eigen::Quaterniond q = swlio::lie::PositiveW(Eigen::Quaterniond(x.T_world_imu.linear()));
+  const Eigen::Vector3d p = x.T_world_imu.translation();
+  char field[64];
+  std::snprintf(field, sizeof field, "%lld", static_cast<long long>(x.t_ns));
+  out << field;
+  for (const double v : {p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w(), x.vel_world.x(),
+                         x.vel_world.y(), x.vel_world.z()}) {
+    std::snprintf(field, sizeof field, ",%.9g", v);
+    out << field;
+  }
+  for (int i = 0; i < swlio::estimator::kStateCovSize; ++i) {
+    for (int j = i; j < swlio::estimator::kStateCovSize; ++j) {
+      std::snprintf(field, sizeof field, ",%.6e", c.P(i, j));
+      out << field;
+    }
+  }
+  out << '\n';
 }
 
 /// Running means for the summary line.
@@ -203,13 +238,15 @@ int Run(const Options& opt) {
     return 1;
   }
   std::ofstream tum(opt.out);
-  std::ofstream timings, diagnostics;
+  std::ofstream timings, diagnostics, covariance;
   if (!opt.timings.empty()) timings.open(opt.timings);
   if (!opt.diagnostics.empty()) diagnostics.open(opt.diagnostics);
+  if (!opt.covariance.empty()) covariance.open(opt.covariance);
   for (const auto& [stream, path] :
        {std::pair<const std::ofstream*, const std::string*>{&tum, &opt.out},
         {&timings, &opt.timings},
-        {&diagnostics, &opt.diagnostics}}) {
+        {&diagnostics, &opt.diagnostics},
+        {&covariance, &opt.covariance}}) {
     if (!path->empty() && !*stream) {
       std::cerr << "swlio-run: cannot write " << *path << "\n";
       return 1;
@@ -218,6 +255,7 @@ int Run(const Options& opt) {
   tum << "# timestamp tx ty tz qx qy qz qw  (IMU frame, host time, sweep end)\n";
   if (timings) timings << "t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms\n";
   if (diagnostics) diagnostics << kDiagnosticsHeader << '\n';
+  if (covariance) covariance << CovarianceHeader() << '\n';
 
   swlio::estimator::WindowEstimatorConfig window_config;
   window_config.odometry = config;
@@ -241,8 +279,16 @@ int Run(const Options& opt) {
   swlio::estimator::WindowEstimator window(window_config, &ThreadCpuNs);
   Summary summary;
   auto process = [&](const swlio::Scan& scan) {
-    const OdometryResult r =
-        tightly_coupled ? window.AddScan(scan).odometry : odometry.AddScan(scan);
+    swlio::estimator::StateCovariance cov;
+    OdometryResult r;
+    if (tightly_coupled) {
+      swlio::estimator::WindowResult w = window.AddScan(scan);
+      r = std::move(w.odometry);
+      cov = w.covariance;
+    } else {
+      r = odometry.AddScan(scan);
+    }
+    if (covariance && cov.valid) WriteCovariance(covariance, r.state, cov);
     summary.Add(r);
     if (timings) WriteTimings(timings, r, scan.t_end_ns);
     if (diagnostics) WriteDiagnostics(diagnostics, r, scan.t_end_ns);
@@ -338,6 +384,9 @@ int Main(int argc, char** argv) {
   app.add_option("--timings", opt.timings,
                  "per-scan stage timings CSV (t_ns,points,frontend_ms,match_ms,optimize_ms,"
                  "total_ms; thread CPU time, 0 for a stage that did not run)");
+  app.add_option("--covariance", opt.covariance,
+                 "per-sweep state and its marginal covariance CSV (tightly coupled mode; "
+                 "see state_covariance.h for the order)");
   app.add_option("--diagnostics", opt.diagnostics,
                  "per-scan registration CSV (status, convergence, iterations, inliers, cost, "
                  "Hessian eigenvalues, feature counts, keyframe)");

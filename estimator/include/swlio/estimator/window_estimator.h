@@ -31,6 +31,7 @@
 
 #include <ceres/cost_function.h>
 #include <ceres/loss_function.h>
+#include <ceres/problem.h>
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -43,6 +44,7 @@
 #include "swlio/estimator/lidar_odometry.h"
 #include "swlio/estimator/marginalization.h"
 #include "swlio/estimator/pose_manifold.h"
+#include "swlio/estimator/state_covariance.h"
 
 namespace swlio::estimator {
 
@@ -96,6 +98,8 @@ struct WindowEstimatorConfig {
   /// …and then a static initialization needs the LiDAR to agree: registered speed below this.
   double static_max_speed_mps = 0.05;
   DynamicBootstrapConfig bootstrap;
+  /// Compute the newest state's marginal covariance for every result (WindowResult).
+  bool covariance = true;
 
   ConfigIssues Validate() const;
 };
@@ -108,6 +112,9 @@ struct WindowResult {
   size_t lidar_factors = 0;   ///< LiDAR point factors in the last solve (newest frame)
   /// Marginalizations so far that failed (the prior then restarts from the kept frame).
   size_t marginalization_failures = 0;
+  /// Marginal covariance of the newest state (state_covariance.h) over the window, at the
+  /// solution; `valid` false when not computed (`covariance` off, or rank-deficient).
+  StateCovariance covariance;
 };
 
 class WindowEstimator {
@@ -140,7 +147,11 @@ class WindowEstimator {
   void SetInitialPrior(Frame* frame);
   void StartFromBootstrap();
   State StateOf(const Frame& frame) const;
+  static ceres::Problem::Options ProblemOptions();
+  /// The window's blocks and residuals (extrinsic, frames, IMU, LiDAR rows, priors).
+  void BuildProblem(ceres::Problem& problem, WindowResult* result);
   int Solve(WindowResult* result);
+  StateCovariance NewestCovariance();
   void Reintegrate();
   void Marginalize();
   /// Robust Gauss–Newton system of one frame's LiDAR factors over [pose; extrinsic] tangents.
