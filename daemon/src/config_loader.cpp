@@ -102,6 +102,8 @@ class Section {
   }
   void Get(const char* key, int64_t& out) { GetInteger(key, out); }
   void Get(const char* key, uint16_t& out) { GetInteger(key, out); }
+  void Get(const char* key, int& out) { GetInteger(key, out); }
+  void Get(const char* key, size_t& out) { GetInteger(key, out); }
 
   template <size_t N>
   void Get(const char* key, std::array<double, N>& out) {
@@ -201,7 +203,8 @@ class Section {
     if (!value) return;
     int64_t v = 0;
     constexpr auto kMin = static_cast<int64_t>(std::numeric_limits<Int>::min());
-    constexpr auto kMax = static_cast<int64_t>(std::numeric_limits<Int>::max());
+    constexpr auto kMax = static_cast<int64_t>(
+        std::min<uint64_t>(std::numeric_limits<Int>::max(), std::numeric_limits<int64_t>::max()));
     if (!value.IsScalar() || !ParseInt(value.Scalar(), &v) || v < kMin || v > kMax) {
       ctx_->Error(value.Mark(), Path(key),
                   "expected an integer in [" + std::to_string(kMin) + ", " + std::to_string(kMax) +
@@ -296,7 +299,65 @@ void Bind(Section s, estimator::ExtrinsicConfig& c) {
   s.Finish();
 }
 
-void Bind(Section s, estimator::EstimatorConfig& c) {
+void Bind(Section s, estimator::DynamicInitializer::Options& c) {
+  s.Get("min_frames", c.min_frames);
+  s.Get("position_sigma_m", c.position_sigma_m);
+  s.Get("rotation_sigma_rad", c.rotation_sigma_rad);
+  s.Get("acc_bias_prior_sigma_mps2", c.acc_bias_prior_sigma_mps2);
+  s.Get("max_acc_bias_std_mps2", c.max_acc_bias_std_mps2);
+  s.Get("require_acc_bias", c.require_acc_bias);
+  s.Get("max_normalized_rms", c.max_normalized_rms);
+  s.Get("max_gravity_norm_error_mps2", c.max_gravity_norm_error_mps2);
+  s.Get("max_gyro_bias_radps", c.max_gyro_bias_radps);
+  s.Get("max_gravity_tilt_std_rad", c.max_gravity_tilt_std_rad);
+  s.Get("max_velocity_std_mps", c.max_velocity_std_mps);
+  s.Get("gyro_iterations", c.gyro_iterations);
+  s.Get("gravity_iterations", c.gravity_iterations);
+  s.Finish();
+}
+
+/// `odometry` is not a key: the estimator takes it from the window's.
+void Bind(Section s, estimator::DynamicBootstrapConfig& c) {
+  Bind(s.Child("initializer"), c.initializer);
+  s.Get("window_frames", c.window_frames);
+  s.Get("imu_buffer_s", c.imu_buffer_s);
+  s.Get("max_imu_lag_s", c.max_imu_lag_s);
+  s.Get("max_sweep_gap_s", c.max_sweep_gap_s);
+  s.Get("max_speed_mps", c.max_speed_mps);
+  s.Get("refine_deskew_m", c.refine_deskew_m);
+  s.Get("deskew_refinements", c.deskew_refinements);
+  s.Finish();
+}
+
+/// `odometry` is not a key: it is built from the `estimator` section and the extrinsic.
+void Bind(Section s, estimator::WindowEstimatorConfig& c) {
+  s.Get("window_size", c.window_size);
+  s.Get("max_iterations", c.max_iterations);
+  s.Get("prealign", c.prealign);
+  s.Get("reassociations", c.reassociations);
+  s.Get("lidar_sigma_m", c.lidar_sigma_m);
+  s.Get("huber_m", c.huber_m);
+  s.Get("degenerate_eigenvalue", c.degenerate_eigenvalue);
+  s.Get("lidar_floor_sigma_m", c.lidar_floor_sigma_m);
+  s.Get("lidar_floor_sigma_tilt_rad", c.lidar_floor_sigma_tilt_rad);
+  s.Get("lidar_floor_sigma_yaw_rad", c.lidar_floor_sigma_yaw_rad);
+  s.Get("estimate_extrinsic", c.estimate_extrinsic);
+  s.Get("extrinsic_prior_sigma_m", c.extrinsic_prior_sigma_m);
+  s.Get("extrinsic_prior_sigma_rad", c.extrinsic_prior_sigma_rad);
+  s.Get("init_sigma_position_m", c.init_sigma_position_m);
+  s.Get("init_sigma_rotation_rad", c.init_sigma_rotation_rad);
+  s.Get("init_sigma_velocity_mps", c.init_sigma_velocity_mps);
+  s.Get("init_sigma_bias_acc_mps2", c.init_sigma_bias_acc_mps2);
+  s.Get("init_sigma_bias_gyro_radps", c.init_sigma_bias_gyro_radps);
+  s.Get("bias_prior_sigma_acc_mps2", c.bias_prior_sigma_acc_mps2);
+  s.Get("bias_prior_sigma_gyro_radps", c.bias_prior_sigma_gyro_radps);
+  s.Get("dynamic_init", c.dynamic_init);
+  s.Get("static_max_speed_mps", c.static_max_speed_mps);
+  Bind(s.Child("bootstrap"), c.bootstrap);
+  s.Finish();
+}
+
+void Bind(Section s, estimator::EstimatorConfig& c, estimator::WindowEstimatorConfig& window) {
   s.Get("mode", c.mode);
   Bind(s.Child("imu_noise"), c.imu_noise);
   Bind(s.Child("extrinsic_imu_lidar"), c.extrinsic_imu_lidar);
@@ -308,6 +369,7 @@ void Bind(Section s, estimator::EstimatorConfig& c) {
   s.Get("edge_voxel_m", c.edge_voxel_m);
   s.Get("local_map_radius_m", c.local_map_radius_m);
   s.Get("num_threads", c.num_threads);
+  Bind(s.Child("window"), window);
   s.Finish();
 }
 
@@ -345,7 +407,7 @@ void BindRoot(Section root, DaemonConfig& c, Context& ctx) {
   Bind(root.Child("lidar"), c.lidar);
   Bind(root.Child("imu"), c.imu);
   Bind(root.Child("can"), c.can);
-  Bind(root.Child("estimator"), c.estimator);
+  Bind(root.Child("estimator"), c.estimator, c.window);
   Bind(root.Child("ipc"), c.ipc);
   Bind(root.Child("logging"), c.logging);
   root.Finish();

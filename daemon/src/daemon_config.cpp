@@ -35,6 +35,11 @@ ConfigIssues DaemonConfig::Validate() const {
   AppendWithPrefix(issues, "imu", imu.Validate());
   AppendWithPrefix(issues, "can", can.Validate());
   AppendWithPrefix(issues, "estimator", estimator.Validate());
+  ConfigIssues window_issues;
+  for (ConfigIssue& issue : window.Validate()) {
+    if (issue.key.rfind("odometry.", 0) != 0) window_issues.push_back(std::move(issue));
+  }
+  AppendWithPrefix(issues, "estimator.window", window_issues);
   AppendWithPrefix(issues, "ipc", ipc.Validate());
   AppendWithPrefix(issues, "logging", logging.Validate());
   return issues;

@@ -186,6 +186,35 @@ TEST_F(RunOnShortDrive, TightlyCoupledStartsWhileMoving) {
   EXPECT_LT(ape.stats.rmse, 0.10) << out;
 }
 
+// --config's estimator.window reaches the window (estimate_extrinsic: the estimated extrinsic is
+// printed at the end), a window flag given on the command line wins over the file, and an invalid
+// file value is reported with its place.
+TEST_F(RunOnShortDrive, ConfigWindowSectionAppliesAndFlagsOverride) {
+  const fs::path dir = *dir_ / "config";
+  fs::create_directories(dir);
+  std::ofstream(dir / "w.yaml") << "config_version: 1\nestimator:\n  window:\n    window_size: 7\n"
+                                   "    estimate_extrinsic: true\n";
+  std::ofstream(dir / "bad.yaml")
+      << "config_version: 1\nestimator:\n  window:\n    lidar_sigma_m: -1\n";
+  const std::string run =
+      tool_.string() + " " + dir_->string() + " --out " + (dir / "est.tum").string() + " --config ";
+  int code = 0;
+  std::string out = test::RunCommand(run + (dir / "w.yaml").string() + " 2>&1", &code);
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("\"extrinsic_T_imu_lidar\""), std::string::npos) << out;
+
+  out = test::RunCommand(run + (dir / "w.yaml").string() + " --window-size 1 2>&1", &code);
+  EXPECT_NE(code, 0);
+  EXPECT_NE(out.find("swlio-run: window_size: must be in [2, 50], got 1"), std::string::npos)
+      << out;
+
+  out = test::RunCommand(run + (dir / "bad.yaml").string() + " 2>&1", &code);
+  EXPECT_NE(code, 0);
+  EXPECT_NE(out.find("bad.yaml:4:5: estimator.window.lidar_sigma_m: must be > 0, got -1"),
+            std::string::npos)
+      << out;
+}
+
 TEST(RunCommand, MissingFolderIsAClearError) {
   const fs::path tool = test::ToolPath("swlio-run");
   if (tool.empty()) GTEST_SKIP() << "swlio-run not built next to the tests";

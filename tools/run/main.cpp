@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,7 @@ struct Options {
   bool estimate_extrinsic = false;
   std::vector<double> extrinsic_offset;  ///< dx dy dz (m) droll dpitch dyaw (deg)
   double start_s = 0.0;
+  std::set<std::string> given;  ///< window flags present on the command line
 };
 
 /// T_imu_lidar from a recording manifest (translation_m and quaternion_xyzw lines), if present:
@@ -193,6 +195,21 @@ bool LoadDaemonConfig(const Options& opt, swlio::daemon::DaemonConfig* config) {
   return true;
 }
 
+/// The window flags given on the command line override the configuration file.
+void ApplyWindowFlags(const Options& opt, swlio::estimator::WindowEstimatorConfig* w) {
+  auto given = [&](const char* flag) { return opt.given.count(flag) != 0; };
+  if (given("--window-size")) w->window_size = opt.window_size;
+  if (given("--iterations")) w->max_iterations = opt.iterations;
+  if (given("--reassociations")) w->reassociations = opt.reassociations;
+  if (given("--lidar-sigma")) w->lidar_sigma_m = opt.lidar_sigma_m;
+  if (given("--bias-prior-acc")) w->bias_prior_sigma_acc_mps2 = opt.bias_prior_acc;
+  if (given("--estimate-extrinsic")) w->estimate_extrinsic = opt.estimate_extrinsic;
+  if (given("--degenerate-eigenvalue")) w->degenerate_eigenvalue = opt.degenerate_eigenvalue;
+  if (given("--lidar-floor-m")) w->lidar_floor_sigma_m = opt.floor_m;
+  if (given("--lidar-floor-tilt")) w->lidar_floor_sigma_tilt_rad = opt.floor_tilt_rad;
+  if (given("--lidar-floor-yaw")) w->lidar_floor_sigma_yaw_rad = opt.floor_yaw_rad;
+}
+
 /// The extrinsic at the end, and how far it is from the one the recording or config gave
 /// (the truth for simulator recordings, which is what --extrinsic-offset perturbs).
 void PrintExtrinsic(const Eigen::Isometry3d& T_final, const Eigen::Isometry3d& T_given) {
@@ -257,18 +274,11 @@ int Run(const Options& opt) {
   if (diagnostics) diagnostics << kDiagnosticsHeader << '\n';
   if (covariance) covariance << CovarianceHeader() << '\n';
 
-  swlio::estimator::WindowEstimatorConfig window_config;
+  // The window's options: the configuration file's estimator.window (struct defaults without
+  // --config), then the command-line flags that were given.
+  swlio::estimator::WindowEstimatorConfig window_config = daemon_config.window;
   window_config.odometry = config;
-  window_config.window_size = opt.window_size;
-  window_config.max_iterations = opt.iterations;
-  window_config.reassociations = opt.reassociations;
-  window_config.lidar_sigma_m = opt.lidar_sigma_m;
-  window_config.bias_prior_sigma_acc_mps2 = opt.bias_prior_acc;
-  window_config.estimate_extrinsic = opt.estimate_extrinsic;
-  window_config.degenerate_eigenvalue = opt.degenerate_eigenvalue;
-  window_config.lidar_floor_sigma_m = opt.floor_m;
-  window_config.lidar_floor_sigma_tilt_rad = opt.floor_tilt_rad;
-  window_config.lidar_floor_sigma_yaw_rad = opt.floor_yaw_rad;
+  ApplyWindowFlags(opt, &window_config);
   if (const auto issues = window_config.Validate(); !issues.empty()) {
     for (const auto& issue : issues)
       std::cerr << "swlio-run: " << issue.key << ": " << issue.reason << "\n";
@@ -332,7 +342,7 @@ int Run(const Options& opt) {
     std::cerr << "swlio-run: " << waiting.size()
               << " last sweep(s) without IMU coverage not processed\n";
   summary.Print();
-  if (tightly_coupled && (opt.estimate_extrinsic || !opt.extrinsic_offset.empty())) {
+  if (tightly_coupled && (window_config.estimate_extrinsic || !opt.extrinsic_offset.empty())) {
     PrintExtrinsic(window.T_imu_lidar(), T_imu_lidar_given);
   }
   return 0;
@@ -391,9 +401,14 @@ int Main(int argc, char** argv) {
                  "per-scan registration CSV (status, convergence, iterations, inliers, cost, "
                  "Hessian eigenvalues, feature counts, keyframe)");
   app.add_option("--config", opt.config,
-                 "daemon configuration (swlio.yaml): sensors, estimator, extrinsic (a manifest's "
-                 "extrinsic wins)");
+                 "daemon configuration (swlio.yaml): sensors, estimator, estimator.window (the "
+                 "flags above override it), extrinsic (a manifest's extrinsic wins)");
   CLI11_PARSE(app, argc, argv);
+  for (const char* flag : {"--window-size", "--iterations", "--reassociations", "--lidar-sigma",
+                           "--bias-prior-acc", "--estimate-extrinsic", "--degenerate-eigenvalue",
+                           "--lidar-floor-m", "--lidar-floor-tilt", "--lidar-floor-yaw"}) {
+    if (app.count(flag) > 0) opt.given.insert(flag);
+  }
   return Run(opt);
 }
 

@@ -11,6 +11,7 @@
 #include "swlio/drivers/imu_config.h"
 #include "swlio/drivers/lidar_config.h"
 #include "swlio/estimator/estimator_config.h"
+#include "swlio/estimator/window_estimator.h"
 #include "swlio/ipc/ipc_config.h"
 
 namespace swlio::daemon {
@@ -39,6 +40,10 @@ struct DaemonConfig {
   drivers::ImuConfig imu;
   drivers::CanConfig can;
   estimator::EstimatorConfig estimator;
+  /// The tightly coupled window's own options (YAML `estimator.window`). Its `odometry` and
+  /// `bootstrap.odometry` are not read from the file: the user builds them from `estimator` and
+  /// the extrinsic (swlio-run does), so they are not validated here either.
+  estimator::WindowEstimatorConfig window;
   ipc::IpcConfig ipc;
   LoggingConfig logging;
 
