@@ -5,7 +5,11 @@
 # warnings do not count.
 
 if(SWLIO_SANITIZE STREQUAL "address")
-  set(_swlio_san -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  # UBSan without its alignment, null and pointer-overflow checks: with them one Eigen/Ceres
+  # test file took 42.7 s to compile, without them 26.6 s (ASan alone 23.4 s; GCC 12, -O1). A null
+  # dereference still stops under ASan (SEGV report); Eigen asserts its own alignment.
+  set(_swlio_san -fsanitize=address,undefined -fno-sanitize=alignment,null,pointer-overflow
+                 -fno-sanitize-recover=all -fno-omit-frame-pointer)
 elseif(SWLIO_SANITIZE STREQUAL "thread")
   set(_swlio_san -fsanitize=thread -fno-omit-frame-pointer)
 elseif(NOT SWLIO_SANITIZE STREQUAL "")

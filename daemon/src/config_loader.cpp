@@ -353,6 +353,7 @@ void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   s.Get("bias_prior_sigma_gyro_radps", c.bias_prior_sigma_gyro_radps);
   s.Get("dynamic_init", c.dynamic_init);
   s.Get("static_max_speed_mps", c.static_max_speed_mps);
+  s.Get("covariance", c.covariance);
   Bind(s.Child("bootstrap"), c.bootstrap);
   s.Finish();
 }

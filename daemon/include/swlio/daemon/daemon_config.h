@@ -11,7 +11,7 @@
 #include "swlio/drivers/imu_config.h"
 #include "swlio/drivers/lidar_config.h"
 #include "swlio/estimator/estimator_config.h"
-#include "swlio/estimator/window_estimator.h"
+#include "swlio/estimator/window_estimator_config.h"
 #include "swlio/ipc/ipc_config.h"
 
 namespace swlio::daemon {

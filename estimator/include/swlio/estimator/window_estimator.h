@@ -45,64 +45,9 @@
 #include "swlio/estimator/marginalization.h"
 #include "swlio/estimator/pose_manifold.h"
 #include "swlio/estimator/state_covariance.h"
+#include "swlio/estimator/window_estimator_config.h"
 
 namespace swlio::estimator {
-
-struct WindowEstimatorConfig {
-  /// Front end, matcher (association), maps, keyframes, extrinsic, noise and gravity.
-  LidarOdometryConfig odometry;
-  size_t window_size = 5;  ///< frames in the window (after marginalization)
-  int max_iterations = 4;  ///< Ceres iterations per solve
-  /// Before the window solve, the newest frame is registered alone from the IMU prediction
-  /// (ScanMatcher::Match, as the LiDAR-only mode does) and associated at that pose: the window
-  /// solve alone, associated at the prediction, diverged on degenerate_2 (33 m APE).
-  bool prealign = true;
-  /// Re-associations of the newest frame at most after the window solve (each one more solve);
-  /// they stop once a solve moves the pose less than matcher.reassociate_*.
-  int reassociations = 1;
-  double lidar_sigma_m = 0.05;  ///< point-to-plane / point-to-line standard deviation
-  double huber_m = 0.1;         ///< Huber kernel width (metres of residual)
-  /// A direction of the newest frame's LiDAR Hessian (ScanMatcher units: Σ JᵀJ over unwhitened
-  /// residuals in metres, tangent [δp; δφ]) with a smaller eigenvalue is degenerate: its LiDAR
-  /// row is left out and the IMU carries the estimate there (σ along it would be
-  /// lidar_sigma_m / √eigenvalue).
-  double degenerate_eigenvalue = 5.0;
-  /// Floor under the covariance of a frame's LiDAR pose (see CompressLidar): the local map's own
-  /// error, which more matched points do not reduce. Per world axis for position; for attitude
-  /// split into tilt (roll/pitch, which gravity observes through the IMU: a loose floor lets the
-  /// IMU keep the map level) and yaw (which only the LiDAR observes).
-  double lidar_floor_sigma_m = 0.01;
-  double lidar_floor_sigma_tilt_rad = 0.03;
-  double lidar_floor_sigma_yaw_rad = 0.003;
-  bool estimate_extrinsic = false;
-  double extrinsic_prior_sigma_m = 0.02;  ///< weak prior when estimated online
-  double extrinsic_prior_sigma_rad = 0.01;
-  /// Prior of the first frame (static initialization): pose (gauge), velocity, biases.
-  double init_sigma_position_m = 1e-3;
-  double init_sigma_rotation_rad = 1e-3;
-  double init_sigma_velocity_mps = 0.05;
-  double init_sigma_bias_acc_mps2 = 0.05;
-  double init_sigma_bias_gyro_radps = 0.005;
-  /// Weak absolute prior (about zero) on every window frame's biases, not marginalized: keeps
-  /// b_a from absorbing a tilt of the local map (measured on `aggressive` without it: b_a
-  /// wandered to 0.25 m/s², the simulated IMU's are ~0.02). 0 disables each.
-  double bias_prior_sigma_acc_mps2 = 0.05;
-  /// Off by default: at rest with no LiDAR features a gyro-bias prior about zero pulled the
-  /// initializer's b_g away (window_estimator_test).
-  double bias_prior_sigma_gyro_radps = 0.0;
-
-  /// A robot already moving at start: until the static initializer sees it stand still,
-  /// sweeps go through DynamicBootstrap (LiDAR-only registration aligned to the IMU); the first
-  /// of the two to finish initializes the window. `bootstrap.odometry` is taken from `odometry`.
-  bool dynamic_init = true;
-  /// …and then a static initialization needs the LiDAR to agree: registered speed below this.
-  double static_max_speed_mps = 0.05;
-  DynamicBootstrapConfig bootstrap;
-  /// Compute the newest state's marginal covariance for every result (WindowResult).
-  bool covariance = true;
-
-  ConfigIssues Validate() const;
-};
 
 struct WindowResult {
   OdometryResult odometry;  ///< state of the newest frame, stage times, LiDAR Hessian in match
