@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <utility>
 
@@ -28,7 +29,7 @@ size_t VoxelMap::Insert(const std::vector<Eigen::Vector3d>& points_world) {
   const double min_sq = config_.min_point_spacing_m * config_.min_point_spacing_m;
   size_t stored = 0;
   for (const Eigen::Vector3d& p : points_world) {
-    std::vector<Eigen::Vector3d>& voxel = voxels_[KeyOf(p)];
+    std::vector<Eigen::Vector3d>& voxel = FindOrAdd(KeyOf(p)).points;
     if (voxel.size() >= config_.max_points_per_voxel) continue;
     const bool crowded = std::any_of(voxel.begin(), voxel.end(), [&](const Eigen::Vector3d& q) {
       return (q - p).squaredNorm() < min_sq;
@@ -83,9 +84,9 @@ size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
     const Key key{c.x + o[0], c.y + o[1], c.z + o[2]};
     const Eigen::Vector3d lo = Eigen::Vector3d(key.x, key.y, key.z) * config_.voxel_m;
     if (BoxDistanceSq(query, lo, config_.voxel_m) >= bound_sq) continue;  // cannot improve
-    const auto it = voxels_.find(key);
-    if (it == voxels_.end()) continue;
-    for (const Eigen::Vector3d& p : it->second) {
+    const Voxel* voxel = Find(key);
+    if (voxel == nullptr) continue;
+    for (const Eigen::Vector3d& p : voxel->points) {
       const double d2 = (p - query).squaredNorm();
       if (d2 >= bound_sq) continue;
       size_t i = n;
@@ -105,19 +106,63 @@ size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
 size_t VoxelMap::RemoveFar(const Eigen::Vector3d& center_world) {
   const double r2 = config_.radius_m * config_.radius_m;
   size_t removed = 0;
-  for (auto it = voxels_.begin(); it != voxels_.end();) {
+  // Compacts in place, keeping the survivors' order, then rebuilds the index.
+  const auto far = [&](const Voxel& v) {
     const Eigen::Vector3d centre =
-        (Eigen::Vector3d(it->first.x, it->first.y, it->first.z) + Eigen::Vector3d::Constant(0.5)) *
+        (Eigen::Vector3d(v.key.x, v.key.y, v.key.z) + Eigen::Vector3d::Constant(0.5)) *
         config_.voxel_m;
-    if ((centre - center_world).squaredNorm() > r2) {
-      removed += it->second.size();
-      it = voxels_.erase(it);
-    } else {
-      ++it;
-    }
-  }
+    if ((centre - center_world).squaredNorm() <= r2) return false;
+    removed += v.points.size();
+    return true;
+  };
+  const auto end = std::remove_if(voxels_.begin(), voxels_.end(), far);
+  if (end == voxels_.end()) return 0;
+  voxels_.erase(end, voxels_.end());
+  Reindex(slots_.size());
   points_ -= removed;
   return removed;
+}
+
+size_t VoxelMap::Slot(const Key& key) const {
+  // The classic spatial hash (Teschner et al., 2003), then Fibonacci hashing: its top bits
+  // index the power-of-two table.
+  const uint64_t h = (uint64_t{static_cast<uint32_t>(key.x)} * 73856093u) ^
+                     (uint64_t{static_cast<uint32_t>(key.y)} * 19349669u) ^
+                     (uint64_t{static_cast<uint32_t>(key.z)} * 83492791u);
+  return static_cast<size_t>((h * 0x9E3779B97F4A7C15ull) >> (64 - slot_bits_));
+}
+
+const VoxelMap::Voxel* VoxelMap::Find(const Key& key) const {
+  if (slots_.empty()) return nullptr;
+  const size_t mask = slots_.size() - 1;
+  for (size_t s = Slot(key);; s = (s + 1) & mask) {
+    const uint32_t i = slots_[s];
+    if (i == kNoVoxel) return nullptr;
+    if (voxels_[i].key == key) return &voxels_[i];
+  }
+}
+
+VoxelMap::Voxel& VoxelMap::FindOrAdd(const Key& key) {
+  if (2 * (voxels_.size() + 1) > slots_.size()) Reindex(std::max<size_t>(64, 2 * slots_.size()));
+  const size_t mask = slots_.size() - 1;
+  size_t s = Slot(key);
+  for (; slots_[s] != kNoVoxel; s = (s + 1) & mask) {
+    if (voxels_[slots_[s]].key == key) return voxels_[slots_[s]];
+  }
+  slots_[s] = static_cast<uint32_t>(voxels_.size());
+  voxels_.push_back({key, {}});
+  return voxels_.back();
+}
+
+void VoxelMap::Reindex(size_t slot_count) {
+  slot_bits_ = std::countr_zero(slot_count);  // slot_count is a power of two
+  slots_.assign(slot_count, kNoVoxel);
+  const size_t mask = slot_count - 1;
+  for (size_t i = 0; i < voxels_.size(); ++i) {
+    size_t s = Slot(voxels_[i].key);
+    while (slots_[s] != kNoVoxel) s = (s + 1) & mask;
+    slots_[s] = static_cast<uint32_t>(i);
+  }
 }
 
 }  // namespace swlio::estimator
