@@ -45,18 +45,6 @@ size_t VoxelMap::Insert(const std::vector<Eigen::Vector3d>& points_world) {
 
 namespace {
 
-/// Squared distance from `q` to the axis-aligned cell [lo, lo + side]³.
-double BoxDistanceSq(const Eigen::Vector3d& q, const Eigen::Vector3d& lo, double side) {
-  double d2 = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    const double below = lo[i] - q[i];
-    const double above = q[i] - (lo[i] + side);
-    const double d = std::max({below, above, 0.0});
-    d2 += d * d;
-  }
-  return d2;
-}
-
 /// The query's voxel and its 26 neighbours, nearest cells first (faces, edges, corners), so
 /// the k-th best distance shrinks early and prunes the rest.
 constexpr std::array<std::array<int, 3>, 27> kSearchOrder = {{
@@ -80,10 +68,22 @@ size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
   std::array<std::pair<double, const Eigen::Vector3d*>, kMaxNeighbours + 1> best;
   size_t n = 0;
   double bound_sq = max_distance_m * max_distance_m;  // the k-th best once full
+  // Per axis, the squared gap from the query to the cells below, its own (0) and above; a
+  // cell's squared distance from the query is the sum of its three offsets' gaps.
+  const std::array<int32_t, 3> own = {c.x, c.y, c.z};
+  std::array<std::array<double, 3>, 3> gap_sq{};
+  for (int a = 0; a < 3; ++a) {
+    const double lo = own[static_cast<size_t>(a)] * config_.voxel_m;
+    const double below = std::max(query[a] - lo, 0.0);
+    const double above = std::max(lo + config_.voxel_m - query[a], 0.0);
+    gap_sq[static_cast<size_t>(a)] = {below * below, 0.0, above * above};
+  }
   for (const std::array<int, 3>& o : kSearchOrder) {
+    const double box_sq = gap_sq[0][static_cast<size_t>(o[0] + 1)] +
+                          gap_sq[1][static_cast<size_t>(o[1] + 1)] +
+                          gap_sq[2][static_cast<size_t>(o[2] + 1)];
+    if (box_sq >= bound_sq) continue;  // cannot hold a closer point
     const Key key{c.x + o[0], c.y + o[1], c.z + o[2]};
-    const Eigen::Vector3d lo = Eigen::Vector3d(key.x, key.y, key.z) * config_.voxel_m;
-    if (BoxDistanceSq(query, lo, config_.voxel_m) >= bound_sq) continue;  // cannot improve
     const Voxel* voxel = Find(key);
     if (voxel == nullptr) continue;
     for (const Eigen::Vector3d& p : voxel->points) {
