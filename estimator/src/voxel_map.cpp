@@ -132,7 +132,7 @@ size_t VoxelMap::Slot(const Key& key) const {
   return static_cast<size_t>((h * 0x9E3779B97F4A7C15ull) >> (64 - slot_bits_));
 }
 
-const VoxelMap::Voxel* VoxelMap::Find(const Key& key) const {
+inline const VoxelMap::Voxel* VoxelMap::Find(const Key& key) const {
   if (slots_.empty()) return nullptr;
   const size_t mask = slots_.size() - 1;
   for (size_t s = Slot(key);; s = (s + 1) & mask) {
