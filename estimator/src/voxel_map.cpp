@@ -54,6 +54,18 @@ constexpr std::array<std::array<int, 3>, 27> kSearchOrder = {{
     {1, -1, 1},  {1, -1, -1}, {-1, 1, 1}, {-1, 1, -1}, {-1, -1, 1}, {-1, -1, -1},
 }};
 
+/// kSearchOrder's offsets as indices into a per-axis table {below, own, above}.
+constexpr std::array<std::array<size_t, 3>, 27> kSearchSides = [] {
+  std::array<std::array<size_t, 3>, 27> sides{};
+  for (size_t i = 0; i < sides.size(); ++i) {
+    for (size_t a = 0; a < 3; ++a) {
+      const int o = kSearchOrder[i][a];
+      sides[i][a] = o < 0 ? 0 : (o == 0 ? 1 : 2);
+    }
+  }
+  return sides;
+}();
+
 }  // namespace
 
 size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
@@ -78,11 +90,11 @@ size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
     const double above = std::max(lo + config_.voxel_m - query[a], 0.0);
     gap_sq[static_cast<size_t>(a)] = {below * below, 0.0, above * above};
   }
-  for (const std::array<int, 3>& o : kSearchOrder) {
-    const double box_sq = gap_sq[0][static_cast<size_t>(o[0] + 1)] +
-                          gap_sq[1][static_cast<size_t>(o[1] + 1)] +
-                          gap_sq[2][static_cast<size_t>(o[2] + 1)];
+  for (size_t cell = 0; cell < kSearchOrder.size(); ++cell) {
+    const std::array<size_t, 3>& side = kSearchSides[cell];
+    const double box_sq = gap_sq[0][side[0]] + gap_sq[1][side[1]] + gap_sq[2][side[2]];
     if (box_sq >= bound_sq) continue;  // cannot hold a closer point
+    const std::array<int, 3>& o = kSearchOrder[cell];
     const Key key{c.x + o[0], c.y + o[1], c.z + o[2]};
     const Voxel* voxel = Find(key);
     if (voxel == nullptr) continue;
