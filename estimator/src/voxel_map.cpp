@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <utility>
 
@@ -28,7 +29,7 @@ size_t VoxelMap::Insert(const std::vector<Eigen::Vector3d>& points_world) {
   const double min_sq = config_.min_point_spacing_m * config_.min_point_spacing_m;
   size_t stored = 0;
   for (const Eigen::Vector3d& p : points_world) {
-    std::vector<Eigen::Vector3d>& voxel = voxels_[KeyOf(p)];
+    std::vector<Eigen::Vector3d>& voxel = FindOrAdd(KeyOf(p)).points;
     if (voxel.size() >= config_.max_points_per_voxel) continue;
     const bool crowded = std::any_of(voxel.begin(), voxel.end(), [&](const Eigen::Vector3d& q) {
       return (q - p).squaredNorm() < min_sq;
@@ -44,18 +45,6 @@ size_t VoxelMap::Insert(const std::vector<Eigen::Vector3d>& points_world) {
 
 namespace {
 
-/// Squared distance from `q` to the axis-aligned cell [lo, lo + side]³.
-double BoxDistanceSq(const Eigen::Vector3d& q, const Eigen::Vector3d& lo, double side) {
-  double d2 = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    const double below = lo[i] - q[i];
-    const double above = q[i] - (lo[i] + side);
-    const double d = std::max({below, above, 0.0});
-    d2 += d * d;
-  }
-  return d2;
-}
-
 /// The query's voxel and its 26 neighbours, nearest cells first (faces, edges, corners), so
 /// the k-th best distance shrinks early and prunes the rest.
 constexpr std::array<std::array<int, 3>, 27> kSearchOrder = {{
@@ -64,6 +53,18 @@ constexpr std::array<std::array<int, 3>, 27> kSearchOrder = {{
     {-1, 0, -1}, {0, 1, 1},   {0, 1, -1}, {0, -1, 1},  {0, -1, -1}, {1, 1, 1},    {1, 1, -1},
     {1, -1, 1},  {1, -1, -1}, {-1, 1, 1}, {-1, 1, -1}, {-1, -1, 1}, {-1, -1, -1},
 }};
+
+/// kSearchOrder's offsets as indices into a per-axis table {below, own, above}.
+constexpr std::array<std::array<size_t, 3>, 27> kSearchSides = [] {
+  std::array<std::array<size_t, 3>, 27> sides{};
+  for (size_t i = 0; i < sides.size(); ++i) {
+    for (size_t a = 0; a < 3; ++a) {
+      const int o = kSearchOrder[i][a];
+      sides[i][a] = o < 0 ? 0 : (o == 0 ? 1 : 2);
+    }
+  }
+  return sides;
+}();
 
 }  // namespace
 
@@ -79,13 +80,25 @@ size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
   std::array<std::pair<double, const Eigen::Vector3d*>, kMaxNeighbours + 1> best;
   size_t n = 0;
   double bound_sq = max_distance_m * max_distance_m;  // the k-th best once full
-  for (const std::array<int, 3>& o : kSearchOrder) {
+  // Per axis, the squared gap from the query to the cells below, its own (0) and above; a
+  // cell's squared distance from the query is the sum of its three offsets' gaps.
+  const std::array<int32_t, 3> own = {c.x, c.y, c.z};
+  std::array<std::array<double, 3>, 3> gap_sq{};
+  for (int a = 0; a < 3; ++a) {
+    const double lo = own[static_cast<size_t>(a)] * config_.voxel_m;
+    const double below = std::max(query[a] - lo, 0.0);
+    const double above = std::max(lo + config_.voxel_m - query[a], 0.0);
+    gap_sq[static_cast<size_t>(a)] = {below * below, 0.0, above * above};
+  }
+  for (size_t cell = 0; cell < kSearchOrder.size(); ++cell) {
+    const std::array<size_t, 3>& side = kSearchSides[cell];
+    const double box_sq = gap_sq[0][side[0]] + gap_sq[1][side[1]] + gap_sq[2][side[2]];
+    if (box_sq >= bound_sq) continue;  // cannot hold a closer point
+    const std::array<int, 3>& o = kSearchOrder[cell];
     const Key key{c.x + o[0], c.y + o[1], c.z + o[2]};
-    const Eigen::Vector3d lo = Eigen::Vector3d(key.x, key.y, key.z) * config_.voxel_m;
-    if (BoxDistanceSq(query, lo, config_.voxel_m) >= bound_sq) continue;  // cannot improve
-    const auto it = voxels_.find(key);
-    if (it == voxels_.end()) continue;
-    for (const Eigen::Vector3d& p : it->second) {
+    const Voxel* voxel = Find(key);
+    if (voxel == nullptr) continue;
+    for (const Eigen::Vector3d& p : voxel->points) {
       const double d2 = (p - query).squaredNorm();
       if (d2 >= bound_sq) continue;
       size_t i = n;
@@ -105,19 +118,63 @@ size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
 size_t VoxelMap::RemoveFar(const Eigen::Vector3d& center_world) {
   const double r2 = config_.radius_m * config_.radius_m;
   size_t removed = 0;
-  for (auto it = voxels_.begin(); it != voxels_.end();) {
+  // Compacts in place, keeping the survivors' order, then rebuilds the index.
+  const auto far = [&](const Voxel& v) {
     const Eigen::Vector3d centre =
-        (Eigen::Vector3d(it->first.x, it->first.y, it->first.z) + Eigen::Vector3d::Constant(0.5)) *
+        (Eigen::Vector3d(v.key.x, v.key.y, v.key.z) + Eigen::Vector3d::Constant(0.5)) *
         config_.voxel_m;
-    if ((centre - center_world).squaredNorm() > r2) {
-      removed += it->second.size();
-      it = voxels_.erase(it);
-    } else {
-      ++it;
-    }
-  }
+    if ((centre - center_world).squaredNorm() <= r2) return false;
+    removed += v.points.size();
+    return true;
+  };
+  const auto end = std::remove_if(voxels_.begin(), voxels_.end(), far);
+  if (end == voxels_.end()) return 0;
+  voxels_.erase(end, voxels_.end());
+  Reindex(slots_.size());
   points_ -= removed;
   return removed;
+}
+
+size_t VoxelMap::Slot(const Key& key) const {
+  // The classic spatial hash (Teschner et al., 2003), then Fibonacci hashing: its top bits
+  // index the power-of-two table.
+  const uint64_t h = (uint64_t{static_cast<uint32_t>(key.x)} * 73856093u) ^
+                     (uint64_t{static_cast<uint32_t>(key.y)} * 19349669u) ^
+                     (uint64_t{static_cast<uint32_t>(key.z)} * 83492791u);
+  return static_cast<size_t>((h * 0x9E3779B97F4A7C15ull) >> (64 - slot_bits_));
+}
+
+inline const VoxelMap::Voxel* VoxelMap::Find(const Key& key) const {
+  if (slots_.empty()) return nullptr;
+  const size_t mask = slots_.size() - 1;
+  for (size_t s = Slot(key);; s = (s + 1) & mask) {
+    const uint32_t i = slots_[s];
+    if (i == kNoVoxel) return nullptr;
+    if (voxels_[i].key == key) return &voxels_[i];
+  }
+}
+
+VoxelMap::Voxel& VoxelMap::FindOrAdd(const Key& key) {
+  if (2 * (voxels_.size() + 1) > slots_.size()) Reindex(std::max<size_t>(64, 2 * slots_.size()));
+  const size_t mask = slots_.size() - 1;
+  size_t s = Slot(key);
+  for (; slots_[s] != kNoVoxel; s = (s + 1) & mask) {
+    if (voxels_[slots_[s]].key == key) return voxels_[slots_[s]];
+  }
+  slots_[s] = static_cast<uint32_t>(voxels_.size());
+  voxels_.push_back({key, {}});
+  return voxels_.back();
+}
+
+void VoxelMap::Reindex(size_t slot_count) {
+  slot_bits_ = std::countr_zero(slot_count);  // slot_count is a power of two
+  slots_.assign(slot_count, kNoVoxel);
+  const size_t mask = slot_count - 1;
+  for (size_t i = 0; i < voxels_.size(); ++i) {
+    size_t s = Slot(voxels_[i].key);
+    while (slots_[s] != kNoVoxel) s = (s + 1) & mask;
+    slots_[s] = static_cast<uint32_t>(i);
+  }
 }
 
 }  // namespace swlio::estimator

@@ -47,6 +47,7 @@ struct Options {
   bool estimate_extrinsic = false;
   std::vector<double> extrinsic_offset;  ///< dx dy dz (m) droll dpitch dyaw (deg)
   double start_s = 0.0;
+  double end_s = 0.0;            ///< 0: to the end of the recording
   std::set<std::string> given;  ///< window flags present on the command line
 };
 
@@ -319,6 +320,8 @@ int Run(const Options& opt) {
     const int64_t t_ns = imu ? e.imu.t_ns : e.scan.t_start_ns;
     if (start_ns < 0) start_ns = t_ns + static_cast<int64_t>(opt.start_s * 1e9);
     if (t_ns < start_ns) continue;
+    if (opt.end_s > 0.0 && t_ns >= start_ns + static_cast<int64_t>((opt.end_s - opt.start_s) * 1e9))
+      break;
     if (imu) {
       if (!tightly_coupled) {
         odometry.AddImu(e.imu);
@@ -383,6 +386,10 @@ int Main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--start-s", opt.start_s,
                  "skip this many seconds at the start of the recording (a start while moving)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--end-s", opt.end_s,
+                 "stop this many seconds into the recording (0: at its end), e.g. to profile a "
+                 "stretch of it")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--extrinsic-offset", opt.extrinsic_offset,
                  "perturb the given extrinsic: dx dy dz (m) droll dpitch dyaw (deg), e.g. to test "
