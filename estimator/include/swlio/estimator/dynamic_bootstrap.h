@@ -116,7 +116,8 @@ class DynamicBootstrap {
   size_t attempts() const { return attempts_; }  ///< alignments tried
   size_t restarts() const { return restarts_; }  ///< odometry restarts
   size_t window_poses() const { return frames_.size(); }
-  /// Speed the LiDAR registered between the last two sweeps (m/s); negative before two.
+  /// Speed the LiDAR registered over the last second of sweeps (m/s); negative while the
+  /// window holds less than half a second.
   double registered_speed_mps() const;
 
  private:
