@@ -368,7 +368,7 @@ bool Load(const Options& options, Setup* s) {
                 NsToSec(NowNs() - t0_ns));
   }
   s->window.odometry.estimator = s->daemon.estimator;
-  s->window.odometry.T_imu_lidar = bench::ManifestExtrinsic(s->dir).value_or(
+  s->window.odometry.T_imu_lidar = daemon::ManifestExtrinsic(s->dir).value_or(
       s->daemon.estimator.extrinsic_imu_lidar.ToIsometry());
   if (!bench::ReadImu(s->dir, s->daemon, &s->imu, &error)) {
     std::fprintf(stderr, "%s: no IMU samples %s\n", s->dir.c_str(), error.c_str());

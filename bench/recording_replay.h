@@ -40,24 +40,6 @@ inline std::filesystem::path WriteShortDrive(std::string* error) {
   return dir;
 }
 
-/// T_imu_lidar from the recording's manifest.yaml (translation_m, quaternion_xyzw lines).
-inline std::optional<Eigen::Isometry3d> ManifestExtrinsic(const std::filesystem::path& dir) {
-  std::ifstream in(dir / "manifest.yaml");
-  std::string line;
-  double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1};
-  int found = 0;
-  while (std::getline(in, line)) {
-    found += std::sscanf(line.c_str(), " translation_m: [%lf, %lf, %lf]", &t[0], &t[1], &t[2]) == 3;
-    found += std::sscanf(line.c_str(), " quaternion_xyzw: [%lf, %lf, %lf, %lf]", &q[0], &q[1],
-                         &q[2], &q[3]) == 4;
-  }
-  if (found != 2) return std::nullopt;
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
-  return T;
-}
-
 /// Every IMU sample of the recording, through the daemon's decoders and clock model (one pass
 /// of RecordingReader, which also assembles the sweeps; they are dropped here).
 inline bool ReadImu(const std::filesystem::path& dir,

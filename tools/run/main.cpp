@@ -47,28 +47,9 @@ struct Options {
   bool estimate_extrinsic = false;
   std::vector<double> extrinsic_offset;  ///< dx dy dz (m) droll dpitch dyaw (deg)
   double start_s = 0.0;
-  double end_s = 0.0;            ///< 0: to the end of the recording
+  double end_s = 0.0;           ///< 0: to the end of the recording
   std::set<std::string> given;  ///< window flags present on the command line
 };
-
-/// T_imu_lidar from a recording manifest (translation_m and quaternion_xyzw lines), if present:
-/// a recording describes its own rig, so it wins over the configuration file.
-std::optional<Eigen::Isometry3d> ExtrinsicFromManifest(const std::string& dir) {
-  std::ifstream in(dir + "/manifest.yaml");
-  std::string line;
-  double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1};
-  int found = 0;
-  while (std::getline(in, line)) {
-    found += std::sscanf(line.c_str(), " translation_m: [%lf, %lf, %lf]", &t[0], &t[1], &t[2]) == 3;
-    found += std::sscanf(line.c_str(), " quaternion_xyzw: [%lf, %lf, %lf, %lf]", &q[0], &q[1],
-                         &q[2], &q[3]) == 4;
-  }
-  if (found != 2) return std::nullopt;
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
-  return T;
-}
 
 /// Stage timings use this thread's CPU time: on a shared machine it is the time the work took
 /// on one core, unaffected by other load (on an idle core it equals the wall time).
@@ -230,7 +211,7 @@ int Run(const Options& opt) {
   if (!LoadDaemonConfig(opt, &daemon_config)) return 1;
   swlio::estimator::LidarOdometryConfig config;
   config.estimator = daemon_config.estimator;
-  const auto manifest_extrinsic = ExtrinsicFromManifest(opt.dir);
+  const auto manifest_extrinsic = swlio::daemon::ManifestExtrinsic(opt.dir);
   config.T_imu_lidar =
       manifest_extrinsic.value_or(config.estimator.extrinsic_imu_lidar.ToIsometry());
   const Eigen::Isometry3d T_imu_lidar_given = config.T_imu_lidar;

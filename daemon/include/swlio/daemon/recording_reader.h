@@ -10,9 +10,11 @@
 /// firing, so the packet span (≈ 1.32 ms) is removed; an Xbus frame's transmission time at the
 /// configured baud is removed. Unknown network/USB latency beyond that remains as a bias.
 
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,5 +71,10 @@ class RecordingReader {
   Scan pending_scan_;
   RecordingStats stats_;
 };
+
+/// T_imu_lidar as the recording's manifest.yaml states it (its `translation_m: [x, y, z]` and
+/// `quaternion_xyzw: [x, y, z, w]` lines); none when either is missing. A recording describes
+/// its own rig, so callers let it win over a configuration file.
+std::optional<Eigen::Isometry3d> ManifestExtrinsic(const std::filesystem::path& dir);
 
 }  // namespace swlio::daemon
