@@ -354,6 +354,7 @@ void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   s.Get("dynamic_init", c.dynamic_init);
   s.Get("static_max_speed_mps", c.static_max_speed_mps);
   s.Get("covariance", c.covariance);
+  s.Get("init_tilt_follows_bias", c.init_tilt_follows_bias);
   Bind(s.Child("bootstrap"), c.bootstrap);
   s.Finish();
 }

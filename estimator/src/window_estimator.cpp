@@ -273,6 +273,25 @@ bool WindowEstimator::Prealign(Frame* f) {
 }
 
 void WindowEstimator::SetInitialPrior(Frame* f) {
+  prior_ = MarginalizationResult{};
+  const PriorBlocks blocks = {{f->pose.data(), &manifold_}, {f->speed_bias.data(), nullptr}};
+  if (config_.init_tilt_follows_bias) {
+    prior_.prior = GaussianPrior(blocks, CorrelatedInitialPriorW(*f));
+  } else {
+    Eigen::VectorXd sigmas(kPoseTangentSize + kSpeedBiasSize);
+    sigmas << Eigen::Vector3d::Constant(config_.init_sigma_position_m),
+        Eigen::Vector3d(init_sigma_tilt_rad_, init_sigma_tilt_rad_,
+                        config_.init_sigma_rotation_rad),
+        Eigen::Vector3d::Constant(init_sigma_velocity_mps_),
+        Eigen::Vector3d::Constant(init_sigma_bias_acc_mps2_),
+        Eigen::Vector3d::Constant(config_.init_sigma_bias_gyro_radps);
+    prior_.prior = DiagonalPrior(blocks, sigmas);
+  }
+  prior_.kept_blocks = {f->pose.data(), f->speed_bias.data()};
+  prior_.rank = kPoseTangentSize + kSpeedBiasSize;
+}
+
+Eigen::MatrixXd WindowEstimator::CorrelatedInitialPriorW(const Frame& f) const {
   // Tilt and accelerometer bias correlated as the initialization left them (initial_prior.h).
   InitialStdDevs sigma;
   sigma.position_m = config_.init_sigma_position_m;
@@ -281,14 +300,9 @@ void WindowEstimator::SetInitialPrior(Frame* f) {
   sigma.velocity_mps = init_sigma_velocity_mps_;
   sigma.bias_acc_mps2 = init_sigma_bias_acc_mps2_;
   sigma.bias_gyro_radps = config_.init_sigma_bias_gyro_radps;
-  const Eigen::MatrixXd Sigma = InitialCovariance(PoseFromParameters(f->pose.data()).linear(),
+  const Eigen::MatrixXd Sigma = InitialCovariance(PoseFromParameters(f.pose.data()).linear(),
                                                   config_.odometry.estimator.gravity_mps2, sigma);
-  const Eigen::MatrixXd W =
-      Sigma.llt().matrixL().solve(Eigen::MatrixXd::Identity(Sigma.rows(), Sigma.cols()));
-  prior_ = MarginalizationResult{};
-  prior_.prior = GaussianPrior({{f->pose.data(), &manifold_}, {f->speed_bias.data(), nullptr}}, W);
-  prior_.kept_blocks = {f->pose.data(), f->speed_bias.data()};
-  prior_.rank = static_cast<int>(W.rows());
+  return Sigma.llt().matrixL().solve(Eigen::MatrixXd::Identity(Sigma.rows(), Sigma.cols()));
 }
 
 ceres::Problem::Options WindowEstimator::ProblemOptions() {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -133,12 +134,11 @@ TEST_F(RunOnShortDrive, TightlyCoupledFollowsTheSimulatedDrive) {
   EXPECT_LT(ape.stats.max, 0.15) << out;
 
   // The covariance where the window observes the state (state_nees.h): mean NEES of the tilt
-  // (2 dof) and of the IMU-frame velocity (3 dof) within [¼, 3]× their dof. Measured here:
-  // 5.1 and 2.7 (the tilt is about 2.5× overconfident: the tilt / accelerometer-bias direction,
-  // unobservable on a straight drive, gains information it should not; bench/README.md).
-  // With a diagonal first-frame prior (tilt "known" to 1 mrad, independent of b_a) the tilt
-  // NEES was 5.9 on the 60 s short_1 drive, where the correlated prior gives 3.5.
+  // (2 dof) and of the IMU-frame velocity (3 dof) within [¼, 3]× their dof. The tilt is about
+  // 2× overconfident (bench/README.md, "Covariance and consistency").
   const test::NeesSummary nees = test::StateNees(*dir_ / "groundtruth.tum", dir / "cov.csv", 1.0);
+  std::cout << "[ nees ] tilt " << nees.tilt_mean << " (2 dof), velocity " << nees.velocity_mean
+            << " (3 dof), " << nees.samples << " sweeps\n";
   EXPECT_GE(nees.samples, 200u);
   EXPECT_GT(nees.tilt_mean, 0.5);
   EXPECT_LT(nees.tilt_mean, 6.0);

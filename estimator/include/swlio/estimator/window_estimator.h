@@ -90,6 +90,7 @@ class WindowEstimator {
   /// features matched.
   bool Prealign(Frame* frame);
   void SetInitialPrior(Frame* frame);
+  Eigen::MatrixXd CorrelatedInitialPriorW(const Frame& frame) const;
   void StartFromBootstrap();
   State StateOf(const Frame& frame) const;
   static ceres::Problem::Options ProblemOptions();
