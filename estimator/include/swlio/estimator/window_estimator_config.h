@@ -16,10 +16,6 @@ struct WindowEstimatorConfig {
   LidarOdometryConfig odometry;
   size_t window_size = 5;  ///< frames in the window (after marginalization)
   int max_iterations = 4;  ///< Ceres iterations per solve
-  /// Before the window solve, the newest frame is registered alone from the IMU prediction
-  /// (ScanMatcher::Match, as the LiDAR-only mode does) and associated at that pose: the window
-  /// solve alone, associated at the prediction, diverged on degenerate_2 (33 m APE).
-  bool prealign = true;
   /// Re-associations of the newest frame at most after the window solve (each one more solve);
   /// they stop once a solve moves the pose less than matcher.reassociate_*.
   int reassociations = 1;
@@ -37,8 +33,8 @@ struct WindowEstimatorConfig {
   double lidar_floor_sigma_m = 0.01;
   double lidar_floor_sigma_tilt_rad = 0.03;
   double lidar_floor_sigma_yaw_rad = 0.003;
-  bool estimate_extrinsic = false;
-  double extrinsic_prior_sigma_m = 0.02;  ///< weak prior when estimated online
+  /// Weak prior about the configured extrinsic when it is estimated online.
+  double extrinsic_prior_sigma_m = 0.02;
   double extrinsic_prior_sigma_rad = 0.01;
   /// Prior of the first frame after the initialization: pose (gauge), velocity, biases.
   double init_sigma_position_m = 1e-3;
@@ -54,13 +50,21 @@ struct WindowEstimatorConfig {
   /// initializer's b_g away (window_estimator_test).
   double bias_prior_sigma_gyro_radps = 0.0;
 
+  /// A static initialization needs the LiDAR to agree (with `dynamic_init`): registered speed
+  /// below this.
+  double static_max_speed_mps = 0.05;
+  DynamicBootstrapConfig bootstrap;
+  // Flags last (padding).
+  /// Before the window solve, the newest frame is registered alone from the IMU prediction
+  /// (ScanMatcher::Match, as the LiDAR-only mode does) and associated at that pose: the window
+  /// solve alone, associated at the prediction, diverged on degenerate_2 (33 m APE).
+  bool prealign = true;
+  /// Refine T_imu_lidar in the window (tied to the configured value by the prior below).
+  bool estimate_extrinsic = false;
   /// A robot already moving at start: until the static initializer sees it stand still,
   /// sweeps go through DynamicBootstrap (LiDAR-only registration aligned to the IMU); the first
   /// of the two to finish initializes the window. `bootstrap.odometry` is taken from `odometry`.
   bool dynamic_init = true;
-  /// …and then a static initialization needs the LiDAR to agree: registered speed below this.
-  double static_max_speed_mps = 0.05;
-  DynamicBootstrapConfig bootstrap;
   /// Compute the newest state's marginal covariance for every result (WindowResult).
   bool covariance = true;
   /// The first frame's tilt prior correlated with b_a as the accelerometer leaves them
