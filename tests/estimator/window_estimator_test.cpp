@@ -1,10 +1,12 @@
 // WindowEstimator's contract: initialization, the window's size and its marginalization prior,
 // configuration. Its accuracy on simulated drives is tested end to end through swlio-run
-// (tests/tools/run_tightly_coupled_test.cpp).
+// (tests/tools/run_command_test.cpp).
 
 #include "swlio/estimator/window_estimator.h"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "swlio/core/time.h"
 #include "wall_sweep.h"
@@ -59,6 +61,37 @@ TEST(WindowEstimator, ABiasedGyroAtRestIsEstimatedNotIntegrated) {
   }
   EXPECT_LT((r.odometry.state.bias_gyro - bias).norm(), 1e-4);
   EXPECT_LT(Eigen::AngleAxisd(r.odometry.state.T_world_imu.linear()).angle(), 1e-3);
+}
+
+// The newest state's covariance in the first result is the first frame's prior (the map is still
+// empty): the diagonal one claims the tilt to init_sigma_rotation_rad; the correlated one
+// (init_tilt_follows_bias) ties it to b_a across the up axis (initial_prior.h).
+TEST(WindowEstimator, FirstCovarianceIsTheInitialPrior) {
+  for (const bool correlated : {false, true}) {
+    WindowEstimatorConfig config;
+    config.init_tilt_follows_bias = correlated;
+    WindowEstimator estimator(config);
+    int64_t t = 0;
+    for (; t < 2 * kNsPerSec; t += 2'500'000) estimator.AddImu(LevelImu(t));
+    ASSERT_TRUE(estimator.initialized());
+    const int64_t t_end = t + 100 * kNsPerMs;
+    for (; t < t_end; t += 2'500'000) estimator.AddImu(LevelImu(t));
+    const WindowResult r = estimator.AddScan(WallSweep(t_end - 100 * kNsPerMs));
+    ASSERT_TRUE(r.covariance.valid) << "correlated " << correlated;
+    const StateCovarianceMatrix& P = r.covariance.P;
+    const double tilt_x = std::sqrt(P(kCovRot, kCovRot));
+    // Level robot: tilt about world x is matched by b_a along body y (δf = g [u]× δφ + δb_a).
+    const double rho = P(kCovRot, kCovBiasAcc + 1) /
+                       std::sqrt(P(kCovRot, kCovRot) * P(kCovBiasAcc + 1, kCovBiasAcc + 1));
+    EXPECT_NEAR(std::sqrt(P(kCovVel, kCovVel)), config.init_sigma_velocity_mps, 0.01);
+    if (correlated) {
+      EXPECT_GT(tilt_x, 3e-3) << "b_a σ 0.05 m/s² reads as ~5 mrad of tilt";
+      EXPECT_GT(std::abs(rho), 0.9);
+    } else {
+      EXPECT_NEAR(tilt_x, config.init_sigma_rotation_rad, 1e-4);
+      EXPECT_LT(std::abs(rho), 0.05);
+    }
+  }
 }
 
 TEST(WindowEstimatorConfig, ValidateNamesTheBadKeys) {
