@@ -1,0 +1,37 @@
+#pragma once
+// One frame of the window (private to the WindowEstimator sources): its parameter blocks, its
+// features, its linearized LiDAR rows and the IMU factor from the previous frame.
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "swlio/estimator/imu_factor.h"
+#include "swlio/estimator/marginalization_prior.h"
+#include "swlio/estimator/pose_manifold.h"
+#include "swlio/estimator/preintegration.h"
+#include "swlio/estimator/window_estimator.h"
+
+namespace swlio::estimator {
+
+struct WindowEstimator::Frame {
+  int64_t t_ns = 0;
+  std::array<double, kPoseSize> pose{};
+  std::array<double, kSpeedBiasSize> speed_bias{};
+  std::vector<Eigen::Vector3d> planes_lidar, edges_lidar;
+  /// Its point-to-plane/line factors against the local map, linearized at the newest-frame
+  /// registration (≤ 6 rows, or ≤ 12 with the extrinsic); null without LiDAR information.
+  std::unique_ptr<MarginalizationPrior> lidar_linear;
+  Eigen::Isometry3d T_linearized = Eigen::Isometry3d::Identity();  ///< pose of lidar_linear
+  size_t plane_factors = 0, line_factors = 0;
+  std::unique_ptr<Preintegrator> pre;  ///< previous frame → this one
+  std::unique_ptr<ImuFactor> imu;      ///< null for the first frame (or a failed interval)
+
+  Eigen::Vector3d BiasAcc() const { return Eigen::Map<const Eigen::Vector3d>(&speed_bias[3]); }
+  Eigen::Vector3d BiasGyro() const { return Eigen::Map<const Eigen::Vector3d>(&speed_bias[6]); }
+};
+
+}  // namespace swlio::estimator
