@@ -298,7 +298,7 @@ void DynamicBootstrap::Finish(const DynamicInitResult& init) {
 double DynamicBootstrap::registered_speed_mps() const {
   // Over about a second: between consecutive sweeps the registration's millimetre jitter reads
   // as 0.05 m/s, which refused the standing start of loop943 until the robot drove off (APE
-  // 0.63 → 0.83 m on seed 1). Unknown (negative) below half a second of poses.
+  // 0.45 → 0.79 m on seed 1). Unknown (negative) below half a second of poses.
   constexpr int64_t kBaselineNs = 1'000'000'000;
   constexpr int64_t kMinBaselineNs = 500'000'000;
   if (frames_.size() < 2) return -1.0;
