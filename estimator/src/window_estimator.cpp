@@ -232,14 +232,13 @@ ceres::Problem::Options WindowEstimator::ProblemOptions() {
   return po;
 }
 
-void WindowEstimator::BuildProblem(ceres::Problem& problem, WindowResult* result) {
+void WindowEstimator::BuildProblem(ceres::Problem& problem) {
   problem.AddParameterBlock(extrinsic_.data(), kPoseSize, &manifold_);
   if (config_.estimate_extrinsic) {
     problem.AddResidualBlock(extrinsic_prior_.get(), nullptr, extrinsic_.data());
   } else {
     problem.SetParameterBlockConstant(extrinsic_.data());
   }
-  result->lidar_factors = 0;
   for (size_t k = 0; k < frames_.size(); ++k) {
     Frame& f = *frames_[k];
     problem.AddParameterBlock(f.pose.data(), kPoseSize, &manifold_);
@@ -247,7 +246,6 @@ void WindowEstimator::BuildProblem(ceres::Problem& problem, WindowResult* result
     if (bias_prior_ != nullptr) {
       problem.AddResidualBlock(bias_prior_.get(), nullptr, f.speed_bias.data());
     }
-    result->lidar_factors += f.plane_factors + f.line_factors;
     if (f.lidar_linear != nullptr) {
       problem.AddResidualBlock(f.lidar_linear.get(), nullptr, LidarBlocks(&f));
     }
@@ -263,8 +261,10 @@ void WindowEstimator::BuildProblem(ceres::Problem& problem, WindowResult* result
 }
 
 int WindowEstimator::Solve(WindowResult* result) {
+  result->lidar_factors = 0;
+  for (const auto& f : frames_) result->lidar_factors += f->plane_factors + f->line_factors;
   ceres::Problem problem(ProblemOptions());
-  BuildProblem(problem, result);
+  BuildProblem(problem);
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   so.max_num_iterations = config_.max_iterations;
@@ -283,8 +283,7 @@ StateCovariance WindowEstimator::NewestCovariance() {
   // window). Dense: H is at most 81×81. ceres::Covariance (DENSE_SVD) took 5 ms per sweep here.
   StateCovariance out;
   ceres::Problem problem(ProblemOptions());
-  WindowResult unused;
-  BuildProblem(problem, &unused);
+  BuildProblem(problem);
   ceres::Problem::EvaluateOptions eo;
   if (config_.estimate_extrinsic) eo.parameter_blocks.push_back(extrinsic_.data());
   for (const auto& f : frames_) {  // the newest frame's blocks come last

@@ -95,7 +95,7 @@ class WindowEstimator {
   State StateOf(const Frame& frame) const;
   static ceres::Problem::Options ProblemOptions();
   /// The window's blocks and residuals (extrinsic, frames, IMU, LiDAR rows, priors).
-  void BuildProblem(ceres::Problem& problem, WindowResult* result);
+  void BuildProblem(ceres::Problem& problem);
   int Solve(WindowResult* result);
   StateCovariance NewestCovariance();
   void Reintegrate();
