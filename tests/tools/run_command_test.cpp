@@ -186,6 +186,20 @@ TEST_F(RunOnShortDrive, TightlyCoupledStartsWhileMoving) {
   EXPECT_LT(ape.stats.rmse, 0.10) << out;
 }
 
+// --calibrate-extrinsic on a drive without turns: the calibration pass runs, says the rotation
+// is not determined and why, and the run goes on with the given extrinsic (the truth here).
+TEST_F(RunOnShortDrive, ExtrinsicCalibrationRefusesAStraightDrive) {
+  const fs::path est = *dir_ / "calibrate.tum";
+  int code = 0;
+  const std::string out = test::RunCommand(tool_.string() + " " + dir_->string() + " --out " +
+                                               est.string() + " --calibrate-extrinsic 20 2>&1",
+                                           &code);
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("\"extrinsic_calibration\": {\"ok\": false"), std::string::npos) << out;
+  EXPECT_NE(out.find("it needs turns"), std::string::npos) << out;
+  EXPECT_LT(Ape(est).stats.rmse, 0.10) << out;
+}
+
 // --config's estimator.window reaches the window (estimate_extrinsic: the estimated extrinsic is
 // printed at the end), a window flag given on the command line wins over the file, and an invalid
 // file value is reported with its place.

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "calibration_pass.h"
 #include "swlio/core/lie.h"
 #include "swlio/daemon/config_loader.h"
 #include "swlio/daemon/recording_reader.h"
@@ -48,6 +49,7 @@ struct Options {
   std::vector<double> extrinsic_offset;  ///< dx dy dz (m) droll dpitch dyaw (deg)
   double start_s = 0.0;
   double end_s = 0.0;           ///< 0: to the end of the recording
+  double calibrate_s = 0.0;     ///< 0: no extrinsic calibration pass
   std::set<std::string> given;  ///< window flags present on the command line
 };
 
@@ -194,6 +196,8 @@ void ApplyWindowFlags(const Options& opt, swlio::estimator::WindowEstimatorConfi
 
 /// The extrinsic at the end, and how far it is from the one the recording or config gave
 /// (the truth for simulator recordings, which is what --extrinsic-offset perturbs).
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
 void PrintExtrinsic(const Eigen::Isometry3d& T_final, const Eigen::Isometry3d& T_given) {
   const Eigen::Isometry3d d = T_given.inverse() * T_final;
   const Eigen::Quaterniond q(T_final.linear());
@@ -202,8 +206,26 @@ void PrintExtrinsic(const Eigen::Isometry3d& T_final, const Eigen::Isometry3d& T
       "\"quaternion_xyzw\": [%.6f, %.6f, %.6f, %.6f]}, \"from_given_translation_m\": %.4f, "
       "\"from_given_rotation_deg\": %.3f}\n",
       T_final.translation().x(), T_final.translation().y(), T_final.translation().z(), q.x(), q.y(),
-      q.z(), q.w(), d.translation().norm(),
-      Eigen::AngleAxisd(d.linear()).angle() * 180.0 / 3.14159265358979323846);
+      q.z(), q.w(), d.translation().norm(), Eigen::AngleAxisd(d.linear()).angle() * kRadToDeg);
+}
+
+/// The calibration pass's result, and how far it is from the given extrinsic (see above).
+void PrintCalibration(const swlio::estimator::ExtrinsicCalibration& c,
+                      const Eigen::Isometry3d& T_given) {
+  const Eigen::Isometry3d d = T_given.inverse() * c.T_imu_lidar;
+  const Eigen::Quaterniond q(c.T_imu_lidar.linear());
+  const Eigen::Matrix<double, 6, 1> sigma = c.covariance.diagonal().cwiseSqrt();
+  std::printf(
+      "{\"extrinsic_calibration\": {\"ok\": %s, \"message\": \"%s\", \"translation_m\": "
+      "[%.4f, %.4f, %.4f], \"quaternion_xyzw\": [%.6f, %.6f, %.6f, %.6f], \"sigma_translation_m\": "
+      "[%.4f, %.4f, %.4f], \"sigma_rotation_deg\": [%.3f, %.3f, %.3f], \"position_rms_m\": %.4f, "
+      "\"rotation_rms_deg\": %.3f}, \"from_given_translation_m\": %.4f, "
+      "\"from_given_rotation_deg\": %.3f}\n",
+      c.ok ? "true" : "false", c.message.c_str(), c.T_imu_lidar.translation().x(),
+      c.T_imu_lidar.translation().y(), c.T_imu_lidar.translation().z(), q.x(), q.y(), q.z(), q.w(),
+      sigma(0), sigma(1), sigma(2), sigma(3) * kRadToDeg, sigma(4) * kRadToDeg,
+      sigma(5) * kRadToDeg, c.position_rms_m, c.rotation_rms_rad * kRadToDeg,
+      d.translation().norm(), Eigen::AngleAxisd(d.linear()).angle() * kRadToDeg);
 }
 
 int Run(const Options& opt) {
@@ -230,6 +252,16 @@ int Run(const Options& opt) {
               << "/manifest.yaml and no --config; using identity\n";
   }
   std::string error;
+  if (opt.calibrate_s > 0.0) {
+    const swlio::estimator::ExtrinsicCalibration c = swlio::run::CalibrationPass(
+        opt.dir, daemon_config, config, opt.start_s, opt.calibrate_s, &error);
+    if (!error.empty()) {
+      std::cerr << "swlio-run: " << error << "\n";
+      return 1;
+    }
+    PrintCalibration(c, T_imu_lidar_given);
+    if (c.ok) config.T_imu_lidar = c.T_imu_lidar;
+  }
   auto reader =
       swlio::daemon::RecordingReader::Open(opt.dir, daemon_config.lidar, daemon_config.imu, &error);
   if (!reader) {
@@ -376,6 +408,11 @@ int Main(int argc, char** argv) {
                  "perturb the given extrinsic: dx dy dz (m) droll dpitch dyaw (deg), e.g. to test "
                  "--estimate-extrinsic")
       ->expected(6);
+  app.add_option("--calibrate-extrinsic", opt.calibrate_s,
+                 "first calibrate T_imu_lidar on this many seconds of the recording (from "
+                 "--start-s): LiDAR-only odometry aligned with the IMU in one batch "
+                 "(extrinsic_calibrator.h); the run then uses the result")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--estimate-extrinsic", opt.estimate_extrinsic,
                "refine T_imu_lidar online (tightly-coupled; weak prior on the configured value)");
   app.add_option("--out", opt.out, "trajectory (TUM, IMU frame)")->required();

@@ -1,0 +1,72 @@
+#pragma once
+/// @file
+/// LiDAR–IMU extrinsic calibration from a stretch of LiDAR-only odometry and the IMU, in one
+/// batch (in the spirit of LI-Init: Zhu, Zheng, Yuan, Liu, Zhang, "Robust Real-time LiDAR-inertial
+/// Initialization", IROS 2022; our own formulation and code).
+///
+/// Why not in the window: the window's local map is built with the extrinsic being estimated
+/// (T_world_imu · T_imu_lidar), which anchors the estimate to its own past value
+/// (bench/README.md, "Online extrinsic"). LiDAR-only odometry builds its map at LiDAR poses, so
+/// its poses T_w0_lidar do not depend on the extrinsic.
+///
+/// Unknowns: per pose k the IMU pose T_world_imu,k and [v, b_a, b_g]_k; the extrinsic
+/// T_imu_lidar; the tilt of the odometry world, T_world_w0 = Rot(Exp([a, b, 0])) · T̄_world_w0
+/// (T̄ from DynamicInitializer; its yaw and origin fix the gauge). Residuals:
+///  - the LiDAR pose: T_world_w0 · T_w0_lidar,k against T_world_imu,k · T_imu_lidar
+///    ([Δp; Log(R_estᵀ R_meas)] over the pose noise);
+///  - IMU pre-integration between consecutive poses (ImuFactor, paper eq. 21), with the bias
+///    random walk;
+///  - weak priors: the extrinsic about the guess, b_a about zero on the first pose.
+/// Solved twice with Ceres, re-integrating at the new biases in between. The extrinsic's
+/// covariance is reported: on a planar drive (rotation about one axis only) the translation
+/// along that axis is not observable and stays at its prior.
+/// Pure library: no clocks, no printing.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <span>
+#include <string>
+
+#include "swlio/core/types.h"
+#include "swlio/estimator/dynamic_initializer.h"
+#include "swlio/estimator/estimator_config.h"
+
+namespace swlio::estimator {
+
+struct ExtrinsicCalibratorOptions {
+  /// LiDAR-only odometry pose noise per pose (1σ).
+  double position_sigma_m = 0.02;
+  double rotation_sigma_rad = 0.2 * 3.14159265358979323846 / 180.0;
+  /// Prior about the guessed extrinsic.
+  double extrinsic_prior_sigma_m = 0.1;
+  double extrinsic_prior_sigma_rad = 0.1;
+  double acc_bias_prior_sigma_mps2 = 0.05;
+  int max_iterations = 30;  ///< per solve
+  /// Not ok when the rotation's largest standard deviation exceeds this (too little turning).
+  double max_rotation_sigma_rad = 0.2 * 3.14159265358979323846 / 180.0;
+  /// The initial alignment (gravity, velocities, biases) before the joint solve.
+  DynamicInitializer::Options alignment;
+};
+
+struct ExtrinsicCalibration {
+  bool ok = false;
+  std::string message;  ///< why not ok
+  /// The calibrated extrinsic when ok, else the guess.
+  Eigen::Isometry3d T_imu_lidar = Eigen::Isometry3d::Identity();
+  /// Over the tangent of pose_manifold.h: [δp (IMU frame, m); δφ (LiDAR frame, rad)].
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Vector3d bias_gyro = Eigen::Vector3d::Zero();  ///< at the last pose
+  Eigen::Vector3d bias_acc = Eigen::Vector3d::Zero();
+  double position_rms_m = 0.0;  ///< LiDAR pose residuals after the solve
+  double rotation_rms_rad = 0.0;
+  int iterations = 0;
+};
+
+/// Poses time-ordered (≥ alignment.min_frames), the IMU samples spanning them.
+ExtrinsicCalibration CalibrateExtrinsic(const EstimatorConfig& config,
+                                        std::span<const StampedLidarPose> poses,
+                                        std::span<const ImuSample> imu,
+                                        const Eigen::Isometry3d& T_imu_lidar_guess,
+                                        const ExtrinsicCalibratorOptions& options = {});
+
+}  // namespace swlio::estimator
