@@ -344,6 +344,8 @@ void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   s.Get("estimate_extrinsic", c.estimate_extrinsic);
   s.Get("extrinsic_prior_sigma_m", c.extrinsic_prior_sigma_m);
   s.Get("extrinsic_prior_sigma_rad", c.extrinsic_prior_sigma_rad);
+  s.Get("calibrate_extrinsic_s", c.calibrate_extrinsic_s);
+  s.Get("calibrate_retry_s", c.calibrate_retry_s);
   s.Get("init_sigma_position_m", c.init_sigma_position_m);
   s.Get("init_sigma_rotation_rad", c.init_sigma_rotation_rad);
   s.Get("init_sigma_velocity_mps", c.init_sigma_velocity_mps);

@@ -10,6 +10,7 @@
 #include <ceres/rotation.h>
 #include <ceres/solver.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -255,6 +256,25 @@ void PoseResiduals(const Blocks& b,
   out->rotation_rms_rad = std::sqrt(sr / n);
 }
 
+/// The estimate's change from the guess kept only along the covariance's eigen-directions with
+/// σ ≤ max_sigma_m (an unobserved direction wanders within its prior otherwise).
+Eigen::Vector3d DeterminedTranslation(const Eigen::Vector3d& guess,
+                                      const Eigen::Vector3d& estimate,
+                                      const Eigen::Matrix3d& covariance,
+                                      double max_sigma_m,
+                                      int* kept) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance);
+  Eigen::Vector3d change = Eigen::Vector3d::Zero();
+  *kept = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (!(eig.eigenvalues()(i) <= max_sigma_m * max_sigma_m)) continue;
+    const Eigen::Vector3d u = eig.eigenvectors().col(i);
+    change += u * u.dot(estimate - guess);
+    ++*kept;
+  }
+  return guess + change;
+}
+
 }  // namespace
 
 ExtrinsicCalibration CalibrateExtrinsic(const EstimatorConfig& config,
@@ -306,6 +326,10 @@ ExtrinsicCalibration CalibrateExtrinsic(const EstimatorConfig& config,
   }
   out.ok = true;
   out.T_imu_lidar = PoseFromParameters(blocks.extrinsic.data());
+  out.T_imu_lidar.translation() =
+      DeterminedTranslation(T_imu_lidar_guess.translation(), out.T_imu_lidar.translation(),
+                            out.covariance.topLeftCorner<3, 3>(), options.max_translation_sigma_m,
+                            &out.translation_directions);
   const SpeedBias& last = blocks.speed_biases.back();
   out.bias_acc = Eigen::Map<const Eigen::Vector3d>(&last[kSbBiasAcc]);
   out.bias_gyro = Eigen::Map<const Eigen::Vector3d>(&last[kSbBiasGyro]);

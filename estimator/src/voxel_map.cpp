@@ -115,6 +115,13 @@ size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
   return n;
 }
 
+std::vector<Eigen::Vector3d> VoxelMap::Points() const {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(points_);
+  for (const Voxel& v : voxels_) out.insert(out.end(), v.points.begin(), v.points.end());
+  return out;
+}
+
 size_t VoxelMap::RemoveFar(const Eigen::Vector3d& center_world) {
   const double r2 = config_.radius_m * config_.radius_m;
   size_t removed = 0;

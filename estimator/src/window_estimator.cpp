@@ -73,10 +73,11 @@ WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn no
       huber_(config.huber_m / config.lidar_sigma_m),
       extrinsic_(kPoseSize) {
   PoseToParameters(config.odometry.T_imu_lidar, extrinsic_.data());
-  Eigen::VectorXd sigmas(kPoseTangentSize);
-  sigmas << Eigen::Vector3d::Constant(config.extrinsic_prior_sigma_m),
-      Eigen::Vector3d::Constant(config.extrinsic_prior_sigma_rad);
-  extrinsic_prior_ = DiagonalPrior({{extrinsic_.data(), &manifold_}}, sigmas);
+  ResetExtrinsicPrior();
+  if (config.calibrate_extrinsic_s > 0.0) {
+    calibration_ = std::make_unique<ExtrinsicCalibrationRun>(
+        config.odometry, config.calibrate_extrinsic_s, config.calibrate_retry_s);
+  }
   if (config.bias_prior_sigma_acc_mps2 > 0.0 || config.bias_prior_sigma_gyro_radps > 0.0) {
     auto sigma_or_none = [](double sigma) { return sigma > 0.0 ? sigma : 1e3; };
     zero_speed_bias_.assign(kSpeedBiasSize, 0.0);
@@ -90,7 +91,15 @@ WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn no
 
 WindowEstimator::~WindowEstimator() = default;
 
+void WindowEstimator::ResetExtrinsicPrior() {
+  Eigen::VectorXd sigmas(kPoseTangentSize);
+  sigmas << Eigen::Vector3d::Constant(config_.extrinsic_prior_sigma_m),
+      Eigen::Vector3d::Constant(config_.extrinsic_prior_sigma_rad);
+  extrinsic_prior_ = DiagonalPrior({{extrinsic_.data(), &manifold_}}, sigmas);
+}
+
 void WindowEstimator::AddImu(const ImuSample& sample) {
+  if (calibration_) calibration_->AddImu(sample);
   if (initialized_) {
     imu_.push_back(sample);
     return;
@@ -358,6 +367,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   WindowResult out;
   OdometryResult& result = out.odometry;
   result.points_in = scan.points.size();
+  if (calibration_) calibration_->AddScan(scan);
   const int64_t t_last = frames_.empty() ? init_state_.t_ns : frames_.back()->t_ns;
   if (!initialized_) {
     // A moving start: LiDAR-only registration aligned to the IMU (dynamic_bootstrap.h).
@@ -420,6 +430,13 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   result.match.iterations = out.solver_iterations;
   result.match.degenerate_directions = degenerate;
   if (frames_.size() > config_.window_size) Marginalize();
+  if (calibration_) {
+    if (const auto c = calibration_->TryCalibrate(); c && ApplyCalibration(*c)) {
+      out.extrinsic_calibrated = true;
+      calibrated_ = *c;
+      calibration_.reset();
+    }
+  }
   out.window_frames = frames_.size();
   out.prior_rank = prior_.rank;
   out.marginalization_failures = marginalization_failures_;

@@ -25,6 +25,8 @@ ConfigIssues WindowEstimatorConfig::Validate() const {
   CheckInRange(issues, "lidar_floor_sigma_yaw_rad", lidar_floor_sigma_yaw_rad, 0.0, 0.5);
   CheckPositive(issues, "extrinsic_prior_sigma_m", extrinsic_prior_sigma_m);
   CheckPositive(issues, "extrinsic_prior_sigma_rad", extrinsic_prior_sigma_rad);
+  CheckInRange(issues, "calibrate_extrinsic_s", calibrate_extrinsic_s, 0.0, 600.0);
+  CheckPositive(issues, "calibrate_retry_s", calibrate_retry_s);
   CheckPositive(issues, "init_sigma_position_m", init_sigma_position_m);
   CheckPositive(issues, "init_sigma_rotation_rad", init_sigma_rotation_rad);
   CheckPositive(issues, "init_sigma_velocity_mps", init_sigma_velocity_mps);

@@ -38,6 +38,8 @@ void ExpectSameWindow(const WindowEstimatorConfig& a, const WindowEstimatorConfi
   EXPECT_EQ(a.estimate_extrinsic, b.estimate_extrinsic);
   EXPECT_EQ(a.extrinsic_prior_sigma_m, b.extrinsic_prior_sigma_m);
   EXPECT_EQ(a.extrinsic_prior_sigma_rad, b.extrinsic_prior_sigma_rad);
+  EXPECT_EQ(a.calibrate_extrinsic_s, b.calibrate_extrinsic_s);
+  EXPECT_EQ(a.calibrate_retry_s, b.calibrate_retry_s);
   EXPECT_EQ(a.init_sigma_position_m, b.init_sigma_position_m);
   EXPECT_EQ(a.init_sigma_rotation_rad, b.init_sigma_rotation_rad);
   EXPECT_EQ(a.init_sigma_velocity_mps, b.init_sigma_velocity_mps);
@@ -101,6 +103,8 @@ estimator:
     estimate_extrinsic: true
     extrinsic_prior_sigma_m: 0.03
     extrinsic_prior_sigma_rad: 0.02
+    calibrate_extrinsic_s: 40
+    calibrate_retry_s: 3
     init_sigma_position_m: 0.002
     init_sigma_rotation_rad: 0.003
     init_sigma_velocity_mps: 0.06
@@ -148,6 +152,8 @@ estimator:
   want.estimate_extrinsic = true;
   want.extrinsic_prior_sigma_m = 0.03;
   want.extrinsic_prior_sigma_rad = 0.02;
+  want.calibrate_extrinsic_s = 40;
+  want.calibrate_retry_s = 3;
   want.init_sigma_position_m = 0.002;
   want.init_sigma_rotation_rad = 0.003;
   want.init_sigma_velocity_mps = 0.06;

@@ -15,7 +15,6 @@
 #include <string>
 #include <vector>
 
-#include "calibration_pass.h"
 #include "swlio/core/lie.h"
 #include "swlio/daemon/config_loader.h"
 #include "swlio/daemon/recording_reader.h"
@@ -49,7 +48,7 @@ struct Options {
   std::vector<double> extrinsic_offset;  ///< dx dy dz (m) droll dpitch dyaw (deg)
   double start_s = 0.0;
   double end_s = 0.0;           ///< 0: to the end of the recording
-  double calibrate_s = 0.0;     ///< 0: no extrinsic calibration pass
+  double calibrate_s = 0.0;     ///< window.calibrate_extrinsic_s (0: off)
   std::set<std::string> given;  ///< window flags present on the command line
 };
 
@@ -183,6 +182,7 @@ bool LoadDaemonConfig(const Options& opt, swlio::daemon::DaemonConfig* config) {
 void ApplyWindowFlags(const Options& opt, swlio::estimator::WindowEstimatorConfig* w) {
   auto given = [&](const char* flag) { return opt.given.count(flag) != 0; };
   if (given("--window-size")) w->window_size = opt.window_size;
+  if (given("--calibrate-extrinsic")) w->calibrate_extrinsic_s = opt.calibrate_s;
   if (given("--iterations")) w->max_iterations = opt.iterations;
   if (given("--reassociations")) w->reassociations = opt.reassociations;
   if (given("--lidar-sigma")) w->lidar_sigma_m = opt.lidar_sigma_m;
@@ -209,22 +209,29 @@ void PrintExtrinsic(const Eigen::Isometry3d& T_final, const Eigen::Isometry3d& T
       q.z(), q.w(), d.translation().norm(), Eigen::AngleAxisd(d.linear()).angle() * kRadToDeg);
 }
 
-/// The calibration pass's result, and how far it is from the given extrinsic (see above).
-void PrintCalibration(const swlio::estimator::ExtrinsicCalibration& c,
+/// The online calibration's outcome: its result against the given extrinsic (see above), or
+/// how often it was tried and why it was refused.
+void PrintCalibration(const swlio::estimator::WindowEstimator& window,
                       const Eigen::Isometry3d& T_given) {
-  const Eigen::Isometry3d d = T_given.inverse() * c.T_imu_lidar;
-  const Eigen::Quaterniond q(c.T_imu_lidar.linear());
-  const Eigen::Matrix<double, 6, 1> sigma = c.covariance.diagonal().cwiseSqrt();
+  const auto& c = window.calibration();
+  if (!c) {
+    const auto* run = window.calibration_run();
+    std::printf(
+        "{\"extrinsic_calibration\": {\"ok\": false, \"attempts\": %d, \"message\": \"%s\"}}\n",
+        run ? run->attempts() : 0,
+        run && !run->last_message().empty() ? run->last_message().c_str()
+                                            : "not enough motion recorded");
+    return;
+  }
+  const Eigen::Isometry3d d = T_given.inverse() * c->T_imu_lidar;
+  const Eigen::Matrix<double, 6, 1> sigma = c->covariance.diagonal().cwiseSqrt();
   std::printf(
-      "{\"extrinsic_calibration\": {\"ok\": %s, \"message\": \"%s\", \"translation_m\": "
-      "[%.4f, %.4f, %.4f], \"quaternion_xyzw\": [%.6f, %.6f, %.6f, %.6f], \"sigma_translation_m\": "
-      "[%.4f, %.4f, %.4f], \"sigma_rotation_deg\": [%.3f, %.3f, %.3f], \"position_rms_m\": %.4f, "
+      "{\"extrinsic_calibration\": {\"ok\": true, \"sigma_translation_m\": [%.4f, %.4f, %.4f], "
+      "\"sigma_rotation_deg\": [%.3f, %.3f, %.3f], \"position_rms_m\": %.4f, "
       "\"rotation_rms_deg\": %.3f}, \"from_given_translation_m\": %.4f, "
       "\"from_given_rotation_deg\": %.3f}\n",
-      c.ok ? "true" : "false", c.message.c_str(), c.T_imu_lidar.translation().x(),
-      c.T_imu_lidar.translation().y(), c.T_imu_lidar.translation().z(), q.x(), q.y(), q.z(), q.w(),
       sigma(0), sigma(1), sigma(2), sigma(3) * kRadToDeg, sigma(4) * kRadToDeg,
-      sigma(5) * kRadToDeg, c.position_rms_m, c.rotation_rms_rad * kRadToDeg,
+      sigma(5) * kRadToDeg, c->position_rms_m, c->rotation_rms_rad * kRadToDeg,
       d.translation().norm(), Eigen::AngleAxisd(d.linear()).angle() * kRadToDeg);
 }
 
@@ -252,16 +259,6 @@ int Run(const Options& opt) {
               << "/manifest.yaml and no --config; using identity\n";
   }
   std::string error;
-  if (opt.calibrate_s > 0.0) {
-    const swlio::estimator::ExtrinsicCalibration c = swlio::run::CalibrationPass(
-        opt.dir, daemon_config, config, opt.start_s, opt.calibrate_s, &error);
-    if (!error.empty()) {
-      std::cerr << "swlio-run: " << error << "\n";
-      return 1;
-    }
-    PrintCalibration(c, T_imu_lidar_given);
-    if (c.ok) config.T_imu_lidar = c.T_imu_lidar;
-  }
   auto reader =
       swlio::daemon::RecordingReader::Open(opt.dir, daemon_config.lidar, daemon_config.imu, &error);
   if (!reader) {
@@ -358,7 +355,11 @@ int Run(const Options& opt) {
     std::cerr << "swlio-run: " << waiting.size()
               << " last sweep(s) without IMU coverage not processed\n";
   summary.Print();
-  if (tightly_coupled && (window_config.estimate_extrinsic || !opt.extrinsic_offset.empty())) {
+  if (tightly_coupled && window_config.calibrate_extrinsic_s > 0.0) {
+    PrintCalibration(window, T_imu_lidar_given);
+  }
+  if (tightly_coupled && (window_config.estimate_extrinsic || !opt.extrinsic_offset.empty() ||
+                          window_config.calibrate_extrinsic_s > 0.0)) {
     PrintExtrinsic(window.T_imu_lidar(), T_imu_lidar_given);
   }
   return 0;
@@ -409,9 +410,10 @@ int Main(int argc, char** argv) {
                  "--estimate-extrinsic")
       ->expected(6);
   app.add_option("--calibrate-extrinsic", opt.calibrate_s,
-                 "first calibrate T_imu_lidar on this many seconds of the recording (from "
-                 "--start-s): LiDAR-only odometry aligned with the IMU in one batch "
-                 "(extrinsic_calibrator.h); the run then uses the result")
+                 "calibrate T_imu_lidar online once this many seconds of LiDAR-only odometry "
+                 "(beside the window) are in, in one batch with the IMU, and restart the window "
+                 "on it; needs turns, retried until they determine the rotation "
+                 "(tightly-coupled; extrinsic_calibration_run.h)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--estimate-extrinsic", opt.estimate_extrinsic,
                "refine T_imu_lidar online (tightly-coupled; weak prior on the configured value)");
@@ -429,9 +431,10 @@ int Main(int argc, char** argv) {
                  "daemon configuration (swlio.yaml): sensors, estimator, estimator.window (the "
                  "flags above override it), extrinsic (a manifest's extrinsic wins)");
   CLI11_PARSE(app, argc, argv);
-  for (const char* flag : {"--window-size", "--iterations", "--reassociations", "--lidar-sigma",
-                           "--bias-prior-acc", "--estimate-extrinsic", "--degenerate-eigenvalue",
-                           "--lidar-floor-m", "--lidar-floor-tilt", "--lidar-floor-yaw"}) {
+  for (const char* flag :
+       {"--window-size", "--iterations", "--reassociations", "--lidar-sigma", "--bias-prior-acc",
+        "--estimate-extrinsic", "--degenerate-eigenvalue", "--calibrate-extrinsic",
+        "--lidar-floor-m", "--lidar-floor-tilt", "--lidar-floor-yaw"}) {
     if (app.count(flag) > 0) opt.given.insert(flag);
   }
   return Run(opt);

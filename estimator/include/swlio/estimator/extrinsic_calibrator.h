@@ -42,8 +42,11 @@ struct ExtrinsicCalibratorOptions {
   double extrinsic_prior_sigma_rad = 0.1;
   double acc_bias_prior_sigma_mps2 = 0.05;
   int max_iterations = 30;  ///< per solve
+  /// The translation moves from the guess only along directions the motion determined (σ at
+  /// most this): on a planar drive the lever arm along the turn axis keeps the guess.
+  double max_translation_sigma_m = 0.03;
   /// Not ok when the rotation's largest standard deviation exceeds this (too little turning).
-  double max_rotation_sigma_rad = 0.2 * 3.14159265358979323846 / 180.0;
+  double max_rotation_sigma_rad = 0.3 * 3.14159265358979323846 / 180.0;
   /// The initial alignment (gravity, velocities, biases) before the joint solve.
   DynamicInitializer::Options alignment;
 };
@@ -57,7 +60,8 @@ struct ExtrinsicCalibration {
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Vector3d bias_gyro = Eigen::Vector3d::Zero();  ///< at the last pose
   Eigen::Vector3d bias_acc = Eigen::Vector3d::Zero();
-  double position_rms_m = 0.0;  ///< LiDAR pose residuals after the solve
+  int translation_directions = 0;  ///< of the 3, moved from the guess (max_translation_sigma_m)
+  double position_rms_m = 0.0;     ///< LiDAR pose residuals after the solve
   double rotation_rms_rad = 0.0;
   int iterations = 0;
 };

@@ -47,6 +47,9 @@ class VoxelMap {
   /// Drops every voxel whose centre is farther than `radius_m` from `center_world`.
   size_t RemoveFar(const Eigen::Vector3d& center_world);
 
+  /// Every stored point, voxel by voxel in creation order (to carry a map into another frame).
+  std::vector<Eigen::Vector3d> Points() const;
+
   size_t size() const { return points_; }
   size_t voxels() const { return voxels_.size(); }
 

@@ -37,9 +37,11 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "swlio/estimator/dynamic_bootstrap.h"
+#include "swlio/estimator/extrinsic_calibration_run.h"
 #include "swlio/estimator/imu_factor.h"
 #include "swlio/estimator/lidar_odometry.h"
 #include "swlio/estimator/marginalization.h"
@@ -60,6 +62,8 @@ struct WindowResult {
   /// Marginal covariance of the newest state (state_covariance.h) over the window, at the
   /// solution; `valid` false when not computed (`covariance` off, or rank-deficient).
   StateCovariance covariance;
+  /// The online extrinsic calibration finished with this sweep and the window restarted on it.
+  bool extrinsic_calibrated = false;
 };
 
 class WindowEstimator {
@@ -76,6 +80,10 @@ class WindowEstimator {
   size_t window_frames() const { return frames_.size(); }
   /// The extrinsic in use: the configured one, or its online estimate (`estimate_extrinsic`).
   Eigen::Isometry3d T_imu_lidar() const { return PoseFromParameters(extrinsic_.data()); }
+  /// The online extrinsic calibration (calibrate_extrinsic_s): its result once applied, and
+  /// while it runs, its attempts and the last reason it was refused (null when off or done).
+  const std::optional<ExtrinsicCalibration>& calibration() const { return calibrated_; }
+  const ExtrinsicCalibrationRun* calibration_run() const { return calibration_.get(); }
 
  private:
   struct Frame;
@@ -117,6 +125,12 @@ class WindowEstimator {
   std::vector<double*> LidarBlocks(Frame* frame);
   bool IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const;
   void InsertFeatures(const Frame& frame);
+  /// Restarts the window on a calibrated extrinsic (see calibrate_extrinsic_s): the newest
+  /// frame is kept with a fresh prior, the maps are the calibration odometry's carried into the
+  /// window's world at the newest sweep. False (nothing changed) when the odometry did not
+  /// register the newest sweep.
+  bool ApplyCalibration(const ExtrinsicCalibration& calibration);
+  void ResetExtrinsicPrior();  ///< weak prior about the current extrinsic
   void InsertKeyframe(const Eigen::Isometry3d& T_world_lidar,
                       const std::vector<Eigen::Vector3d>& planes_lidar,
                       const std::vector<Eigen::Vector3d>& edges_lidar);
@@ -140,6 +154,8 @@ class WindowEstimator {
   ceres::HuberLoss huber_;
   std::vector<double> extrinsic_;  ///< T_imu_lidar block (7)
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
+  std::unique_ptr<ExtrinsicCalibrationRun> calibration_;  ///< null when off or done
+  std::optional<ExtrinsicCalibration> calibrated_;
   std::vector<double> zero_speed_bias_;
   LidarFactors factors_;                     ///< the newest frame's, reused
   std::vector<PlaneCorrespondence> planes_;  ///< the newest frame's correspondences

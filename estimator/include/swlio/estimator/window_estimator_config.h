@@ -36,6 +36,12 @@ struct WindowEstimatorConfig {
   /// Weak prior about the configured extrinsic when it is estimated online.
   double extrinsic_prior_sigma_m = 0.02;
   double extrinsic_prior_sigma_rad = 0.01;
+  /// Online extrinsic calibration (extrinsic_calibration_run.h): after this many seconds of
+  /// LiDAR-only odometry beside the window (0: off), T_imu_lidar is calibrated in one batch and
+  /// the window restarts on it; retried every calibrate_retry_s until the motion (turns)
+  /// determines the rotation.
+  double calibrate_extrinsic_s = 0.0;
+  double calibrate_retry_s = 5.0;
   /// Prior of the first frame after the initialization: pose (gauge), velocity, biases.
   double init_sigma_position_m = 1e-3;
   double init_sigma_rotation_rad = 1e-3;
