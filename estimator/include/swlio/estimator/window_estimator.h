@@ -60,6 +60,9 @@ struct WindowResult {
   /// Marginal covariance of the newest state (state_covariance.h) over the window, at the
   /// solution; `valid` false when not computed (`covariance` off, or rank-deficient).
   StateCovariance covariance;
+  /// Tilt [θx, θy] (rad) of the map frame against gravity: Exp([θx, θy, 0]) rotates map
+  /// vectors into the gravity-aligned frame (zero unless `estimate_gravity_tilt`).
+  Eigen::Vector2d gravity_tilt_rad = Eigen::Vector2d::Zero();
 };
 
 class WindowEstimator {
@@ -93,6 +96,8 @@ class WindowEstimator {
   Eigen::MatrixXd CorrelatedInitialPriorW(const Frame& frame) const;
   void StartFromBootstrap();
   State StateOf(const Frame& frame) const;
+  /// Frame i's IMU factor as the problem takes it (with the gravity tilt block or not).
+  void AddImuResidual(ceres::Problem& problem, Frame& prev, Frame& frame);
   static ceres::Problem::Options ProblemOptions();
   /// The window's blocks and residuals (extrinsic, frames, IMU, LiDAR rows, priors).
   void BuildProblem(ceres::Problem& problem);
@@ -139,6 +144,7 @@ class WindowEstimator {
   PoseManifold manifold_;
   ceres::HuberLoss huber_;
   std::vector<double> extrinsic_;  ///< T_imu_lidar block (7)
+  std::vector<double> gravity_tilt_;  ///< map tilt against gravity (gravity_tilt_imu_factor.h)
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
   std::vector<double> zero_speed_bias_;
   LidarFactors factors_;                     ///< the newest frame's, reused

@@ -73,6 +73,13 @@ struct WindowEstimatorConfig {
   /// tilt then moves while the early map keeps the start's, which bends long drives: APE
   /// loop943 seeds 1–3 0.454 / 0.620 / 0.458 → 0.628 / 0.613 / 0.708 m. Off by default.
   bool init_tilt_follows_bias = false;
+  /// Estimate where gravity points in the map frame (gravity_tilt_imu_factor.h): the IMU factors
+  /// take the map's tilt against gravity as one more block (2 angles, prior σ
+  /// init_sigma_bias_acc_mps2 / g: the horizontal bias a standing start cannot tell from tilt).
+  /// The map and the output stay in the first frame's (slightly tilted) frame; the tilt is in
+  /// WindowResult. Without it, the tilt learned at the first turn was forced onto new frames
+  /// against the start's map (measured on loop943, see ARCHITECTURE.md).
+  bool estimate_gravity_tilt = true;
 
   ConfigIssues Validate() const;
 };
