@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "swlio/core/time.h"
+#include "swlio/estimator/gravity_tilt_imu_factor.h"
 #include "wall_sweep.h"
 
 namespace swlio::estimator {
@@ -33,8 +34,11 @@ TEST(WindowEstimator, StandingStillTheImuHoldsThePoseAndTheWindowSlides) {
     EXPECT_LE(r.window_frames, config.window_size);
   }
   EXPECT_EQ(r.window_frames, config.window_size);
-  // After marginalization the prior spans the oldest kept frame's pose and speed/bias (15).
-  EXPECT_EQ(r.prior_rank, 15);
+  // After marginalization the prior spans the oldest kept frame's pose and speed/bias (15) and
+  // the map's tilt against gravity (2).
+  EXPECT_EQ(r.prior_rank, 15 + kGravityTiltSize);
+  // Level and at rest: nothing tilts the map against gravity.
+  EXPECT_LT(r.gravity_tilt_rad.norm(), 1e-4);
   EXPECT_GT(r.solver_iterations, 0);
   EXPECT_LT(r.odometry.state.T_world_imu.translation().norm(), 1e-3);
   EXPECT_LT(r.odometry.state.vel_world.norm(), 1e-3);

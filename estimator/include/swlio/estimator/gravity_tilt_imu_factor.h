@@ -9,7 +9,7 @@
 /// aligned by definition either tilts the new frames against the old map, or keeps the map and
 /// carries a bias that would have to change with the heading. Estimating where gravity points
 /// in the map frame instead keeps the map rigid and the IMU consistent (measured on loop943:
-/// ARCHITECTURE.md / window_estimator_config.h).
+/// ARCHITECTURE.md, "The map's tilt against gravity").
 ///
 /// With Q = Exp([θx, θy, 0]) (map → gravity-aligned frame) the residual is the ImuFactor's at
 ///   p' = Q p,  q' = q_Q ⊗ q,  v' = Q v   (biases unchanged),

@@ -16,7 +16,9 @@
 ///  3. one Ceres problem over the window, started from the IMU prediction: ImuFactor between
 ///     consecutive frames (eq. 21, pre-integrated covariance), every frame's LiDAR rows, the
 ///     marginalization prior (at start: a Gaussian prior on the first frame from the static
-///     initialization, which also fixes the gauge) and a weak per-frame b_a prior; where the
+///     initialization, which also fixes the gauge) and a weak per-frame b_a prior; with
+///     `estimate_gravity_tilt` the IMU factors also take the map's tilt against gravity
+///     (gravity_tilt_imu_factor.h, one block kept by the marginalization); where the
 ///     solve moved the newest pose past the re-association thresholds, associate and
 ///     linearize again and re-solve (`reassociations`);
 ///  4. re-integrate IMU factors whose frame-i biases moved past

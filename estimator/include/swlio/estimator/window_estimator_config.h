@@ -78,7 +78,7 @@ struct WindowEstimatorConfig {
   /// init_sigma_bias_acc_mps2 / g: the horizontal bias a standing start cannot tell from tilt).
   /// The map and the output stay in the first frame's (slightly tilted) frame; the tilt is in
   /// WindowResult. Without it, the tilt learned at the first turn was forced onto new frames
-  /// against the start's map (measured on loop943, see ARCHITECTURE.md).
+  /// against the start's map (loop943_3 ended 1.07 m high; ARCHITECTURE.md).
   bool estimate_gravity_tilt = true;
 
   ConfigIssues Validate() const;
