@@ -357,6 +357,7 @@ void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   s.Get("static_max_speed_mps", c.static_max_speed_mps);
   s.Get("covariance", c.covariance);
   s.Get("init_tilt_follows_bias", c.init_tilt_follows_bias);
+  s.Get("estimate_gravity_tilt", c.estimate_gravity_tilt);
   Bind(s.Child("bootstrap"), c.bootstrap);
   s.Finish();
 }

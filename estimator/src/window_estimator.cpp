@@ -23,16 +23,21 @@ void ToVectors(const std::vector<FeaturePoint>& in, std::vector<Eigen::Vector3d>
   for (const FeaturePoint& f : in) out->push_back(f.xyz_m.cast<double>());
 }
 
-using PriorBlocks = std::vector<std::pair<const double*, const ceres::Manifold*>>;
+struct PriorBlock {
+  const double* values;
+  const ceres::Manifold* manifold;  ///< nullptr: Euclidean of `size`
+  int size = kSpeedBiasSize;
+};
+using PriorBlocks = std::vector<PriorBlock>;
 
 /// Gaussian prior r = W (x ⊟ x₀) on one or two blocks, as a MarginalizationPrior (J₀ = W).
 std::unique_ptr<MarginalizationPrior> GaussianPrior(const PriorBlocks& blocks,
                                                     const Eigen::MatrixXd& W) {
   std::vector<MarginalizationPrior::Block> b;
   int offset = 0;
-  for (const auto& [values, manifold] : blocks) {
-    const int ambient = manifold != nullptr ? manifold->AmbientSize() : kSpeedBiasSize;
-    const int tangent = manifold != nullptr ? manifold->TangentSize() : kSpeedBiasSize;
+  for (const auto& [values, manifold, size] : blocks) {
+    const int ambient = manifold != nullptr ? manifold->AmbientSize() : size;
+    const int tangent = manifold != nullptr ? manifold->TangentSize() : size;
     b.push_back({manifold, Eigen::Map<const Eigen::VectorXd>(values, ambient), tangent, offset});
     offset += tangent;
   }
@@ -42,6 +47,13 @@ std::unique_ptr<MarginalizationPrior> GaussianPrior(const PriorBlocks& blocks,
 std::unique_ptr<MarginalizationPrior> DiagonalPrior(const PriorBlocks& blocks,
                                                     const Eigen::VectorXd& sigmas) {
   return GaussianPrior(blocks, sigmas.cwiseInverse().asDiagonal());
+}
+
+/// The state with its world-frame quantities rotated by Q (map ↔ gravity-aligned frame).
+State Rotated(State s, const Eigen::Quaterniond& Q) {
+  s.T_world_imu = Eigen::Isometry3d(Q) * s.T_world_imu;
+  s.vel_world = Q * s.vel_world;
+  return s;
 }
 
 ImuSample At(ImuSample s, int64_t t_ns) {
@@ -71,7 +83,8 @@ WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn no
       edge_map_(config.odometry.edge_map),
       matcher_(config.odometry.matcher),
       huber_(config.huber_m / config.lidar_sigma_m),
-      extrinsic_(kPoseSize) {
+      extrinsic_(kPoseSize),
+      gravity_tilt_(kGravityTiltSize, 0.0) {
   PoseToParameters(config.odometry.T_imu_lidar, extrinsic_.data());
   ResetExtrinsicPrior();
   if (config.calibrate_extrinsic_s > 0.0) {
@@ -151,7 +164,9 @@ State WindowEstimator::StateOf(const Frame& f) const {
 }
 
 bool WindowEstimator::PropagateAndExtract(const Scan& scan, OdometryResult* result) {
-  propagator_.Reset(frames_.empty() ? init_state_ : StateOf(*frames_.back()));
+  // The propagator's gravity is the map's −z: integrate in the gravity-aligned frame (Q).
+  const Eigen::Quaterniond Q = GravityTiltRotation(gravity_tilt_.data());
+  propagator_.Reset(Rotated(frames_.empty() ? init_state_ : StateOf(*frames_.back()), Q));
   for (const ImuSample& s : imu_) {
     if (s.t_ns > scan.t_end_ns) break;
     propagator_.Add(s);
@@ -194,16 +209,19 @@ bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) const {
   to->pre = std::make_unique<Preintegrator>(config_.odometry.estimator.imu_noise, from.BiasGyro(),
                                             from.BiasAcc());
   if (to->pre->Integrate(s, from.t_ns, to->t_ns) != PreintegrationStatus::kOk) return false;
-  to->imu = ImuFactor::Create(to->pre->result(), config_.odometry.estimator.imu_noise,
-                              config_.odometry.estimator.gravity_mps2);
+  to->SetImu(ImuFactor::Create(to->pre->result(), config_.odometry.estimator.imu_noise,
+                               config_.odometry.estimator.gravity_mps2));
   return to->imu != nullptr;
 }
 
 void WindowEstimator::SetInitialPrior(Frame* f) {
   prior_ = MarginalizationResult{};
-  const PriorBlocks blocks = {{f->pose.data(), &manifold_}, {f->speed_bias.data(), nullptr}};
+  PriorBlocks blocks = {{f->pose.data(), &manifold_}, {f->speed_bias.data(), nullptr}};
+  const int n = kPoseTangentSize + kSpeedBiasSize;
+  const int n_tilt = config_.estimate_gravity_tilt ? kGravityTiltSize : 0;
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(n + n_tilt, n + n_tilt);
   if (config_.init_tilt_follows_bias) {
-    prior_.prior = GaussianPrior(blocks, CorrelatedInitialPriorW(*f));
+    W.topLeftCorner(n, n) = CorrelatedInitialPriorW(*f);
   } else {
     Eigen::VectorXd sigmas(kPoseTangentSize + kSpeedBiasSize);
     sigmas << Eigen::Vector3d::Constant(config_.init_sigma_position_m),
@@ -212,10 +230,20 @@ void WindowEstimator::SetInitialPrior(Frame* f) {
         Eigen::Vector3d::Constant(init_sigma_velocity_mps_),
         Eigen::Vector3d::Constant(init_sigma_bias_acc_mps2_),
         Eigen::Vector3d::Constant(config_.init_sigma_bias_gyro_radps);
-    prior_.prior = DiagonalPrior(blocks, sigmas);
+    W.topLeftCorner(n, n) = sigmas.cwiseInverse().asDiagonal();
   }
   prior_.kept_blocks = {f->pose.data(), f->speed_bias.data()};
-  prior_.rank = kPoseTangentSize + kSpeedBiasSize;
+  if (config_.estimate_gravity_tilt) {
+    // A standing start cannot tell the horizontal accelerometer bias from tilt.
+    const double sigma_tilt_rad =
+        init_sigma_bias_acc_mps2_ / config_.odometry.estimator.gravity_mps2;
+    W.bottomRightCorner(n_tilt, n_tilt) =
+        Eigen::MatrixXd::Identity(n_tilt, n_tilt) / sigma_tilt_rad;
+    blocks.push_back({gravity_tilt_.data(), nullptr, kGravityTiltSize});
+    prior_.kept_blocks.push_back(gravity_tilt_.data());
+  }
+  prior_.prior = GaussianPrior(blocks, W);
+  prior_.rank = n + n_tilt;
 }
 
 Eigen::MatrixXd WindowEstimator::CorrelatedInitialPriorW(const Frame& f) const {
@@ -248,6 +276,8 @@ void WindowEstimator::BuildProblem(ceres::Problem& problem) {
   } else {
     problem.SetParameterBlockConstant(extrinsic_.data());
   }
+  if (config_.estimate_gravity_tilt)
+    problem.AddParameterBlock(gravity_tilt_.data(), kGravityTiltSize);
   for (size_t k = 0; k < frames_.size(); ++k) {
     Frame& f = *frames_[k];
     problem.AddParameterBlock(f.pose.data(), kPoseSize, &manifold_);
@@ -258,14 +288,20 @@ void WindowEstimator::BuildProblem(ceres::Problem& problem) {
     if (f.lidar_linear != nullptr) {
       problem.AddResidualBlock(f.lidar_linear.get(), nullptr, LidarBlocks(&f));
     }
-    if (k > 0 && f.imu != nullptr) {
-      Frame& p = *frames_[k - 1];
-      problem.AddResidualBlock(f.imu.get(), nullptr, p.pose.data(), p.speed_bias.data(),
-                               f.pose.data(), f.speed_bias.data());
-    }
+    if (k > 0 && f.imu != nullptr) AddImuResidual(problem, *frames_[k - 1], f);
   }
   if (prior_.prior != nullptr) {
     problem.AddResidualBlock(prior_.prior.get(), nullptr, prior_.kept_blocks);
+  }
+}
+
+void WindowEstimator::AddImuResidual(ceres::Problem& problem, Frame& p, Frame& f) {
+  if (config_.estimate_gravity_tilt) {
+    problem.AddResidualBlock(f.imu_tilt.get(), nullptr, p.pose.data(), p.speed_bias.data(),
+                             f.pose.data(), f.speed_bias.data(), gravity_tilt_.data());
+  } else {
+    problem.AddResidualBlock(f.imu.get(), nullptr, p.pose.data(), p.speed_bias.data(),
+                             f.pose.data(), f.speed_bias.data());
   }
 }
 
@@ -295,6 +331,7 @@ StateCovariance WindowEstimator::NewestCovariance() {
   BuildProblem(problem);
   ceres::Problem::EvaluateOptions eo;
   if (config_.estimate_extrinsic) eo.parameter_blocks.push_back(extrinsic_.data());
+  if (config_.estimate_gravity_tilt) eo.parameter_blocks.push_back(gravity_tilt_.data());
   for (const auto& f : frames_) {  // the newest frame's blocks come last
     eo.parameter_blocks.push_back(f->pose.data());
     eo.parameter_blocks.push_back(f->speed_bias.data());
@@ -325,8 +362,8 @@ void WindowEstimator::Reintegrate() {
     const Frame& p = *frames_[k - 1];
     if (f.pre == nullptr || !f.pre->NeedsReintegration(p.BiasGyro(), p.BiasAcc())) continue;
     f.pre->Reintegrate(p.BiasGyro(), p.BiasAcc());
-    f.imu = ImuFactor::Create(f.pre->result(), config_.odometry.estimator.imu_noise,
-                              config_.odometry.estimator.gravity_mps2);
+    f.SetImu(ImuFactor::Create(f.pre->result(), config_.odometry.estimator.imu_noise,
+                               config_.odometry.estimator.gravity_mps2));
   }
 }
 
@@ -346,7 +383,14 @@ void WindowEstimator::Marginalize() {
     const std::vector<double*> blocks = LidarBlocks(&f0);
     m.AddResidualBlock(f0.lidar_linear.get(), nullptr, {blocks.begin(), blocks.end()});
   }
-  if (f1.imu != nullptr) {
+  if (config_.estimate_gravity_tilt) {
+    m.AddParameterBlock(gravity_tilt_.data(), kGravityTiltSize, nullptr, BlockRole::kKeep);
+  }
+  if (f1.imu != nullptr && config_.estimate_gravity_tilt) {
+    m.AddResidualBlock(f1.imu_tilt.get(), nullptr,
+                       {f0.pose.data(), f0.speed_bias.data(), f1.pose.data(), f1.speed_bias.data(),
+                        gravity_tilt_.data()});
+  } else if (f1.imu != nullptr) {
     m.AddResidualBlock(
         f1.imu.get(), nullptr,
         {f0.pose.data(), f0.speed_bias.data(), f1.pose.data(), f1.speed_bias.data()});
@@ -379,7 +423,8 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   if (scan.t_start_ns < t_last) return out;  // skipped
 
   PropagateAndExtract(scan, &result);
-  std::unique_ptr<Frame> frame = NewFrame(scan.t_end_ns, propagator_.state());
+  const Eigen::Quaterniond Q = GravityTiltRotation(gravity_tilt_.data());
+  std::unique_ptr<Frame> frame = NewFrame(scan.t_end_ns, Rotated(propagator_.state(), Q.inverse()));
   result.planes = frame->planes_lidar.size();
   result.edges = frame->edges_lidar.size();
   result.times.frontend_ms = timer.Lap();
@@ -440,6 +485,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   out.window_frames = frames_.size();
   out.prior_rank = prior_.rank;
   out.marginalization_failures = marginalization_failures_;
+  out.gravity_tilt_rad = Eigen::Vector2d(gravity_tilt_[0], gravity_tilt_[1]);
   result.times.optimize_ms += timer.Lap();
   result.times.total_ms =
       result.times.frontend_ms + result.times.match_ms + result.times.optimize_ms;

@@ -7,8 +7,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
+#include "swlio/estimator/gravity_tilt_imu_factor.h"
 #include "swlio/estimator/imu_factor.h"
 #include "swlio/estimator/marginalization_prior.h"
 #include "swlio/estimator/pose_manifold.h"
@@ -29,6 +31,12 @@ struct WindowEstimator::Frame {
   size_t plane_factors = 0, line_factors = 0;
   std::unique_ptr<Preintegrator> pre;  ///< previous frame → this one
   std::unique_ptr<ImuFactor> imu;      ///< null for the first frame (or a failed interval)
+  std::unique_ptr<GravityTiltImuFactor> imu_tilt;  ///< `imu` in the map frame (estimated tilt)
+
+  void SetImu(std::unique_ptr<ImuFactor> factor) {
+    imu = std::move(factor);
+    imu_tilt = imu != nullptr ? std::make_unique<GravityTiltImuFactor>(imu.get()) : nullptr;
+  }
 
   Eigen::Vector3d BiasAcc() const { return Eigen::Map<const Eigen::Vector3d>(&speed_bias[3]); }
   Eigen::Vector3d BiasGyro() const { return Eigen::Map<const Eigen::Vector3d>(&speed_bias[6]); }

@@ -39,6 +39,7 @@ void ExpectSameWindow(const WindowEstimatorConfig& a, const WindowEstimatorConfi
   EXPECT_EQ(a.extrinsic_prior_sigma_m, b.extrinsic_prior_sigma_m);
   EXPECT_EQ(a.extrinsic_prior_sigma_rad, b.extrinsic_prior_sigma_rad);
   EXPECT_EQ(a.calibrate_extrinsic_s, b.calibrate_extrinsic_s);
+  EXPECT_EQ(a.estimate_gravity_tilt, b.estimate_gravity_tilt);
   EXPECT_EQ(a.calibrate_retry_s, b.calibrate_retry_s);
   EXPECT_EQ(a.init_sigma_position_m, b.init_sigma_position_m);
   EXPECT_EQ(a.init_sigma_rotation_rad, b.init_sigma_rotation_rad);
@@ -113,6 +114,7 @@ estimator:
     bias_prior_sigma_acc_mps2: 0.0
     bias_prior_sigma_gyro_radps: 0.01
     dynamic_init: false
+    estimate_gravity_tilt: true
     static_max_speed_mps: 0.1
     bootstrap:
       window_frames: 25
@@ -162,6 +164,7 @@ estimator:
   want.bias_prior_sigma_acc_mps2 = 0.0;
   want.bias_prior_sigma_gyro_radps = 0.01;
   want.dynamic_init = false;
+  want.estimate_gravity_tilt = true;
   want.static_max_speed_mps = 0.1;
   want.bootstrap.window_frames = 25;
   want.bootstrap.imu_buffer_s = 12;

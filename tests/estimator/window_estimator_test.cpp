@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "swlio/core/time.h"
+#include "swlio/estimator/gravity_tilt_imu_factor.h"
 #include "wall_sweep.h"
 
 namespace swlio::estimator {
@@ -39,6 +40,30 @@ TEST(WindowEstimator, StandingStillTheImuHoldsThePoseAndTheWindowSlides) {
   EXPECT_LT(r.odometry.state.T_world_imu.translation().norm(), 1e-3);
   EXPECT_LT(r.odometry.state.vel_world.norm(), 1e-3);
   EXPECT_EQ(r.odometry.times.total_ms, 0.0) << "no clock injected: no timings";
+}
+
+TEST(WindowEstimator, WithTheGravityTiltThePriorAlsoSpansIt) {
+  WindowEstimatorConfig config;
+  config.window_size = 4;
+  config.estimate_gravity_tilt = true;
+  WindowEstimator estimator(config);
+  int64_t t = 0;
+  for (; t < 2 * kNsPerSec; t += 2'500'000) estimator.AddImu(LevelImu(t));
+  ASSERT_TRUE(estimator.initialized());
+  WindowResult r;
+  for (int sweep = 0; sweep < 12; ++sweep) {
+    const int64_t t_end = t + 100 * kNsPerMs;
+    for (; t < t_end; t += 2'500'000) estimator.AddImu(LevelImu(t));
+    r = estimator.AddScan(WallSweep(t_end - 100 * kNsPerMs));
+  }
+  EXPECT_EQ(r.window_frames, config.window_size);
+  // The oldest kept frame's pose and speed/bias (15) and the map's tilt against gravity (2).
+  EXPECT_EQ(r.prior_rank, 15 + kGravityTiltSize);
+  // Level and at rest: nothing tilts the map against gravity, nothing moves.
+  EXPECT_LT(r.gravity_tilt_rad.norm(), 1e-4);
+  EXPECT_LT(r.odometry.state.T_world_imu.translation().norm(), 1e-3);
+  EXPECT_LT(r.odometry.state.vel_world.norm(), 1e-3);
+  EXPECT_TRUE(r.covariance.valid);
 }
 
 TEST(WindowEstimator, ABiasedGyroAtRestIsEstimatedNotIntegrated) {

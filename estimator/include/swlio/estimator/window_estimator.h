@@ -16,7 +16,9 @@
 ///  3. one Ceres problem over the window, started from the IMU prediction: ImuFactor between
 ///     consecutive frames (eq. 21, pre-integrated covariance), every frame's LiDAR rows, the
 ///     marginalization prior (at start: a Gaussian prior on the first frame from the static
-///     initialization, which also fixes the gauge) and a weak per-frame b_a prior; where the
+///     initialization, which also fixes the gauge) and a weak per-frame b_a prior; with
+///     `estimate_gravity_tilt` the IMU factors also take the map's tilt against gravity
+///     (gravity_tilt_imu_factor.h, one block kept by the marginalization); where the
 ///     solve moved the newest pose past the re-association thresholds, associate and
 ///     linearize again and re-solve (`reassociations`);
 ///  4. re-integrate IMU factors whose frame-i biases moved past
@@ -62,6 +64,9 @@ struct WindowResult {
   /// Marginal covariance of the newest state (state_covariance.h) over the window, at the
   /// solution; `valid` false when not computed (`covariance` off, or rank-deficient).
   StateCovariance covariance;
+  /// Tilt [θx, θy] (rad) of the map frame against gravity: Exp([θx, θy, 0]) rotates map
+  /// vectors into the gravity-aligned frame (zero unless `estimate_gravity_tilt`).
+  Eigen::Vector2d gravity_tilt_rad = Eigen::Vector2d::Zero();
   /// The online extrinsic calibration finished with this sweep and the window restarted on it.
   bool extrinsic_calibrated = false;
 };
@@ -101,6 +106,8 @@ class WindowEstimator {
   Eigen::MatrixXd CorrelatedInitialPriorW(const Frame& frame) const;
   void StartFromBootstrap();
   State StateOf(const Frame& frame) const;
+  /// Frame i's IMU factor as the problem takes it (with the gravity tilt block or not).
+  void AddImuResidual(ceres::Problem& problem, Frame& prev, Frame& frame);
   static ceres::Problem::Options ProblemOptions();
   /// The window's blocks and residuals (extrinsic, frames, IMU, LiDAR rows, priors).
   void BuildProblem(ceres::Problem& problem);
@@ -153,6 +160,7 @@ class WindowEstimator {
   PoseManifold manifold_;
   ceres::HuberLoss huber_;
   std::vector<double> extrinsic_;  ///< T_imu_lidar block (7)
+  std::vector<double> gravity_tilt_;  ///< map tilt against gravity (gravity_tilt_imu_factor.h)
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
   std::unique_ptr<ExtrinsicCalibrationRun> calibration_;  ///< null when off or done
   std::optional<ExtrinsicCalibration> calibrated_;
