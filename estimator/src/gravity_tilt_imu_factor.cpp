@@ -69,7 +69,7 @@ bool GravityTiltImuFactor::EvaluateRotated(double const* const* parameters,
   if (!imu_->Evaluate(rotated, residuals, inner)) return false;
   const Eigen::Matrix3d R = Q.toRotationMatrix();
   const Eigen::Matrix4d L = LeftProduct(Q);
-  for (int k = 0; k < 2; ++k) {
+  for (size_t k = 0; k < 2; ++k) {
     if (jacobians[2 * k] != nullptr) {
       Eigen::Map<PoseJacobian> J(jacobians[2 * k]);
       J.leftCols<3>() = J_pose[k].leftCols<3>() * R;

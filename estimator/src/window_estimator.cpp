@@ -330,7 +330,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   if (calibration_) {
     if (const auto c = calibration_->TryCalibrate(); c && ApplyCalibration(*c)) {
       out.extrinsic_calibrated = true;
-      calibrated_ = *c;
+      calibrated_ = std::make_unique<ExtrinsicCalibration>(*c);
       calibration_.reset();
     }
   }

@@ -213,8 +213,8 @@ void PrintExtrinsic(const Eigen::Isometry3d& T_final, const Eigen::Isometry3d& T
 /// how often it was tried and why it was refused.
 void PrintCalibration(const swlio::estimator::WindowEstimator& window,
                       const Eigen::Isometry3d& T_given) {
-  const auto& c = window.calibration();
-  if (!c) {
+  const swlio::estimator::ExtrinsicCalibration* c = window.calibration();
+  if (c == nullptr) {
     const auto* run = window.calibration_run();
     std::printf(
         "{\"extrinsic_calibration\": {\"ok\": false, \"attempts\": %d, \"message\": \"%s\"}}\n",

@@ -52,7 +52,6 @@ struct ExtrinsicCalibratorOptions {
 };
 
 struct ExtrinsicCalibration {
-  bool ok = false;
   std::string message;  ///< why not ok
   /// The calibrated extrinsic when ok, else the guess.
   Eigen::Isometry3d T_imu_lidar = Eigen::Isometry3d::Identity();
@@ -64,6 +63,7 @@ struct ExtrinsicCalibration {
   double position_rms_m = 0.0;     ///< LiDAR pose residuals after the solve
   double rotation_rms_rad = 0.0;
   int iterations = 0;
+  bool ok = false;
 };
 
 /// Poses time-ordered (≥ alignment.min_frames), the IMU samples spanning them.

@@ -87,7 +87,7 @@ class WindowEstimator {
   Eigen::Isometry3d T_imu_lidar() const { return PoseFromParameters(extrinsic_.data()); }
   /// The online extrinsic calibration (calibrate_extrinsic_s): its result once applied, and
   /// while it runs, its attempts and the last reason it was refused (null when off or done).
-  const std::optional<ExtrinsicCalibration>& calibration() const { return calibrated_; }
+  const ExtrinsicCalibration* calibration() const { return calibrated_.get(); }
   const ExtrinsicCalibrationRun* calibration_run() const { return calibration_.get(); }
 
  private:
@@ -163,7 +163,7 @@ class WindowEstimator {
   std::vector<double> gravity_tilt_;  ///< map tilt against gravity (gravity_tilt_imu_factor.h)
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
   std::unique_ptr<ExtrinsicCalibrationRun> calibration_;  ///< null when off or done
-  std::optional<ExtrinsicCalibration> calibrated_;
+  std::unique_ptr<ExtrinsicCalibration> calibrated_;  ///< null until applied
   std::vector<double> zero_speed_bias_;
   LidarFactors factors_;                     ///< the newest frame's, reused
   std::vector<PlaneCorrespondence> planes_;  ///< the newest frame's correspondences
