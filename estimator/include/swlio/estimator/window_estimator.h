@@ -142,6 +142,8 @@ class WindowEstimator {
                       const std::vector<Eigen::Vector3d>& planes_lidar,
                       const std::vector<Eigen::Vector3d>& edges_lidar);
 
+  // 16-byte aligned members first (padding).
+  Eigen::Isometry3d T_world_last_keyframe_ = Eigen::Isometry3d::Identity();
   WindowEstimatorConfig config_;
   NowNsFn now_ns_;
   StaticInitializer initializer_;
@@ -172,7 +174,6 @@ class WindowEstimator {
   std::deque<std::unique_ptr<Frame>> frames_;  ///< oldest first; blocks stay at fixed addresses
   MarginalizationResult prior_;
   size_t marginalization_failures_ = 0;
-  Eigen::Isometry3d T_world_last_keyframe_ = Eigen::Isometry3d::Identity();
   // Flags last (padding).
   bool initialized_ = false;
   bool have_keyframe_ = false;
