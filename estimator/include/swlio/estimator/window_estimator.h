@@ -161,11 +161,11 @@ class WindowEstimator {
   ScanMatcher matcher_;
   PoseManifold manifold_;
   ceres::HuberLoss huber_;
-  std::vector<double> extrinsic_;  ///< T_imu_lidar block (7)
+  std::vector<double> extrinsic_;     ///< T_imu_lidar block (7)
   std::vector<double> gravity_tilt_;  ///< map tilt against gravity (gravity_tilt_imu_factor.h)
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
   std::unique_ptr<ExtrinsicCalibrationRun> calibration_;  ///< null when off or done
-  std::unique_ptr<ExtrinsicCalibration> calibrated_;  ///< null until applied
+  std::unique_ptr<ExtrinsicCalibration> calibrated_;      ///< null until applied
   std::vector<double> zero_speed_bias_;
   LidarFactors factors_;                     ///< the newest frame's, reused
   std::vector<PlaneCorrespondence> planes_;  ///< the newest frame's correspondences
