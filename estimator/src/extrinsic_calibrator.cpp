@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "swlio/estimator/gravity_tilt_imu_factor.h"
 #include "swlio/estimator/imu_factor.h"
 #include "swlio/estimator/pose_manifold.h"
 #include "swlio/estimator/preintegration.h"
@@ -147,8 +148,9 @@ class Calibration {
         T_world_w0_(T_world_w0),
         options_(options) {}
 
-  /// Builds and solves the problem at the blocks' biases; false when an IMU interval fails.
-  bool Solve(Blocks* b, ceres::Solver::Summary* summary) {
+  /// Builds and solves the problem at the blocks' biases, and with `covariance` computes the
+  /// extrinsic's covariance at the solution; false when an IMU interval fails.
+  bool Solve(Blocks* b, bool covariance, ceres::Solver::Summary* summary) {
     ceres::Problem::Options po;
     po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     ceres::Problem problem(po);
@@ -160,7 +162,9 @@ class Calibration {
     so.max_num_iterations = options_.max_iterations;
     so.num_threads = 1;
     ceres::Solve(so, &problem, summary);
-    if (summary->IsSolutionUsable()) covariance_ok_ = ExtrinsicCovariance(b, &problem);
+    if (covariance && summary->IsSolutionUsable()) {
+      covariance_ok_ = ExtrinsicCovariance(b, &problem);
+    }
     return summary->IsSolutionUsable();
   }
 
@@ -237,12 +241,8 @@ void PoseResiduals(const Blocks& b,
                    const Eigen::Isometry3d& T_world_w0,
                    ExtrinsicCalibration* out) {
   const Eigen::Isometry3d T_il = PoseFromParameters(b.extrinsic.data());
-  Eigen::Isometry3d tilt = Eigen::Isometry3d::Identity();
-  tilt.linear() = Eigen::AngleAxisd(std::hypot(b.tilt[0], b.tilt[1]),
-                                    std::hypot(b.tilt[0], b.tilt[1]) > 0.0
-                                        ? Eigen::Vector3d(b.tilt[0], b.tilt[1], 0.0).normalized()
-                                        : Eigen::Vector3d::UnitZ())
-                      .toRotationMatrix();
+  // The tilt block is the same Exp([a, b, 0]) as the window's map tilt (LidarPoseResidual).
+  const Eigen::Isometry3d tilt(GravityTiltRotation(b.tilt.data()));
   double sp = 0.0, sr = 0.0;
   for (size_t k = 0; k < poses.size(); ++k) {
     const Eigen::Isometry3d meas = tilt * T_world_w0 * poses[k].T_w0_lidar;
@@ -302,7 +302,7 @@ ExtrinsicCalibration CalibrateExtrinsic(const EstimatorConfig& config,
   Calibration calibration(config, poses, imu, T_imu_lidar_guess, init.T_world_w0, options);
   for (int round = 0; round < 2; ++round) {  // the second at the first one's biases
     ceres::Solver::Summary summary;
-    if (!calibration.Solve(&blocks, &summary)) {
+    if (!calibration.Solve(&blocks, /*covariance=*/round == 1, &summary)) {
       out.message = "solve failed: " + summary.message;
       return out;
     }

@@ -194,10 +194,10 @@ void ApplyWindowFlags(const Options& opt, swlio::estimator::WindowEstimatorConfi
   if (given("--lidar-floor-yaw")) w->lidar_floor_sigma_yaw_rad = opt.floor_yaw_rad;
 }
 
-/// The extrinsic at the end, and how far it is from the one the recording or config gave
-/// (the truth for simulator recordings, which is what --extrinsic-offset perturbs).
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
+/// The extrinsic at the end, and how far it is from the one the recording or config gave
+/// (the truth for simulator recordings, which is what --extrinsic-offset perturbs).
 void PrintExtrinsic(const Eigen::Isometry3d& T_final, const Eigen::Isometry3d& T_given) {
   const Eigen::Isometry3d d = T_given.inverse() * T_final;
   const Eigen::Quaterniond q(T_final.linear());

@@ -39,7 +39,6 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include "swlio/estimator/dynamic_bootstrap.h"
