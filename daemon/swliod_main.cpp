@@ -1,36 +1,75 @@
 // swliod: the localization daemon. main() only parses the command line and wires modules.
 
-#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
 
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "swlio/daemon/config_files.h"
 #include "swlio/daemon/config_loader.h"
+#include "swlio/daemon/daemon_main.h"
+#include "swlio/daemon/logging.h"
 
 namespace {
 
-int Run(int argc, char** argv) {
-  CLI::App app{"swliod: LiDAR-inertial localization daemon"};
-  std::string check_config;
-  app.add_option("--check-config", check_config,
-                 "Validate a configuration file, print every problem with its line, and exit")
-      ->required();
-  CLI11_PARSE(app, argc, argv);
-
-  const swlio::daemon::LoadedConfig loaded = swlio::daemon::LoadConfigFile(check_config);
+/// Loads and validates `path` (schema, ranges, referenced files); prints every problem.
+bool LoadChecked(const std::string& path, swlio::daemon::DaemonConfig* config) {
+  const swlio::daemon::LoadedConfig loaded = swlio::daemon::LoadConfigFile(path);
   if (!loaded.ok()) {
     std::cerr << loaded.ErrorReport();
-    std::cerr << check_config << ": " << loaded.errors.size() << " error(s)\n";
-    return 1;
+    std::cerr << path << ": " << loaded.errors.size() << " error(s)\n";
+    return false;
   }
   const std::vector<std::string> file_problems = swlio::daemon::CheckReferencedFiles(loaded.config);
-  for (const std::string& problem : file_problems)
-    std::cerr << check_config << ": " << problem << "\n";
-  if (!file_problems.empty()) return 1;
-  std::cout << check_config << ": OK\n";
-  return 0;
+  for (const std::string& problem : file_problems) std::cerr << path << ": " << problem << "\n";
+  if (!file_problems.empty()) return false;
+  *config = loaded.config;
+  return true;
+}
+
+int Run(int argc, char** argv) {
+  swlio::daemon::BlockStopSignals();  // before any thread exists (spdlog, DDS, ours)
+  CLI::App app{"swliod: LiDAR-inertial localization daemon"};
+  std::string check_config, config_path;
+  double run_for_s = 0.0;
+  bool no_dds = false;
+  double time_scale = 1.0;
+  auto* check = app.add_option("--check-config", check_config,
+                               "Validate a configuration file, print every problem with its "
+                               "line, and exit");
+  app.add_option("--config", config_path, "Configuration file (YAML) to run with")->excludes(check);
+  app.add_option("--run-for", run_for_s, "Stop after this many seconds (0: until a signal)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--no-dds", no_dds, "Run without DDS (nothing is published)");
+  app.add_option("--time-scale", time_scale,
+                 "The sensors' clocks run this many times faster than the host (the simulator "
+                 "at --speed N); 1 on a robot")
+      ->check(CLI::Range(0.1, 50.0));
+  CLI11_PARSE(app, argc, argv);
+
+  if (!check_config.empty()) {
+    swlio::daemon::DaemonConfig config;
+    if (!LoadChecked(check_config, &config)) return 1;
+    std::cout << check_config << ": OK\n";
+    return 0;
+  }
+  if (config_path.empty()) {
+    std::cerr << "swliod: give --config FILE (or --check-config FILE)\n";
+    return 2;
+  }
+  swlio::daemon::DaemonConfig config;
+  if (!LoadChecked(config_path, &config)) return 1;
+  std::string error;
+  if (!swlio::daemon::SetupLogging(config.logging, &error)) {
+    std::cerr << "swliod: " << error << "\n";
+    return 1;
+  }
+  swlio::daemon::RuntimeOptions options;
+  options.dds = !no_dds;
+  options.time_scale = time_scale;
+  return swlio::daemon::RunDaemon(config, options, static_cast<int64_t>(run_for_s * 1e9));
 }
 
 }  // namespace

@@ -4,9 +4,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "swlio/daemon/imu_stage.h"
+#include "swlio/daemon/lidar_stage.h"
 #include "swlio/drivers/pcap_file.h"
-#include "swlio/drivers/rs16_decoder.h"
-#include "swlio/drivers/scan_assembler.h"
 #include "swlio/drivers/xsens/mtdata2.h"
 #include "swlio/drivers/xsens/xbus.h"
 
@@ -14,49 +14,26 @@ namespace swlio::daemon {
 
 namespace xs = drivers::xsens;
 
-/// The LiDAR side: pcap → RS16 decoder → clock model → scan assembler.
+/// The LiDAR side: pcap → LidarStage (decoder, clock model, scan assembler).
 struct RecordingReader::Lidar {
   std::unique_ptr<drivers::PcapReader> pcap;
-  drivers::Rs16Decoder decoder;
-  drivers::ScanAssembler assembler;
-  drivers::ClockModel clock;
-  drivers::LidarPacketDecoder::ReturnBuffer buffer{};
+  LidarStage stage;
+  HostSweep sweep;
   bool flushed = false;
 
-  Lidar(const drivers::LidarConfig& config, drivers::ClockModelConfig clock_config)
-      : decoder(config), assembler(AssemblerConfig(config)), clock(clock_config) {}
+  explicit Lidar(const drivers::LidarConfig& config) : stage(config) {}
 
-  static drivers::ScanAssemblerConfig AssemblerConfig(const drivers::LidarConfig& config) {
-    drivers::ScanAssemblerConfig c;
-    c.cut_angle_deg = config.cut_angle_deg;
-    return c;
-  }
-
-  /// Feeds packets until a scan is complete; false when the file is exhausted.
-  bool NextScan(drivers::AssembledScan* out, RecordingStats* stats) {
+  /// Feeds packets until a sweep is complete; false when the file is exhausted.
+  bool NextSweep() {
     drivers::UdpDatagram d;
-    while (!assembler.PopScan(out)) {
+    while (!stage.Pop(&sweep)) {
       if (!pcap->Next(&d)) {
         if (flushed) return false;
         flushed = true;
-        assembler.Flush();
+        stage.Flush();
         continue;
       }
-      const auto kind = decoder.Classify(d.payload);
-      if (kind == drivers::LidarPacketKind::kInfo) {
-        decoder.DecodeInfo(d.payload);
-        assembler.SetNominal(decoder.PacketsPerRevolution(),
-                             decoder.Rpm() > 0 ? static_cast<int64_t>(60e9 / decoder.Rpm()) : 0);
-        continue;
-      }
-      drivers::LidarPacketSummary summary;
-      if (kind != drivers::LidarPacketKind::kData ||
-          decoder.DecodeData(d.payload, buffer, &summary) != drivers::DecodeStatus::kOk) {
-        continue;
-      }
-      ++stats->lidar_packets;
-      clock.Observe(summary.t_sensor_ns, d.t_ns);
-      assembler.AddPacket(std::span(buffer).first(summary.returns), summary, d.t_ns);
+      stage.Add(d.payload, d.t_ns);
     }
     return true;
   }
@@ -70,10 +47,7 @@ std::unique_ptr<RecordingReader> RecordingReader::Open(const std::filesystem::pa
                                                        std::string* error) {
   std::unique_ptr<RecordingReader> reader(new RecordingReader());
   if (!reader->ReadImu(dir, imu, error)) return nullptr;
-  drivers::ClockModelConfig clock;
-  // RS16 header time is the packet's first firing; it arrives after 24 firing sequences.
-  clock.fixed_latency_ns = 23 * 55'500 + 15 * 2'800;
-  reader->lidar_ = std::make_unique<Lidar>(lidar, clock);
+  reader->lidar_ = std::make_unique<Lidar>(lidar);
   drivers::PcapUdpFilter filter;
   filter.dst_ports = {lidar.msop_port, lidar.difop_port};
   reader->lidar_->pcap = drivers::PcapReader::Open((dir / "lidar.pcap").string(), filter, error);
@@ -92,13 +66,10 @@ bool RecordingReader::ReadImu(const std::filesystem::path& dir,
   }
   std::string line;
   std::getline(rx, line);  // header
-  drivers::ClockModelConfig clock_config;
-  clock_config.wrap_period_ns = xs::SampleTimeFineToNs(0xFFFFFFFFu) + 100'000;
-  drivers::ClockModel clock(clock_config);
+  ImuStage stage(imu.baud);
   xs::XbusFramer framer;
   xs::XbusFrame frame;
   std::vector<char> chunk;
-  bool latency_set = false;
   while (std::getline(rx, line)) {
     uint64_t offset = 0, size = 0;
     int64_t t_rx = 0;
@@ -115,40 +86,31 @@ bool RecordingReader::ReadImu(const std::filesystem::path& dir,
       while (framer.Next(&frame)) {
         xs::MtData2Sample m;
         if (frame.mid != xs::mid::kMtData2 ||
-            xs::DecodeMtData2(frame.payload, &m) != xs::MtData2Status::kOk || !m.sample_time_fine) {
+            xs::DecodeMtData2(frame.payload, &m) != xs::MtData2Status::kOk) {
           continue;
         }
-        if (!latency_set) {  // 10 bits per byte on an 8N1 line
-          clock_config.fixed_latency_ns = static_cast<int64_t>(
-              static_cast<double>(frame.frame_bytes) * 10.0 / static_cast<double>(imu.baud) * 1e9);
-          clock = drivers::ClockModel(clock_config);
-          latency_set = true;
-        }
-        const int64_t stf = xs::SampleTimeFineToNs(*m.sample_time_fine);
-        const int64_t host = clock.Observe(stf, t_rx);
-        if (auto s = xs::ToImuSample(m, host)) imu_.push_back(*s);
+        if (auto s = stage.Map(ToImuRaw(m, t_rx, frame.frame_bytes))) imu_.push_back(*s);
       }
     }
   }
   stats_.imu_samples = imu_.size();
   stats_.imu_checksum_errors = framer.stats().checksum_errors;
   stats_.imu_skipped_bytes = framer.stats().skipped_bytes;
-  stats_.imu_clock = clock.stats();
+  stats_.imu_clock = stage.clock();
   return true;
 }
 
 bool RecordingReader::Next(RecordingEvent* event) {
   if (!have_scan_) {
-    drivers::AssembledScan assembled;
-    if (lidar_->NextScan(&assembled, &stats_)) {
-      pending_scan_ = std::move(assembled.scan);
-      pending_scan_.t_start_ns = lidar_->clock.ToHost(pending_scan_.t_start_ns);
-      pending_scan_.t_end_ns = lidar_->clock.ToHost(pending_scan_.t_end_ns);
+    if (lidar_->NextSweep()) {
+      pending_scan_ = std::move(lidar_->sweep.scan);
       have_scan_ = true;
-      ++stats_.scans;
-      stats_.partial_scans += pending_scan_.partial ? 1 : 0;
-      stats_.missing_packets += assembled.missing_packets;
-      stats_.lidar_clock = lidar_->clock.stats();
+      const LidarStageCounters& c = lidar_->stage.counters();
+      stats_.lidar_packets = c.data_packets;
+      stats_.scans = c.sweeps;
+      stats_.partial_scans = c.partial_sweeps;
+      stats_.missing_packets = c.missing_packets;
+      stats_.lidar_clock = lidar_->stage.clock();
     }
   }
   if (imu_next_ < imu_.size() && (!have_scan_ || imu_[imu_next_].t_ns <= pending_scan_.t_end_ns)) {

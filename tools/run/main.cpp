@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <deque>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -17,6 +16,7 @@
 
 #include "swlio/core/lie.h"
 #include "swlio/daemon/config_loader.h"
+#include "swlio/daemon/estimator_runner.h"
 #include "swlio/daemon/recording_reader.h"
 #include "swlio/estimator/lidar_odometry.h"
 #include "swlio/estimator/window_estimator.h"
@@ -296,20 +296,15 @@ int Run(const Options& opt) {
     return 1;
   }
   const bool tightly_coupled = opt.mode == "tightly-coupled";
-  swlio::estimator::LidarOdometry odometry(config, &ThreadCpuNs);
-  swlio::estimator::WindowEstimator window(window_config, &ThreadCpuNs);
+  swlio::daemon::EstimatorSetup setup;
+  setup.mode = tightly_coupled ? swlio::daemon::EstimatorMode::kTightlyCoupled
+                               : swlio::daemon::EstimatorMode::kLidarOnly;
+  setup.odometry = config;
+  setup.window = window_config;
   Summary summary;
-  auto process = [&](const swlio::Scan& scan) {
-    swlio::estimator::StateCovariance cov;
-    OdometryResult r;
-    if (tightly_coupled) {
-      swlio::estimator::WindowResult w = window.AddScan(scan);
-      r = std::move(w.odometry);
-      cov = w.covariance;
-    } else {
-      r = odometry.AddScan(scan);
-    }
-    if (covariance && cov.valid) WriteCovariance(covariance, r.state, cov);
+  auto process = [&](const swlio::Scan& scan, const swlio::estimator::WindowResult& w) {
+    const OdometryResult& r = w.odometry;
+    if (covariance && w.covariance.valid) WriteCovariance(covariance, r.state, w.covariance);
     summary.Add(r);
     if (timings) WriteTimings(timings, r, scan.t_end_ns);
     if (diagnostics) WriteDiagnostics(diagnostics, r, scan.t_end_ns);
@@ -317,10 +312,7 @@ int Run(const Options& opt) {
       WriteTum(tum, r.state);
     }
   };
-  // The window pre-integrates the IMU up to each sweep's end: a sweep waits until an IMU sample
-  // past its end has arrived (serial bursts and stalls deliver samples late), else the factor
-  // would extrapolate held rates. The LiDAR-only mode takes sweeps as they come.
-  std::deque<swlio::Scan> waiting;
+  swlio::daemon::EstimatorRunner runner(setup, &ThreadCpuNs, process);
   swlio::daemon::RecordingEvent e;
   // --start-s: the estimator sees nothing before that many seconds into the recording (the
   // decoders and clock models do: as a daemon started while the robot is already driving).
@@ -333,34 +325,22 @@ int Run(const Options& opt) {
     if (opt.end_s > 0.0 && t_ns >= start_ns + static_cast<int64_t>((opt.end_s - opt.start_s) * 1e9))
       break;
     if (imu) {
-      if (!tightly_coupled) {
-        odometry.AddImu(e.imu);
-        continue;
-      }
-      window.AddImu(e.imu);
-      while (!waiting.empty() && waiting.front().t_end_ns < e.imu.t_ns) {
-        process(waiting.front());
-        waiting.pop_front();
-      }
-      continue;
-    }
-    if (tightly_coupled) {
-      waiting.push_back(e.scan);
+      runner.AddImu(e.imu);
     } else {
-      process(e.scan);
+      runner.AddScan(std::move(e.scan));
     }
   }
   // Sweeps the IMU stream never covered (the recording's last ones) are not processed.
-  if (!waiting.empty())
-    std::cerr << "swlio-run: " << waiting.size()
+  if (runner.waiting() > 0)
+    std::cerr << "swlio-run: " << runner.waiting()
               << " last sweep(s) without IMU coverage not processed\n";
   summary.Print();
   if (tightly_coupled && window_config.calibrate_extrinsic_s > 0.0) {
-    PrintCalibration(window, T_imu_lidar_given);
+    PrintCalibration(*runner.window(), T_imu_lidar_given);
   }
   if (tightly_coupled && (window_config.estimate_extrinsic || !opt.extrinsic_offset.empty() ||
                           window_config.calibrate_extrinsic_s > 0.0)) {
-    PrintExtrinsic(window.T_imu_lidar(), T_imu_lidar_given);
+    PrintExtrinsic(runner.window()->T_imu_lidar(), T_imu_lidar_given);
   }
   return 0;
 }

@@ -117,6 +117,13 @@ bool RunLive(const SimSetup& setup,
              std::string* error) {
   Endpoints ep;
   if (!OpenEndpoints(options, &ep, error)) return false;
+  if (!options.out_dir.empty()) {
+    // The rig (extrinsic, ports, sensor models) before streaming, so that whoever starts the
+    // receiver can configure it; counts are zero until the final manifest replaces it.
+    std::filesystem::create_directories(options.out_dir);
+    std::ofstream(options.out_dir / "manifest.yaml") << ManifestYaml(
+        setup, RecordingStats{}, MonotonicNs() + SecToNs(options.start_delay_s), "live");
+  }
   if (options.start_delay_s > 0.0) SleepUntil(MonotonicNs() + SecToNs(options.start_delay_s));
   const std::vector<SimImuSample> imu = SimulateImu(*setup.trajectory, setup.imu, setup.seed);
   LidarSimulator lidar(setup.world.get(), setup.trajectory.get(), setup.lidar, setup.seed);

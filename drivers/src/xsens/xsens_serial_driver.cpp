@@ -135,6 +135,7 @@ void XsensSerialDriver::OnStreamFrame(const XbusFrame& frame, int64_t t_host_ns)
     }
     last_counter_ = c;
   }
+  last_frame_bytes_ = frame.frame_bytes;
   if (sink_) sink_(sample_, t_host_ns);
 }
 

@@ -54,6 +54,9 @@ class XsensSerialDriver {
   XsensDriverState state() const { return state_; }
   bool configured() const { return configured_; }
   const XsensDriverStats& stats() const;
+  /// Bytes of the Xbus frame whose sample the sink is receiving (header, payload, checksum):
+  /// its transmission time at the line rate is the fixed part of the receive latency.
+  size_t last_frame_bytes() const { return last_frame_bytes_; }
   const SerialPort& port() const { return port_; }
   const XsensConfigurator& configurator() const { return configurator_; }
 
@@ -75,6 +78,7 @@ class XsensSerialDriver {
   XsensDriverState state_ = XsensDriverState::kOpen;
   bool configured_ = false;
   std::optional<uint16_t> last_counter_;
+  size_t last_frame_bytes_ = 0;
   std::array<uint8_t, 4096> rx_{};
   XsensDriverStats stats_;
   mutable XsensDriverStats stats_view_;

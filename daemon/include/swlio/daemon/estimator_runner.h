@@ -1,0 +1,77 @@
+#pragma once
+/// @file
+/// Sweeps and IMU samples (host clock, each stream in time order) → estimator results, in
+/// either mode. The one sync rule both the daemon's optimizer thread and swlio-run / replay
+/// use: the tightly coupled window pre-integrates the IMU up to a sweep's end, so a sweep
+/// waits until an IMU sample past its end has arrived (serial bursts and stalls deliver
+/// samples late; otherwise the factor would extrapolate held rates). LiDAR-only mode takes
+/// sweeps as they come. Single-threaded; no clock is read here.
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "swlio/core/config_issue.h"
+#include "swlio/core/types.h"
+#include "swlio/estimator/lidar_odometry.h"
+#include "swlio/estimator/window_estimator.h"
+
+namespace swlio::daemon {
+
+struct DaemonConfig;
+
+enum class EstimatorMode : uint8_t { kTightlyCoupled, kLidarOnly };
+
+/// The estimator configs built from the daemon's configuration and the extrinsic in use.
+struct EstimatorSetup {
+  EstimatorMode mode = EstimatorMode::kTightlyCoupled;
+  estimator::LidarOdometryConfig odometry;
+  estimator::WindowEstimatorConfig window;
+};
+/// `T_imu_lidar` replaces the configuration's extrinsic (e.g. a recording's manifest).
+EstimatorSetup MakeEstimatorSetup(const DaemonConfig& config,
+                                  const Eigen::Isometry3d& T_imu_lidar,
+                                  EstimatorMode mode);
+
+class EstimatorRunner {
+ public:
+  /// Called for every processed sweep, in order, with the estimator's result (in LiDAR-only
+  /// mode only `odometry` is filled).
+  using Sink = std::function<void(const Scan& scan, const estimator::WindowResult& result)>;
+
+  EstimatorRunner(const EstimatorSetup& setup, estimator::NowNsFn now_ns, Sink sink);
+  ~EstimatorRunner();
+  EstimatorRunner(const EstimatorRunner&) = delete;
+  EstimatorRunner& operator=(const EstimatorRunner&) = delete;
+
+  void AddImu(const ImuSample& sample);
+  /// Takes the sweep (moved from); processed now or once the IMU covers its end.
+  void AddScan(Scan&& scan);
+
+  /// Sweeps waiting for IMU coverage.
+  size_t waiting() const { return waiting_.size(); }
+  /// Sweeps dropped because more than `kMaxWaiting` waited (the IMU stopped).
+  size_t dropped_waiting() const { return dropped_waiting_; }
+  EstimatorMode mode() const { return mode_; }
+  /// The window (tightly coupled mode), else nullptr.
+  const estimator::WindowEstimator* window() const { return window_.get(); }
+
+  /// At most this many sweeps wait for the IMU (2 s at 10 Hz); older ones are dropped.
+  static constexpr size_t kMaxWaiting = 20;
+
+ private:
+  void Process(const Scan& scan);
+
+  EstimatorMode mode_;
+  std::unique_ptr<estimator::LidarOdometry> odometry_;
+  std::unique_ptr<estimator::WindowEstimator> window_;
+  Sink sink_;
+  std::deque<Scan> waiting_;
+  size_t dropped_waiting_ = 0;
+};
+
+}  // namespace swlio::daemon

@@ -1,0 +1,56 @@
+#pragma once
+/// @file
+/// The daemon's health: every thread's counters in one snapshot, turned into the published
+/// diagnostic_msgs/DiagnosticArray (one status per sensor, the estimator, the queues) and the
+/// log's status line. Rates and gaps are computed between consecutive reports.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "swlio/daemon/imu_rx.h"
+#include "swlio/daemon/lidar_rx.h"
+#include "swlio/daemon/optimizer_thread.h"
+#include "swlio/daemon/propagator_thread.h"
+#include "swlio/daemon/publisher_thread.h"
+#include "swlio/daemon/spsc_queue.h"
+#include "swlio/ipc/messages.h"
+
+namespace swlio::daemon {
+
+struct HealthSnapshot {
+  int64_t t_ns = 0;  ///< host time of the snapshot
+  LidarRxCounters lidar_rx;
+  ImuRxCounters imu_rx;
+  PropagatorCounters propagator;
+  OptimizerCounters optimizer;
+  PublisherCounters publisher;
+  std::vector<QueueCounters> queues;
+};
+
+/// Rates over the last interval (per second), from two snapshots.
+struct HealthRates {
+  double lidar_packets_hz = 0.0;
+  double sweeps_hz = 0.0;
+  double imu_hz = 0.0;
+  double poses_hz = 0.0;
+};
+
+class HealthReporter {
+ public:
+  /// Rates against the previous call's snapshot (zeros on the first call).
+  HealthRates Rates(const HealthSnapshot& now);
+  /// The DiagnosticArray for `now` (calls Rates).
+  ipc::DiagnosticArray Diagnostics(const HealthSnapshot& now);
+  /// One log line (calls Rates).
+  std::string StatusLine(const HealthSnapshot& now);
+
+ private:
+  HealthSnapshot previous_;
+  bool have_previous_ = false;
+};
+
+/// Total drops over every queue and receiver: what "lossless" is checked against.
+uint64_t TotalDrops(const HealthSnapshot& s);
+
+}  // namespace swlio::daemon

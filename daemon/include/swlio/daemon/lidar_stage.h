@@ -1,0 +1,70 @@
+#pragma once
+/// @file
+/// LiDAR datagrams → sweeps on the host clock: the model's packet decoder, the sensor clock
+/// model and the scan assembler, in that order. The one path both the live daemon (optimizer
+/// thread) and the recording reader (replay, swlio-run) use, so replay decodes exactly as live.
+///
+/// Clock: every data packet's header time is observed against its host receive time; a sweep's
+/// times are mapped with the model as it stands when the sweep completes (causal, as live).
+/// The RS16 header time is the packet's first firing and the packet is sent after its last:
+/// that span (23 firing sequences + 15 channel slots ≈ 1.32 ms, RS-LiDAR-16 manual §9.2 timing)
+/// is the fixed latency removed.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "swlio/core/types.h"
+#include "swlio/drivers/clock_model.h"
+#include "swlio/drivers/lidar_config.h"
+#include "swlio/drivers/lidar_decoder.h"
+#include "swlio/drivers/scan_assembler.h"
+
+namespace swlio::daemon {
+
+struct LidarStageCounters {
+  uint64_t data_packets = 0;  ///< decoded data packets
+  uint64_t info_packets = 0;  ///< DIFOP (calibration, rpm) packets adopted
+  uint64_t bad_packets = 0;   ///< wrong size, bad header or truncated: dropped
+  uint64_t info_errors = 0;   ///< info packets the decoder refused
+  uint64_t sweeps = 0;
+  uint64_t partial_sweeps = 0;
+  uint64_t missing_packets = 0;  ///< packets the assembler found missing inside sweeps
+};
+
+/// A sweep on the host clock with what the assembler knew about it.
+struct HostSweep {
+  Scan scan;  ///< t_start_ns / t_end_ns host time; points' dt_ns from t_start_ns
+  int64_t host_rx_last_ns = 0;
+  uint32_t missing_packets = 0;
+};
+
+class LidarStage {
+ public:
+  explicit LidarStage(const drivers::LidarConfig& config);
+  ~LidarStage();
+  LidarStage(const LidarStage&) = delete;
+  LidarStage& operator=(const LidarStage&) = delete;
+
+  /// One datagram (MSOP or DIFOP, told apart by content) with its host receive time.
+  void Add(std::span<const uint8_t> payload, int64_t t_rx_ns);
+  /// Closes the sweep in progress (end of a recording).
+  void Flush();
+  /// The oldest completed sweep, storage swapped with `out` (reuse one HostSweep: no
+  /// allocation in steady state). False when none is ready.
+  bool Pop(HostSweep* out);
+
+  const LidarStageCounters& counters() const { return counters_; }
+  const drivers::ClockModelStats& clock() const { return clock_.stats(); }
+  const drivers::ScanAssemblerStats& assembler() const { return assembler_.stats(); }
+
+ private:
+  std::unique_ptr<drivers::LidarPacketDecoder> decoder_;
+  drivers::ScanAssembler assembler_;
+  drivers::ClockModel clock_;
+  drivers::LidarPacketDecoder::ReturnBuffer buffer_{};
+  drivers::AssembledScan assembled_;
+  LidarStageCounters counters_;
+};
+
+}  // namespace swlio::daemon

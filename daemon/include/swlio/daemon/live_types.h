@@ -1,0 +1,49 @@
+#pragma once
+/// @file
+/// What the daemon's threads hand each other through their SPSC queues. Fixed-size values
+/// only, so a full queue never allocates and a queue slot is reused as is.
+
+#include <array>
+#include <cstdint>
+
+#include "swlio/core/types.h"
+#include "swlio/estimator/lidar_odometry.h"
+#include "swlio/estimator/state_covariance.h"
+#include "swlio/ipc/messages.h"
+
+namespace swlio::daemon {
+
+/// One UDP datagram from the LiDAR as the lidar_rx thread received it.
+struct LidarPacket {
+  static constexpr size_t kMaxBytes = 1280;  ///< RS16 MSOP/DIFOP 1248, VLP-16 1206
+  std::array<uint8_t, kMaxBytes> bytes{};
+  uint16_t size = 0;
+  int64_t t_rx_ns = 0;  ///< host receive time, CLOCK_MONOTONIC
+};
+
+/// Estimator state of health (published, logged, and the READY=1 condition).
+enum class TrackingState : uint8_t { kInitializing, kTracking, kDegraded, kLost };
+const char* ToString(TrackingState state);
+
+/// The optimizer's result for one sweep, to the propagator and the publisher.
+struct SweepEstimate {
+  State state;  ///< at the sweep's end, host time
+  estimator::StateCovariance covariance;
+  estimator::OdometryStatus status = estimator::OdometryStatus::kInitializing;
+  TrackingState tracking = TrackingState::kInitializing;
+  int degenerate_directions = 0;
+  double update_ms = 0.0;       ///< the whole update (front end + window), thread CPU
+  int64_t scan_last_rx_ns = 0;  ///< host receive time of the sweep's last packet
+  bool keyframe = false;        ///< the sweep's features went into the local map
+};
+
+/// One IMU-rate output, from the propagator to the publisher.
+struct ImuRatePose {
+  State state;
+  Eigen::Vector3d gyro_imu_radps = Eigen::Vector3d::Zero();
+  int64_t since_optimized_ns = 0;
+  int64_t rx_ns = 0;                   ///< host receive time of the IMU frame it came from
+  ipc::Covariance6 pose_covariance{};  ///< ROS order (message_conversion.h); zeros if unknown
+};
+
+}  // namespace swlio::daemon

@@ -1,0 +1,67 @@
+#pragma once
+/// @file
+/// The publisher thread: writes the IMU-rate pose as soon as the propagator hands it over,
+/// the odometry of every sweep, the keyframe path (latched; on change, at most 1 Hz) and the
+/// health at 1 Hz. The only thread that calls into DDS.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+
+#include "swlio/daemon/live_types.h"
+#include "swlio/daemon/message_conversion.h"
+#include "swlio/daemon/spsc_queue.h"
+#include "swlio/daemon/time_scale.h"
+#include "swlio/daemon/watchdog.h"
+#include "swlio/ipc/publisher.h"
+
+namespace swlio::daemon {
+
+struct PublisherQueues {
+  SpscQueue<ImuRatePose>* poses_in = nullptr;       ///< propagator → publisher
+  SpscQueue<SweepEstimate>* odometry_in = nullptr;  ///< optimizer → publisher
+};
+
+struct PublisherCounters {
+  uint64_t poses = 0;
+  uint64_t odometry = 0;
+  uint64_t health = 0;
+  uint64_t paths = 0;
+  uint64_t failures = 0;  ///< writes DDS refused
+};
+
+class PublisherThread {
+ public:
+  /// Builds the health message (called from this thread, once a second).
+  using HealthFn = std::function<ipc::DiagnosticArray(int64_t now_ns)>;
+  /// `publisher` may be null (no DDS: a test, or --no-dds): then nothing is written but the
+  /// queues are still drained and counted.
+  PublisherThread(ipc::Publisher* publisher,
+                  FrameIds frames,
+                  const PublisherQueues& queues,
+                  const TimeScale& time,
+                  HealthFn health,
+                  int64_t health_period_ns = 1'000'000'000);
+  void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
+  PublisherCounters counters() const;
+
+ private:
+  void WritePose(const ImuRatePose& pose);
+  void WriteOdometry(const SweepEstimate& e);
+  void Periodic(int64_t now_ns);
+  void Count(bool ok, std::atomic<uint64_t>* counter);
+
+  ipc::Publisher* publisher_;
+  FrameIds frames_;
+  PublisherQueues q_;
+  TimeScale time_;
+  HealthFn health_;
+  int64_t health_period_ns_;
+  int64_t next_health_ns_ = 0;
+  ipc::Path path_;
+  bool path_changed_ = false;
+  Eigen::Vector3d last_gyro_imu_radps_ = Eigen::Vector3d::Zero();
+  std::atomic<uint64_t> poses_{0}, odometry_{0}, health_count_{0}, paths_{0}, failures_{0};
+};
+
+}  // namespace swlio::daemon

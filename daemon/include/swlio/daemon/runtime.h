@@ -1,0 +1,90 @@
+#pragma once
+/// @file
+/// The running daemon: the threads of design.md wired by their SPSC queues.
+///
+///   lidar_rx ──packets──► optimizer ──states──► propagator ◄──raw IMU── imu_rx
+///                            ▲  └──odometry──► publisher ◄──poses──┘  │
+///                            └───────────── IMU samples ──────────────┘
+///
+/// Each thread registers with the Watchdog and beats every loop (≤ 100 ms apart when idle).
+/// Stop() sets one flag every loop checks, then joins. No allocation on the rx threads after
+/// Create().
+
+#include <Eigen/Geometry>
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "swlio/daemon/daemon_config.h"
+#include "swlio/daemon/estimator_runner.h"
+#include "swlio/daemon/health.h"
+#include "swlio/daemon/time_scale.h"
+#include "swlio/daemon/watchdog.h"
+
+namespace swlio::ipc {
+class Participant;
+class Publisher;
+}  // namespace swlio::ipc
+
+namespace swlio::daemon {
+
+struct RuntimeOptions {
+  bool dds = true;  ///< false: run without DDS (publisher thread counts but writes nothing)
+  int64_t stall_timeout_ns = 2'000'000'000;  ///< Watchdog: a thread silent this long is stalled
+  /// Sensor seconds per host second (time_scale.h): 1 except for a simulator at N× speed.
+  double time_scale = 1.0;
+  /// Replaces the configuration's extrinsic (e.g. a simulator's or recording's rig).
+  std::optional<Eigen::Isometry3d> T_imu_lidar;
+};
+
+class Runtime {
+ public:
+  /// Opens the UDP sockets and the DDS participant; the serial device is opened (and
+  /// re-opened) by the imu_rx thread. Nullptr with `error` filled on failure.
+  static std::unique_ptr<Runtime> Create(const DaemonConfig& config,
+                                         const RuntimeOptions& options,
+                                         std::string* error);
+  ~Runtime();
+  Runtime(const Runtime&) = delete;
+  Runtime& operator=(const Runtime&) = delete;
+
+  void Start();
+  /// Asks every thread to finish and joins them. Idempotent.
+  void Stop();
+
+  /// Sensors stream and the estimator has a state (the READY=1 condition).
+  bool Ready() const;
+  HealthSnapshot Snapshot() const;
+  const Watchdog& watchdog() const { return watchdog_; }
+  uint16_t msop_port() const;
+  uint16_t difop_port() const;
+
+ private:
+  struct Queues;
+  Runtime(const DaemonConfig& config, const RuntimeOptions& options);
+  void Spawn(const char* name, std::function<void(const Watchdog::Handle&)> body);
+
+  DaemonConfig config_;
+  RuntimeOptions options_;
+  Watchdog watchdog_;
+  std::unique_ptr<Queues> queues_;
+  std::unique_ptr<ipc::Participant> participant_;
+  std::unique_ptr<ipc::Publisher> publisher_;
+  std::unique_ptr<LidarRx> lidar_rx_;
+  std::unique_ptr<ImuRx> imu_rx_;
+  std::unique_ptr<PropagatorThread> propagator_;
+  std::unique_ptr<OptimizerThread> optimizer_;
+  std::unique_ptr<PublisherThread> publisher_thread_;
+  HealthReporter published_health_;  ///< used by the publisher thread only
+  std::atomic<bool> stop_{false};
+  std::vector<std::thread> threads_;
+};
+
+/// "tightly-coupled" or "lidar-only" (EstimatorConfig::mode).
+EstimatorMode ModeFromConfig(const DaemonConfig& config);
+
+}  // namespace swlio::daemon

@@ -1,0 +1,66 @@
+#include "swlio/daemon/estimator_runner.h"
+
+#include <utility>
+
+#include "swlio/daemon/daemon_config.h"
+
+namespace swlio::daemon {
+
+EstimatorSetup MakeEstimatorSetup(const DaemonConfig& config,
+                                  const Eigen::Isometry3d& T_imu_lidar,
+                                  EstimatorMode mode) {
+  EstimatorSetup s;
+  s.mode = mode;
+  s.odometry.estimator = config.estimator;
+  s.odometry.T_imu_lidar = T_imu_lidar;
+  s.window = config.window;
+  s.window.odometry = s.odometry;
+  return s;
+}
+
+EstimatorRunner::EstimatorRunner(const EstimatorSetup& setup, estimator::NowNsFn now_ns, Sink sink)
+    : mode_(setup.mode), sink_(std::move(sink)) {
+  if (mode_ == EstimatorMode::kTightlyCoupled) {
+    window_ = std::make_unique<estimator::WindowEstimator>(setup.window, now_ns);
+  } else {
+    odometry_ = std::make_unique<estimator::LidarOdometry>(setup.odometry, now_ns);
+  }
+}
+
+EstimatorRunner::~EstimatorRunner() = default;
+
+void EstimatorRunner::AddImu(const ImuSample& sample) {
+  if (odometry_) {
+    odometry_->AddImu(sample);
+    return;
+  }
+  window_->AddImu(sample);
+  while (!waiting_.empty() && waiting_.front().t_end_ns < sample.t_ns) {
+    Process(waiting_.front());
+    waiting_.pop_front();
+  }
+}
+
+void EstimatorRunner::AddScan(Scan&& scan) {
+  if (odometry_) {
+    Process(scan);
+    return;
+  }
+  waiting_.push_back(std::move(scan));
+  while (waiting_.size() > kMaxWaiting) {
+    waiting_.pop_front();
+    ++dropped_waiting_;
+  }
+}
+
+void EstimatorRunner::Process(const Scan& scan) {
+  estimator::WindowResult result;
+  if (window_) {
+    result = window_->AddScan(scan);
+  } else {
+    result.odometry = odometry_->AddScan(scan);
+  }
+  if (sink_) sink_(scan, result);
+}
+
+}  // namespace swlio::daemon

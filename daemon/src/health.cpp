@@ -1,0 +1,165 @@
+#include "swlio/daemon/health.h"
+
+#include <cstdio>
+
+namespace swlio::daemon {
+namespace {
+
+std::string Num(double v, const char* format = "%.3f") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+std::string Count(uint64_t v) { return std::to_string(v); }
+
+double PerSecond(uint64_t now, uint64_t before, double dt_s) {
+  return dt_s > 0.0 && now >= before ? static_cast<double>(now - before) / dt_s : 0.0;
+}
+
+ipc::DiagnosticStatus LidarStatus(const HealthSnapshot& s, const HealthRates& r) {
+  ipc::DiagnosticStatus d;
+  d.name = "swlio: lidar";
+  d.hardware_id = "rs16";
+  const LidarStageCounters& l = s.optimizer.lidar;
+  const bool streaming = r.lidar_packets_hz > 0.0;
+  d.level = streaming ? ipc::DiagnosticLevel::kOk : ipc::DiagnosticLevel::kError;
+  d.message = streaming ? "streaming" : "no packets";
+  d.values = {{"packets_hz", Num(r.lidar_packets_hz, "%.1f")},
+              {"sweeps_hz", Num(r.sweeps_hz, "%.2f")},
+              {"datagrams", Count(s.lidar_rx.datagrams)},
+              {"truncated", Count(s.lidar_rx.truncated)},
+              {"rx_errors", Count(s.lidar_rx.errors)},
+              {"bad_packets", Count(l.bad_packets)},
+              {"difop_packets", Count(l.info_packets)},
+              {"missing_packets", Count(l.missing_packets)},
+              {"partial_sweeps", Count(l.partial_sweeps)},
+              {"clock_offset_s", Num(s.optimizer.lidar_clock.offset_ns * 1e-9, "%.6f")},
+              {"clock_drift_ppm", Num(s.optimizer.lidar_clock.drift_ppm, "%.2f")},
+              {"clock_jumps", Count(s.optimizer.lidar_clock.jumps)}};
+  return d;
+}
+
+ipc::DiagnosticStatus ImuStatus(const HealthSnapshot& s, const HealthRates& r) {
+  ipc::DiagnosticStatus d;
+  d.name = "swlio: imu";
+  d.hardware_id = "xsens-mti";
+  const bool streaming = r.imu_hz > 0.0;
+  d.level = streaming ? ipc::DiagnosticLevel::kOk : ipc::DiagnosticLevel::kError;
+  d.message = streaming ? "streaming" : (s.imu_rx.opens == 0 ? "device not open" : "no samples");
+  d.values = {{"rate_hz", Num(r.imu_hz, "%.1f")},
+              {"samples", Count(s.imu_rx.samples)},
+              {"checksum_errors", Count(s.imu_rx.checksum_errors)},
+              {"skipped_bytes", Count(s.imu_rx.skipped_bytes)},
+              {"missing_packets", Count(s.imu_rx.missing_packets)},
+              {"dropped_samples", Count(s.propagator.dropped)},
+              {"disconnects", Count(s.imu_rx.disconnects)},
+              {"configurations", Count(s.imu_rx.configurations)},
+              {"config_failures", Count(s.imu_rx.config_failures)},
+              {"clock_offset_s", Num(s.propagator.clock_offset_ns * 1e-9, "%.6f")},
+              {"clock_drift_ppm", Num(s.propagator.clock_drift_ppm, "%.2f")},
+              {"clock_jumps", Count(s.propagator.clock_jumps)}};
+  return d;
+}
+
+ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates& r) {
+  ipc::DiagnosticStatus d;
+  d.name = "swlio: estimator";
+  d.hardware_id = "swlio";
+  const TrackingState t = s.optimizer.tracking;
+  d.level = t == TrackingState::kTracking       ? ipc::DiagnosticLevel::kOk
+            : t == TrackingState::kInitializing ? ipc::DiagnosticLevel::kWarn
+            : t == TrackingState::kDegraded     ? ipc::DiagnosticLevel::kWarn
+                                                : ipc::DiagnosticLevel::kError;
+  d.message = ToString(t);
+  d.values = {
+      {"state", ToString(t)},
+      {"sweeps", Count(s.optimizer.processed)},
+      {"degenerate_directions", Count(static_cast<uint64_t>(s.optimizer.degenerate_directions))},
+      {"solve_ms", Num(s.optimizer.last_update_ms, "%.2f")},
+      {"solve_ms_max", Num(s.optimizer.max_update_ms, "%.2f")},
+      {"pose_rate_hz", Num(r.poses_hz, "%.1f")},
+      {"sweeps_without_imu_dropped", Count(s.optimizer.dropped_waiting)}};
+  return d;
+}
+
+ipc::DiagnosticStatus QueueStatus(const HealthSnapshot& s) {
+  ipc::DiagnosticStatus d;
+  d.name = "swlio: queues";
+  d.hardware_id = "swlio";
+  uint64_t drops = 0;
+  for (const QueueCounters& q : s.queues) {
+    drops += q.dropped;
+    d.values.push_back({q.name + " (" + q.producer + "->" + q.consumer + ")",
+                        "depth " + std::to_string(q.depth) + "/" + std::to_string(q.capacity) +
+                            ", high " + std::to_string(q.high_water) + ", dropped " +
+                            std::to_string(q.dropped)});
+  }
+  d.values.push_back({"dds_write_failures", Count(s.publisher.failures)});
+  d.level = drops == 0 ? ipc::DiagnosticLevel::kOk : ipc::DiagnosticLevel::kWarn;
+  d.message = drops == 0 ? "no drops" : std::to_string(drops) + " dropped";
+  return d;
+}
+
+}  // namespace
+
+const char* ToString(TrackingState state) {
+  switch (state) {
+    case TrackingState::kInitializing:
+      return "initializing";
+    case TrackingState::kTracking:
+      return "tracking";
+    case TrackingState::kDegraded:
+      return "degraded";
+    case TrackingState::kLost:
+      return "lost";
+  }
+  return "unknown";
+}
+
+HealthRates HealthReporter::Rates(const HealthSnapshot& now) {
+  HealthRates r;
+  if (have_previous_) {
+    const double dt = static_cast<double>(now.t_ns - previous_.t_ns) * 1e-9;
+    r.lidar_packets_hz =
+        PerSecond(now.optimizer.lidar.data_packets, previous_.optimizer.lidar.data_packets, dt);
+    r.sweeps_hz = PerSecond(now.optimizer.lidar.sweeps, previous_.optimizer.lidar.sweeps, dt);
+    r.imu_hz = PerSecond(now.propagator.samples, previous_.propagator.samples, dt);
+    r.poses_hz = PerSecond(now.publisher.poses, previous_.publisher.poses, dt);
+  }
+  previous_ = now;
+  have_previous_ = true;
+  return r;
+}
+
+ipc::DiagnosticArray HealthReporter::Diagnostics(const HealthSnapshot& now) {
+  const HealthRates r = Rates(now);
+  ipc::DiagnosticArray a;
+  a.t_ns = now.t_ns;
+  a.status = {LidarStatus(now, r), ImuStatus(now, r), EstimatorStatus(now, r), QueueStatus(now)};
+  return a;
+}
+
+std::string HealthReporter::StatusLine(const HealthSnapshot& now) {
+  const HealthRates r = Rates(now);
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "status %s | lidar %.0f pkt/s %.1f sweeps/s, missing %llu | imu %.0f Hz, "
+                "checksum errors %llu, gaps %llu | pose %.0f Hz | update %.1f ms (max %.1f) | "
+                "drops %llu",
+                ToString(now.optimizer.tracking), r.lidar_packets_hz, r.sweeps_hz,
+                static_cast<unsigned long long>(now.optimizer.lidar.missing_packets), r.imu_hz,
+                static_cast<unsigned long long>(now.imu_rx.checksum_errors),
+                static_cast<unsigned long long>(now.imu_rx.missing_packets), r.poses_hz,
+                now.optimizer.last_update_ms, now.optimizer.max_update_ms,
+                static_cast<unsigned long long>(TotalDrops(now)));
+  return line;
+}
+
+uint64_t TotalDrops(const HealthSnapshot& s) {
+  uint64_t drops = s.lidar_rx.truncated + s.optimizer.dropped_waiting;
+  for (const QueueCounters& q : s.queues) drops += q.dropped;
+  return drops;
+}
+
+}  // namespace swlio::daemon

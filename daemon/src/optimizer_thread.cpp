@@ -1,0 +1,111 @@
+#include "swlio/daemon/optimizer_thread.h"
+
+#include <time.h>
+
+#include <algorithm>
+#include <utility>
+
+namespace swlio::daemon {
+namespace {
+
+/// Stage times in this thread's CPU time (what the work took on its core).
+int64_t ThreadCpuNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+}  // namespace
+
+OptimizerThread::OptimizerThread(const drivers::LidarConfig& lidar,
+                                 const EstimatorSetup& setup,
+                                 const OptimizerQueues& queues,
+                                 const TimeScale& time)
+    : q_(queues),
+      time_(time),
+      lidar_(lidar),
+      runner_(setup, &ThreadCpuNs, [this](const Scan& scan, const estimator::WindowResult& r) {
+        OnResult(scan, r);
+      }) {}
+
+void OptimizerThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
+  ImuSample sample;
+  while (!stop.load(std::memory_order_relaxed)) {
+    beat.Beat();
+    // IMU first: a sweep is processed once a sample past its end has arrived.
+    if (q_.imu_in->WaitPop(&sample, 20'000)) {
+      runner_.AddImu(sample);
+      while (q_.imu_in->Pop(&sample)) runner_.AddImu(sample);
+    }
+    DrainLidar();
+    Publish();
+  }
+}
+
+void OptimizerThread::DrainLidar() {
+  LidarPacket packet;
+  while (q_.lidar_in->Pop(&packet)) {
+    lidar_.Add(std::span(packet.bytes).first(packet.size), time_.ToDaemon(packet.t_rx_ns));
+    while (lidar_.Pop(&sweep_)) {
+      rx_by_end_.emplace_back(sweep_.scan.t_end_ns, time_.ToHost(sweep_.host_rx_last_ns));
+      if (rx_by_end_.size() > EstimatorRunner::kMaxWaiting + 2) rx_by_end_.pop_front();
+      runner_.AddScan(std::move(sweep_.scan));
+    }
+  }
+}
+
+int64_t OptimizerThread::LastRxOf(int64_t t_end_ns) const {
+  for (const auto& [end, rx] : rx_by_end_) {
+    if (end == t_end_ns) return rx;
+  }
+  return 0;
+}
+
+TrackingState OptimizerThread::Classify(const estimator::OdometryResult& r) {
+  using estimator::OdometryStatus;
+  if (r.status == OdometryStatus::kInitializing) return TrackingState::kInitializing;
+  if (r.status == OdometryStatus::kSkipped) return tracking_;
+  failed_in_a_row_ = r.status == OdometryStatus::kMatchFailed ? failed_in_a_row_ + 1 : 0;
+  if (failed_in_a_row_ >= kLostAfterSweeps) return TrackingState::kLost;
+  if (failed_in_a_row_ > 0 || r.match.degenerate_directions > 0) return TrackingState::kDegraded;
+  return TrackingState::kTracking;
+}
+
+void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& result) {
+  const estimator::OdometryResult& r = result.odometry;
+  tracking_ = Classify(r);
+  degenerate_ = r.match.degenerate_directions;
+  last_ms_ = r.times.total_ms;
+  max_ms_ = std::max(max_ms_, last_ms_);
+  ++processed_;
+  SweepEstimate e;
+  e.state = r.state;
+  e.covariance = result.covariance;
+  e.status = r.status;
+  e.tracking = tracking_;
+  e.degenerate_directions = degenerate_;
+  e.update_ms = last_ms_;
+  e.scan_last_rx_ns = LastRxOf(scan.t_end_ns);
+  e.keyframe = r.keyframe;
+  q_.states_out->Push(e);
+  q_.odometry_out->Push(e);
+}
+
+void OptimizerThread::Publish() {
+  std::lock_guard<std::mutex> lock(snapshot_mutex_);
+  snapshot_.lidar = lidar_.counters();
+  snapshot_.lidar_clock = lidar_.clock();
+  snapshot_.processed = processed_;
+  snapshot_.dropped_waiting = runner_.dropped_waiting();
+  snapshot_.tracking = tracking_;
+  snapshot_.degenerate_directions = degenerate_;
+  snapshot_.last_update_ms = last_ms_;
+  snapshot_.max_update_ms = max_ms_;
+}
+
+OptimizerCounters OptimizerThread::counters() const {
+  std::lock_guard<std::mutex> lock(snapshot_mutex_);
+  return snapshot_;
+}
+
+}  // namespace swlio::daemon

@@ -1,0 +1,93 @@
+#include "swlio/daemon/publisher_thread.h"
+
+#include <utility>
+
+namespace swlio::daemon {
+
+PublisherThread::PublisherThread(ipc::Publisher* publisher,
+                                 FrameIds frames,
+                                 const PublisherQueues& queues,
+                                 const TimeScale& time,
+                                 HealthFn health,
+                                 int64_t health_period_ns)
+    : publisher_(publisher),
+      frames_(std::move(frames)),
+      q_(queues),
+      time_(time),
+      health_(std::move(health)),
+      health_period_ns_(health_period_ns) {
+  path_.frame_id = frames_.world;
+}
+
+void PublisherThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
+  ImuRatePose pose;
+  SweepEstimate estimate;
+  while (!stop.load(std::memory_order_relaxed)) {
+    beat.Beat();
+    if (q_.poses_in->WaitPop(&pose, 20'000)) {
+      WritePose(pose);
+      while (q_.poses_in->Pop(&pose)) WritePose(pose);
+    }
+    while (q_.odometry_in->Pop(&estimate)) WriteOdometry(estimate);
+    Periodic(MonotonicNowNs());
+  }
+}
+
+void PublisherThread::Count(bool ok, std::atomic<uint64_t>* counter) {
+  (ok ? *counter : failures_).fetch_add(1, std::memory_order_relaxed);
+}
+
+void PublisherThread::WritePose(const ImuRatePose& pose) {
+  last_gyro_imu_radps_ = pose.gyro_imu_radps;
+  ipc::PoseWithCovarianceStamped m;
+  m.t_ns = time_.ToHost(pose.state.t_ns);
+  m.frame_id = frames_.world;
+  m.pose = ToPose(pose.state);
+  m.covariance = pose.pose_covariance;
+  Count(publisher_ == nullptr || publisher_->PublishPose(m), &poses_);
+}
+
+void PublisherThread::WriteOdometry(const SweepEstimate& e) {
+  if (e.status == estimator::OdometryStatus::kInitializing ||
+      e.status == estimator::OdometryStatus::kSkipped) {
+    return;
+  }
+  ipc::Odometry m = ToOdometryMessage(e.state, last_gyro_imu_radps_, e.covariance, frames_);
+  m.t_ns = time_.ToHost(m.t_ns);
+  Count(publisher_ == nullptr || publisher_->PublishOdometry(m), &odometry_);
+  if (e.keyframe) {
+    ipc::PoseStamped p;
+    p.t_ns = m.t_ns;
+    p.frame_id = frames_.world;
+    p.pose = m.pose;
+    path_.poses.push_back(p);
+    path_.t_ns = p.t_ns;
+    path_changed_ = true;
+  }
+}
+
+void PublisherThread::Periodic(int64_t now_ns) {
+  if (now_ns < next_health_ns_) return;
+  next_health_ns_ = now_ns + health_period_ns_;
+  if (health_) {
+    const ipc::DiagnosticArray h = health_(now_ns);
+    Count(publisher_ == nullptr || publisher_->PublishHealth(h), &health_count_);
+  }
+  if (path_changed_) {
+    Count(publisher_ == nullptr || publisher_->PublishPath(path_), &paths_);
+    path_changed_ = false;
+  }
+}
+
+PublisherCounters PublisherThread::counters() const {
+  constexpr auto kRelaxed = std::memory_order_relaxed;
+  PublisherCounters c;
+  c.poses = poses_.load(kRelaxed);
+  c.odometry = odometry_.load(kRelaxed);
+  c.health = health_count_.load(kRelaxed);
+  c.paths = paths_.load(kRelaxed);
+  c.failures = failures_.load(kRelaxed);
+  return c;
+}
+
+}  // namespace swlio::daemon

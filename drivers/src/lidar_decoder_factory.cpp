@@ -1,0 +1,28 @@
+#include "swlio/drivers/lidar_decoder_factory.h"
+
+#include "swlio/drivers/helios16p_decoder.h"
+#include "swlio/drivers/rs16_decoder.h"
+#include "swlio/drivers/vlp16_decoder.h"
+
+namespace swlio::drivers {
+
+std::unique_ptr<LidarPacketDecoder> MakeLidarDecoder(const LidarConfig& config) {
+  if (config.model == "rs16") return std::make_unique<Rs16Decoder>(config);
+  if (config.model == "helios16p") {
+    Helios16pOptions o;
+    o.min_range_m = config.min_range_m;
+    o.max_range_m = config.max_range_m;
+    o.rpm = config.rpm;
+    return std::make_unique<Helios16pDecoder>(o);
+  }
+  if (config.model == "vlp16") {
+    Vlp16Options o;
+    o.min_range_m = config.min_range_m;
+    o.max_range_m = config.max_range_m;
+    o.rpm = config.rpm;
+    return std::make_unique<Vlp16Decoder>(o);
+  }
+  return nullptr;
+}
+
+}  // namespace swlio::drivers

@@ -1,0 +1,74 @@
+// LidarStage: RS16 datagrams with host receive times → sweeps on the host clock.
+
+#include "swlio/daemon/lidar_stage.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "swlio/drivers/rs16_encoder.h"
+
+namespace swlio::daemon {
+namespace {
+
+constexpr double kStepDeg = 600.0 * 6.0 * 111e-6;        // azimuth per block at 600 rpm (°)
+constexpr int64_t kSensor0 = 1'700'000'000'000'000'000;  // header time of packet 0
+constexpr int64_t kHost0 = 50'000'000'000;               // host time of packet 0's first firing
+constexpr int64_t kPacketNs = 12 * 111'000;              // 12 blocks of 111 µs (simplified)
+
+std::vector<uint8_t> Msop(int k) {
+  drivers::Rs16MsopContent c;
+  c.t_sensor_ns = kSensor0 + int64_t{k} * kPacketNs;
+  c.time_format = drivers::rs16::TimeFormat::kUtc;
+  for (size_t b = 0; b < 12; ++b) {
+    c.blocks[b].azimuth_deg =
+        std::fmod(10.0 + kStepDeg * static_cast<double>(12 * k + int(b)), 360.0);
+    for (size_t s = 0; s < 32; ++s) c.blocks[b].range_m[s] = 5.0f + 0.01f * float(s);
+  }
+  std::vector<uint8_t> bytes(1248);
+  EXPECT_TRUE(drivers::EncodeRs16Msop(c, bytes));
+  return bytes;
+}
+
+TEST(LidarStage, AssemblesSweepsOnTheHostClock) {
+  drivers::LidarConfig config;
+  LidarStage stage(config);
+  std::vector<uint8_t> difop(1248);
+  drivers::Rs16DifopContent info;
+  ASSERT_TRUE(drivers::EncodeRs16Difop(info, difop));
+  stage.Add(difop, kHost0);
+  const int packets = 75 * 5;  // five revolutions
+  std::vector<HostSweep> sweeps;
+  HostSweep sweep;
+  for (int k = 0; k < packets; ++k) {
+    // The packet leaves after its last firing (~1.32 ms) and arrives 0.2–1.2 ms later.
+    const int64_t rx = kHost0 + int64_t{k} * kPacketNs + 1'323'000 + 200'000 + (k % 5) * 250'000;
+    stage.Add(Msop(k), rx);
+    while (stage.Pop(&sweep)) sweeps.push_back(sweep);
+  }
+  stage.Add(std::vector<uint8_t>(100, 0xAB), kHost0);  // neither MSOP nor DIFOP
+  ASSERT_GE(sweeps.size(), 4u);
+  for (size_t i = 1; i < sweeps.size(); ++i) {
+    const Scan& s = sweeps[i].scan;
+    EXPECT_FALSE(s.points.empty());
+    EXPECT_NEAR(static_cast<double>(s.t_end_ns - s.t_start_ns) * 1e-6, 100.0, 3.0);
+    // The sweep starts where the azimuth crosses 0°: (360 − 10)/kStepDeg blocks into packet 0.
+    const double blocks = (360.0 * static_cast<double>(i) - 10.0) / kStepDeg;
+    const double t_true_ms = static_cast<double>(kHost0) * 1e-6 + blocks * 0.111;
+    EXPECT_NEAR(static_cast<double>(s.t_start_ns) * 1e-6, t_true_ms, 0.5) << "sweep " << i;
+  }
+  EXPECT_EQ(stage.counters().info_packets, 1u);
+  EXPECT_EQ(stage.counters().bad_packets, 1u);
+  EXPECT_EQ(stage.counters().data_packets, static_cast<uint64_t>(packets));
+  EXPECT_TRUE(stage.clock().valid);
+}
+
+TEST(LidarStage, RejectsAnUnknownModel) {
+  drivers::LidarConfig config;
+  config.model = "hdl64";
+  EXPECT_THROW(LidarStage stage(config), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace swlio::daemon
