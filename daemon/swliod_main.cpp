@@ -36,6 +36,7 @@ int Run(int argc, char** argv) {
   double run_for_s = 0.0;
   bool no_dds = false;
   double time_scale = 1.0;
+  std::string record_dir;
   auto* check = app.add_option("--check-config", check_config,
                                "Validate a configuration file, print every problem with its "
                                "line, and exit");
@@ -47,6 +48,9 @@ int Run(int argc, char** argv) {
                  "The sensors' clocks run this many times faster than the host (the simulator "
                  "at --speed N); 1 on a robot")
       ->check(CLI::Range(0.1, 50.0));
+  app.add_option("--record", record_dir,
+                 "Record every sensor's raw bytes with host receive times into this folder "
+                 "(lidar.pcap, imu.xbus, imu.rx.csv, manifest.yaml; replay with swlio-replay)");
   CLI11_PARSE(app, argc, argv);
 
   if (!check_config.empty()) {
@@ -69,6 +73,7 @@ int Run(int argc, char** argv) {
   swlio::daemon::RuntimeOptions options;
   options.dds = !no_dds;
   options.time_scale = time_scale;
+  options.record_dir = record_dir;
   return swlio::daemon::RunDaemon(config, options, static_cast<int64_t>(run_for_s * 1e9));
 }
 

@@ -6,6 +6,11 @@
 
 namespace swlio::daemon {
 
+EstimatorMode ModeFromConfig(const DaemonConfig& config) {
+  return config.estimator.mode == "lidar-only" ? EstimatorMode::kLidarOnly
+                                               : EstimatorMode::kTightlyCoupled;
+}
+
 EstimatorSetup MakeEstimatorSetup(const DaemonConfig& config,
                                   const Eigen::Isometry3d& T_imu_lidar,
                                   EstimatorMode mode) {

@@ -1,5 +1,7 @@
 #include "swlio/daemon/imu_rx.h"
 
+#include <algorithm>
+
 namespace swlio::daemon {
 
 ImuRx::ImuRx(const drivers::ImuConfig& config, SpscQueue<ImuRaw>* out)
@@ -7,6 +9,20 @@ ImuRx::ImuRx(const drivers::ImuConfig& config, SpscQueue<ImuRaw>* out)
       driver_(config, [this](const drivers::xsens::MtData2Sample& sample, int64_t t_host_ns) {
         out_->Push(ToImuRaw(sample, t_host_ns, driver_.last_frame_bytes()));
       }) {}
+
+void ImuRx::RecordTo(SpscQueue<SerialChunk>* record) {
+  record_ = record;
+  driver_.SetRawSink([this](std::span<const uint8_t> bytes, int64_t t_host_ns) {
+    while (!bytes.empty()) {  // a read longer than a chunk goes as several with its time
+      const size_t n = std::min(bytes.size(), SerialChunk::kMaxBytes);
+      std::copy_n(bytes.begin(), n, chunk_.bytes.begin());
+      chunk_.size = static_cast<uint16_t>(n);
+      chunk_.t_rx_ns = t_host_ns;
+      record_->Push(chunk_);
+      bytes = bytes.subspan(n);
+    }
+  });
+}
 
 void ImuRx::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
   constexpr int64_t kPollNs = 100'000'000;

@@ -44,13 +44,13 @@ void LidarRx::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
     const int n = poll(fds, 2, 100);
     if (n < 0 && errno != EINTR) ++poll_errors_;
     if (n <= 0) continue;
-    if (fds[0].revents != 0) Drain(*msop_);
-    if (fds[1].revents != 0) Drain(*difop_);
+    if (fds[0].revents != 0) Drain(*msop_, false);
+    if (fds[1].revents != 0) Drain(*difop_, true);
     Publish();
   }
 }
 
-void LidarRx::Drain(drivers::UdpReceiver& receiver) {
+void LidarRx::Drain(drivers::UdpReceiver& receiver, bool difop) {
   for (const drivers::ReceivedDatagram& d : receiver.Receive(0)) {
     if (d.truncated || d.payload.size() > LidarPacket::kMaxBytes) {
       ++truncated_;
@@ -59,7 +59,9 @@ void LidarRx::Drain(drivers::UdpReceiver& receiver) {
     packet_.size = static_cast<uint16_t>(d.payload.size());
     std::memcpy(packet_.bytes.data(), d.payload.data(), d.payload.size());
     packet_.t_rx_ns = d.t_ns;
+    packet_.difop = difop;
     out_->Push(packet_);
+    if (record_ != nullptr) record_->Push(packet_);
   }
 }
 

@@ -125,6 +125,20 @@ bool RecordingReader::Next(RecordingEvent* event) {
   return true;
 }
 
+drivers::LidarConfig WithManifestPorts(const std::filesystem::path& dir,
+                                       drivers::LidarConfig lidar) {
+  std::ifstream in(dir / "manifest.yaml");
+  std::string line;
+  unsigned port = 0;
+  while (std::getline(in, line)) {
+    if (std::sscanf(line.c_str(), " msop_port: %u", &port) == 1 && port <= 65535)
+      lidar.msop_port = static_cast<uint16_t>(port);
+    if (std::sscanf(line.c_str(), " difop_port: %u", &port) == 1 && port <= 65535)
+      lidar.difop_port = static_cast<uint16_t>(port);
+  }
+  return lidar;
+}
+
 std::optional<Eigen::Isometry3d> ManifestExtrinsic(const std::filesystem::path& dir) {
   std::ifstream in(dir / "manifest.yaml");
   std::string line;

@@ -25,11 +25,6 @@ struct Runtime::Queues {
   }
 };
 
-EstimatorMode ModeFromConfig(const DaemonConfig& config) {
-  return config.estimator.mode == "lidar-only" ? EstimatorMode::kLidarOnly
-                                               : EstimatorMode::kTightlyCoupled;
-}
-
 Runtime::Runtime(const DaemonConfig& config, const RuntimeOptions& options)
     : config_(config),
       options_(options),
@@ -53,13 +48,22 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   }
   rt->imu_rx_ = std::make_unique<ImuRx>(config.imu, &q.imu_raw);
   const TimeScale time{MonotonicNowNs(), options.time_scale};
+  const Eigen::Isometry3d T_imu_lidar =
+      options.T_imu_lidar.value_or(config.estimator.extrinsic_imu_lidar.ToIsometry());
+  if (!options.record_dir.empty()) {
+    DaemonConfig recorded = config;  // the ports actually bound (a test may ask for any port)
+    recorded.lidar.msop_port = rt->lidar_rx_->msop_port();
+    recorded.lidar.difop_port = rt->lidar_rx_->difop_port();
+    rt->recorder_ = Recorder::Create(options.record_dir, recorded, T_imu_lidar, time, error);
+    if (!rt->recorder_) return nullptr;
+    rt->lidar_rx_->RecordTo(&rt->recorder_->lidar_queue());
+    rt->imu_rx_->RecordTo(&rt->recorder_->serial_queue());
+  }
   estimator::ImuRatePropagatorConfig propagator;
   propagator.gravity_mps2 = config.estimator.gravity_mps2;
   rt->propagator_ = std::make_unique<PropagatorThread>(
       config.imu.baud, propagator, PropagatorQueues{&q.imu_raw, &q.states, &q.imu, &q.poses}, time);
-  const EstimatorSetup setup = MakeEstimatorSetup(
-      config, options.T_imu_lidar.value_or(config.estimator.extrinsic_imu_lidar.ToIsometry()),
-      ModeFromConfig(config));
+  const EstimatorSetup setup = MakeEstimatorSetup(config, T_imu_lidar, ModeFromConfig(config));
   rt->optimizer_ = std::make_unique<OptimizerThread>(
       config.lidar, setup, OptimizerQueues{&q.lidar, &q.imu, &q.states, &q.odometry}, time);
   Runtime* self = rt.get();
@@ -69,28 +73,38 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   return rt;
 }
 
-void Runtime::Spawn(const char* name, std::function<void(const Watchdog::Handle&)> body) {
+void Runtime::Spawn(std::vector<std::thread>* group,
+                    const char* name,
+                    std::function<void(const Watchdog::Handle&)> body) {
   Watchdog::Handle beat = watchdog_.Register(name);
-  threads_.emplace_back([name, beat, body = std::move(body)] {
+  group->emplace_back([name, beat, body = std::move(body)] {
     pthread_setname_np(pthread_self(), name);  // ≤ 15 characters: shown by top -H, ps -L
     body(beat);
   });
 }
 
 void Runtime::Start() {
-  Spawn("lidar_rx", [this](const Watchdog::Handle& b) { lidar_rx_->Run(stop_, b); });
-  Spawn("imu_rx", [this](const Watchdog::Handle& b) { imu_rx_->Run(stop_, b); });
-  Spawn("propagator", [this](const Watchdog::Handle& b) { propagator_->Run(stop_, b); });
-  Spawn("optimizer", [this](const Watchdog::Handle& b) { optimizer_->Run(stop_, b); });
-  Spawn("publisher", [this](const Watchdog::Handle& b) { publisher_thread_->Run(stop_, b); });
+  auto* rx = &rx_threads_;
+  auto* others = &threads_;
+  Spawn(rx, "lidar_rx", [this](const Watchdog::Handle& b) { lidar_rx_->Run(stop_rx_, b); });
+  Spawn(rx, "imu_rx", [this](const Watchdog::Handle& b) { imu_rx_->Run(stop_rx_, b); });
+  Spawn(others, "propagator", [this](const Watchdog::Handle& b) { propagator_->Run(stop_, b); });
+  Spawn(others, "optimizer", [this](const Watchdog::Handle& b) { optimizer_->Run(stop_, b); });
+  Spawn(others, "publisher",
+        [this](const Watchdog::Handle& b) { publisher_thread_->Run(stop_, b); });
+  if (recorder_) {
+    Spawn(others, "recorder", [this](const Watchdog::Handle& b) { recorder_->Run(stop_, b); });
+  }
 }
 
 void Runtime::Stop() {
-  stop_.store(true);
-  for (std::thread& t : threads_) {
-    if (t.joinable()) t.join();
+  for (auto [flag, group] : {std::pair{&stop_rx_, &rx_threads_}, std::pair{&stop_, &threads_}}) {
+    flag->store(true);
+    for (std::thread& t : *group) {
+      if (t.joinable()) t.join();
+    }
+    group->clear();
   }
-  threads_.clear();
 }
 
 bool Runtime::Ready() const {
@@ -108,6 +122,9 @@ HealthSnapshot Runtime::Snapshot() const {
   s.optimizer = optimizer_->counters();
   s.publisher = publisher_thread_->counters();
   s.queues = queues_->Counters();
+  if (recorder_) {
+    for (const QueueCounters& c : recorder_->QueueCountersList()) s.queues.push_back(c);
+  }
   return s;
 }
 

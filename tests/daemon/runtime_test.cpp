@@ -12,6 +12,7 @@
 
 #include "sim_live.h"
 #include "sim_setup.h"
+#include "swlio/daemon/recording_reader.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/subscriber.h"
 #include "test_data.h"
@@ -41,6 +42,7 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   options.T_imu_lidar = setup->lidar.T_imu_lidar;
   const double speed = kSanitized ? 0.5 : 2.0;
   options.time_scale = speed;
+  options.record_dir = dir / "recording";
   std::string error;
   auto rt = Runtime::Create(config, options, &error);
   ASSERT_NE(rt, nullptr) << error;
@@ -91,6 +93,21 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   EXPECT_GE(health, 5u);
   EXPECT_EQ(s.optimizer.lidar.bad_packets, 0u);
   EXPECT_EQ(s.imu_rx.checksum_errors, 0u);
+  // The recording holds every datagram and serial byte the rx threads received, and reads
+  // back through the replay path.
+  std::string read_error;
+  auto reader =
+      RecordingReader::Open(options.record_dir, WithManifestPorts(options.record_dir, config.lidar),
+                            config.imu, &read_error);
+  ASSERT_NE(reader, nullptr) << read_error;
+  RecordingEvent e;
+  size_t scans = 0;
+  while (reader->Next(&e)) scans += e.kind == RecordingEvent::Kind::kScan ? 1 : 0;
+  EXPECT_EQ(reader->stats().lidar_packets, s.optimizer.lidar.data_packets);
+  EXPECT_EQ(reader->stats().imu_samples, s.propagator.samples);
+  EXPECT_GE(scans, s.optimizer.processed);
+  EXPECT_NEAR(ManifestExtrinsic(options.record_dir)->translation().x(),
+              setup->lidar.T_imu_lidar.translation().x(), 1e-8);
   if (!kSanitized) {
     EXPECT_EQ(TotalDrops(s), 0u) << HealthReporter().StatusLine(s);
   }

@@ -259,8 +259,9 @@ int Run(const Options& opt) {
               << "/manifest.yaml and no --config; using identity\n";
   }
   std::string error;
-  auto reader =
-      swlio::daemon::RecordingReader::Open(opt.dir, daemon_config.lidar, daemon_config.imu, &error);
+  auto reader = swlio::daemon::RecordingReader::Open(
+      opt.dir, swlio::daemon::WithManifestPorts(opt.dir, daemon_config.lidar), daemon_config.imu,
+      &error);
   if (!reader) {
     std::cerr << "swlio-run: " << error << "\n";
     return 1;

@@ -128,6 +128,7 @@ bool RunLive(const SimSetup& setup,
   const std::vector<SimImuSample> imu = SimulateImu(*setup.trajectory, setup.imu, setup.seed);
   LidarSimulator lidar(setup.world.get(), setup.trajectory.get(), setup.lidar, setup.seed);
   const int64_t start_ns = MonotonicNs();
+  stats->start_ns = start_ns;
   auto host_ns = [&](int64_t sim_ns) {
     return start_ns + static_cast<int64_t>(static_cast<double>(sim_ns) / options.speed);
   };

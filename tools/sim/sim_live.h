@@ -26,6 +26,9 @@ struct LiveStats {
   uint64_t imu_bytes = 0;
   uint64_t imu_bytes_dropped = 0;  ///< pty buffer full (nobody reading)
   double max_lateness_ms = 0.0;    ///< how late the worst send was against its schedule
+  /// Host time (CLOCK_MONOTONIC) of simulation time 0: a sample due at simulation time t is
+  /// sent at start_ns + t / speed.
+  int64_t start_ns = 0;
 };
 
 /// Runs until the route ends or `stop` becomes true. Destinations are always 127.0.0.1.

@@ -77,6 +77,7 @@ XsensDriverState XsensSerialDriver::Poll(int64_t timeout_ns) {
       Connected(r.t_host_ns);
       return state_;
     case SerialReadStatus::kData:
+      if (raw_sink_) raw_sink_({rx_.data(), r.bytes}, r.t_host_ns);
       Process({rx_.data(), r.bytes}, r.t_host_ns);
       break;
     case SerialReadStatus::kTimeout:

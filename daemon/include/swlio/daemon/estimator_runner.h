@@ -32,6 +32,9 @@ struct EstimatorSetup {
   estimator::LidarOdometryConfig odometry;
   estimator::WindowEstimatorConfig window;
 };
+/// "tightly-coupled" or "lidar-only" (EstimatorConfig::mode).
+EstimatorMode ModeFromConfig(const DaemonConfig& config);
+
 /// `T_imu_lidar` replaces the configuration's extrinsic (e.g. a recording's manifest).
 EstimatorSetup MakeEstimatorSetup(const DaemonConfig& config,
                                   const Eigen::Isometry3d& T_imu_lidar,

@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "swlio/daemon/imu_stage.h"
+#include "swlio/daemon/recorder.h"
 #include "swlio/daemon/spsc_queue.h"
 #include "swlio/daemon/watchdog.h"
 #include "swlio/drivers/imu_config.h"
@@ -35,11 +36,15 @@ class ImuRx {
   /// Reads until `stop` is set, beating `beat` at least every 100 ms.
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   ImuRxCounters counters() const;
+  /// Also pushes every chunk of bytes read to `record` (the recorder's queue); before Run.
+  void RecordTo(SpscQueue<SerialChunk>* record);
 
  private:
   void Publish();
 
   SpscQueue<ImuRaw>* out_;
+  SpscQueue<SerialChunk>* record_ = nullptr;
+  SerialChunk chunk_;
   drivers::xsens::XsensSerialDriver driver_;
   std::atomic<uint64_t> samples_{0}, bytes_{0}, checksum_errors_{0}, skipped_bytes_{0},
       missing_packets_{0}, disconnects_{0}, opens_{0}, configurations_{0}, config_failures_{0};

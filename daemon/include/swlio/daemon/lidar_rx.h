@@ -35,18 +35,21 @@ class LidarRx {
   /// Receives until `stop` is set, beating `beat` at least every 100 ms.
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   LidarRxCounters counters() const;
+  /// Also pushes every datagram to `record` (the recorder's queue); call before Run.
+  void RecordTo(SpscQueue<LidarPacket>* record) { record_ = record; }
   uint16_t msop_port() const { return msop_->bound_port(); }
   uint16_t difop_port() const { return difop_->bound_port(); }
   int64_t rcvbuf_granted() const { return msop_->rcvbuf_granted(); }
 
  private:
   LidarRx() = default;
-  void Drain(drivers::UdpReceiver& receiver);
+  void Drain(drivers::UdpReceiver& receiver, bool difop);
   void Publish();
 
   std::optional<drivers::UdpReceiver> msop_;
   std::optional<drivers::UdpReceiver> difop_;
   SpscQueue<LidarPacket>* out_ = nullptr;
+  SpscQueue<LidarPacket>* record_ = nullptr;
   LidarPacket packet_;
   uint64_t truncated_ = 0;
   uint64_t poll_errors_ = 0;

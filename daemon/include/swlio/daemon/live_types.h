@@ -18,6 +18,7 @@ struct LidarPacket {
   static constexpr size_t kMaxBytes = 1280;  ///< RS16 MSOP/DIFOP 1248, VLP-16 1206
   std::array<uint8_t, kMaxBytes> bytes{};
   uint16_t size = 0;
+  bool difop = false;   ///< received on the DIFOP port (else MSOP)
   int64_t t_rx_ns = 0;  ///< host receive time, CLOCK_MONOTONIC
 };
 

@@ -77,4 +77,10 @@ class RecordingReader {
 /// its own rig, so callers let it win over a configuration file.
 std::optional<Eigen::Isometry3d> ManifestExtrinsic(const std::filesystem::path& dir);
 
+/// `lidar` with the UDP ports the recording's manifest.yaml names (its `msop_port:` and
+/// `difop_port:` lines, as the simulator and swliod --record write them), so a recording made
+/// on any ports replays without a matching configuration.
+drivers::LidarConfig WithManifestPorts(const std::filesystem::path& dir,
+                                       drivers::LidarConfig lidar);
+
 }  // namespace swlio::daemon

@@ -6,12 +6,15 @@
 ///                            ▲  └──odometry──► publisher ◄──poses──┘  │
 ///                            └───────────── IMU samples ──────────────┘
 ///
+/// With --record, a recorder thread takes copies from both rx threads.
 /// Each thread registers with the Watchdog and beats every loop (≤ 100 ms apart when idle).
-/// Stop() sets one flag every loop checks, then joins. No allocation on the rx threads after
+/// Stop() first stops and joins the rx threads, then the others (so the recorder and the
+/// estimator see everything that was received). No allocation on the rx threads after
 /// Create().
 
 #include <Eigen/Geometry>
 #include <atomic>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -22,6 +25,7 @@
 #include "swlio/daemon/daemon_config.h"
 #include "swlio/daemon/estimator_runner.h"
 #include "swlio/daemon/health.h"
+#include "swlio/daemon/recorder.h"
 #include "swlio/daemon/time_scale.h"
 #include "swlio/daemon/watchdog.h"
 
@@ -39,6 +43,8 @@ struct RuntimeOptions {
   double time_scale = 1.0;
   /// Replaces the configuration's extrinsic (e.g. a simulator's or recording's rig).
   std::optional<Eigen::Isometry3d> T_imu_lidar;
+  /// Record the raw sensor bytes into this folder (recorder.h); empty: no recording.
+  std::filesystem::path record_dir;
 };
 
 class Runtime {
@@ -66,7 +72,9 @@ class Runtime {
  private:
   struct Queues;
   Runtime(const DaemonConfig& config, const RuntimeOptions& options);
-  void Spawn(const char* name, std::function<void(const Watchdog::Handle&)> body);
+  void Spawn(std::vector<std::thread>* group,
+             const char* name,
+             std::function<void(const Watchdog::Handle&)> body);
 
   DaemonConfig config_;
   RuntimeOptions options_;
@@ -79,12 +87,12 @@ class Runtime {
   std::unique_ptr<PropagatorThread> propagator_;
   std::unique_ptr<OptimizerThread> optimizer_;
   std::unique_ptr<PublisherThread> publisher_thread_;
+  std::unique_ptr<Recorder> recorder_;
   HealthReporter published_health_;  ///< used by the publisher thread only
+  std::atomic<bool> stop_rx_{false};
   std::atomic<bool> stop_{false};
+  std::vector<std::thread> rx_threads_;
   std::vector<std::thread> threads_;
 };
-
-/// "tightly-coupled" or "lidar-only" (EstimatorConfig::mode).
-EstimatorMode ModeFromConfig(const DaemonConfig& config);
 
 }  // namespace swlio::daemon

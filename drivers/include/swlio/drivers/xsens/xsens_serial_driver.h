@@ -14,6 +14,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
+#include <utility>
 
 #include "swlio/drivers/imu_config.h"
 #include "swlio/drivers/serial_port.h"
@@ -25,6 +27,9 @@ namespace swlio::drivers::xsens {
 
 /// Receives each decoded MTData2 message and the host receive time of its last byte.
 using XsensSampleSink = std::function<void(const MtData2Sample& sample, int64_t t_host_ns)>;
+/// Receives every chunk of bytes read from the port, before framing, with its read time (a
+/// recorder keeps them for bit-exact replay).
+using XsensRawSink = std::function<void(std::span<const uint8_t> bytes, int64_t t_host_ns)>;
 
 enum class XsensDriverState : uint8_t { kOpen, kConfigure, kStream };
 
@@ -52,6 +57,8 @@ class XsensSerialDriver {
   XsensDriverState Poll(int64_t timeout_ns);
 
   XsensDriverState state() const { return state_; }
+  /// Sets (or clears, with an empty function) the raw-bytes sink. Call before polling starts.
+  void SetRawSink(XsensRawSink sink) { raw_sink_ = std::move(sink); }
   bool configured() const { return configured_; }
   const XsensDriverStats& stats() const;
   /// Bytes of the Xbus frame whose sample the sink is receiving (header, payload, checksum):
@@ -73,6 +80,7 @@ class XsensSerialDriver {
   SerialPort port_;
   XsensConfigurator configurator_;
   XsensSampleSink sink_;
+  XsensRawSink raw_sink_;
   XbusFramer framer_;
   MtData2Sample sample_;
   XsensDriverState state_ = XsensDriverState::kOpen;

@@ -1,0 +1,138 @@
+// swlio_daemon_latency: the daemon's end-to-end latencies, measured as a user would see them.
+// The simulator streams a drive live (LiDAR over UDP to 127.0.0.1, IMU Xbus frames written on a
+// pseudo-terminal) into the daemon's Runtime, which publishes over DDS (loopback XML); a
+// subscriber in this process takes every sample.
+//
+// - IMU → pose: from the moment the simulator wrote the frame carrying a sample on the pty to
+//   the moment the subscriber took the IMU-rate pose of that sample. The pose's stamp is the
+//   sample's time on the host clock; it is matched to the nearest simulated sample (400 Hz, so
+//   unambiguous), whose write time the simulator scheduled (start + its receive time).
+// - sweep → odometry: from the sweep's end (its last firing; the last packet leaves ≈ 1.3 ms
+//   later) to the odometry's take. An upper bound of "last packet sent → odometry received".
+//
+// Usage: swlio_daemon_latency [--scenario S] [--seed N] [--duration S] [--dds-config XML]
+// Prints the percentiles and the daemon's drop counters; run on an otherwise idle machine.
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <thread>
+#include <vector>
+
+#include "imu_sim.h"
+#include "sim_live.h"
+#include "sim_setup.h"
+#include "swlio/daemon/runtime.h"
+#include "swlio/ipc/participant.h"
+#include "swlio/ipc/subscriber.h"
+
+namespace {
+
+struct Taken {
+  int64_t stamp_ns;
+  int64_t take_ns;
+};
+
+double Percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<size_t>(q * static_cast<double>(v.size() - 1))];
+}
+
+void Report(const char* what, const std::vector<double>& ms) {
+  std::printf("%s: n %zu, p50 %.3f ms, p90 %.3f ms, p99 %.3f ms, max %.3f ms\n", what, ms.size(),
+              Percentile(ms, 0.5), Percentile(ms, 0.9), Percentile(ms, 0.99), Percentile(ms, 1.0));
+}
+
+/// IMU → pose latencies: each pose matched to its simulated sample's pty write time.
+std::vector<double> PoseLatencies(const std::vector<Taken>& poses,
+                                  const std::vector<swlio::sim::SimImuSample>& imu,
+                                  int64_t start_ns) {
+  std::vector<double> ms;
+  for (const Taken& p : poses) {
+    const int64_t t_sim = p.stamp_ns - start_ns;
+    auto it = std::lower_bound(imu.begin(), imu.end(), t_sim,
+                               [](const auto& s, int64_t t) { return s.t_true_ns < t; });
+    if (it == imu.end()) continue;
+    if (it != imu.begin() && t_sim - std::prev(it)->t_true_ns < it->t_true_ns - t_sim) --it;
+    if (std::llabs(it->t_true_ns - t_sim) > 1'000'000) continue;  // not matched within 1 ms
+    ms.push_back(static_cast<double>(p.take_ns - (start_ns + it->t_rx_ns)) * 1e-6);
+  }
+  return ms;
+}
+
+int Run(const std::string& scenario, int seed, double duration_s, const std::string& xml) {
+  const auto setup = swlio::sim::MakeSimSetup(scenario, static_cast<uint64_t>(seed), duration_s);
+  if (!setup) return 1;
+  swlio::daemon::DaemonConfig config;
+  config.lidar.bind_address = "127.0.0.1";
+  config.lidar.msop_port = 0;
+  config.lidar.difop_port = 0;
+  config.imu.device = "/tmp/swlio_daemon_latency.pty";
+  config.imu.configure_on_start = false;
+  config.ipc.domain_id = 119;
+  config.ipc.dds_config_file = xml;
+  swlio::daemon::RuntimeOptions options;
+  options.T_imu_lidar = setup->lidar.T_imu_lidar;
+  std::string error;
+  auto rt = swlio::daemon::Runtime::Create(config, options, &error);
+  auto participant = swlio::ipc::Participant::Create(config.ipc, &error);
+  if (!rt || !participant) return std::fprintf(stderr, "%s\n", error.c_str()), 1;
+  auto subscriber = swlio::ipc::Subscriber::Create(*participant, config.ipc, {}, &error);
+  if (!subscriber) return std::fprintf(stderr, "%s\n", error.c_str()), 1;
+  rt->Start();
+  swlio::sim::LiveOptions live;
+  live.msop_port = rt->msop_port();
+  live.difop_port = rt->difop_port();
+  live.pty_link = config.imu.device;
+  live.start_delay_s = 1.0;
+  volatile bool stop = false;
+  swlio::sim::LiveStats stats;
+  std::atomic<bool> done{false};
+  std::thread sim([&] {
+    if (!swlio::sim::RunLive(*setup, live, &stop, &stats, &error))
+      std::fprintf(stderr, "%s\n", error.c_str());
+    done = true;
+  });
+  std::vector<Taken> poses, odometry;
+  while (!done) {
+    subscriber->Wait(100'000'000);
+    for (const auto& r : subscriber->TakePoses())
+      poses.push_back({r.msg.t_ns, r.receive_steady_ns});
+    for (const auto& r : subscriber->TakeOdometry())
+      odometry.push_back({r.msg.t_ns, r.receive_steady_ns});
+  }
+  sim.join();
+  const swlio::daemon::HealthSnapshot s = rt->Snapshot();
+  rt->Stop();
+  const auto imu = swlio::sim::SimulateImu(*setup->trajectory, setup->imu, setup->seed);
+  Report("IMU frame written on the pty -> pose taken", PoseLatencies(poses, imu, stats.start_ns));
+  std::vector<double> odom_ms;
+  for (const Taken& o : odometry)
+    odom_ms.push_back(static_cast<double>(o.take_ns - o.stamp_ns) * 1e-6);
+  Report("sweep end -> odometry taken", odom_ms);
+  std::printf("simulator: %llu datagrams, %llu IMU bytes, worst send lateness %.2f ms\n",
+              static_cast<unsigned long long>(stats.udp_sent),
+              static_cast<unsigned long long>(stats.imu_bytes), stats.max_lateness_ms);
+  std::printf("daemon: %s\n", swlio::daemon::HealthReporter().StatusLine(s).c_str());
+  std::printf("daemon drops: %llu\n",
+              static_cast<unsigned long long>(swlio::daemon::TotalDrops(s)));
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "swlio_daemon_latency: end-to-end latencies of the daemon on a live simulated drive"};
+  std::string scenario = "short", xml = SWLIO_SOURCE_DIR "/config/cyclonedds-loopback.xml";
+  int seed = 1;
+  double duration_s = 30.0;
+  app.add_option("--scenario", scenario)->capture_default_str();
+  app.add_option("--seed", seed)->capture_default_str();
+  app.add_option("--duration", duration_s, "seconds of the drive")->capture_default_str();
+  app.add_option("--dds-config", xml)->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  return Run(scenario, seed, duration_s, xml);
+}

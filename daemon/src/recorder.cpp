@@ -1,0 +1,116 @@
+#include "swlio/daemon/recorder.h"
+
+#include <Eigen/Geometry>
+#include <cstdio>
+
+namespace swlio::daemon {
+namespace {
+
+void WriteManifest(const std::filesystem::path& path,
+                   const DaemonConfig& config,
+                   const Eigen::Isometry3d& T_imu_lidar) {
+  const Eigen::Vector3d t = T_imu_lidar.translation();
+  const Eigen::Quaterniond q(T_imu_lidar.linear());
+  char line[256];
+  std::ofstream y(path);
+  y << "# swliod recording: raw sensor bytes with host receive times (CLOCK_MONOTONIC ns)\n"
+    << "format_version: 1\nmode: daemon\n"
+    << "extrinsic_T_imu_lidar:  # maps LiDAR points into the IMU frame (as configured)\n";
+  std::snprintf(line, sizeof line, "  translation_m: [%.9g, %.9g, %.9g]\n", t.x(), t.y(), t.z());
+  y << line;
+  std::snprintf(line, sizeof line, "  quaternion_xyzw: [%.12g, %.12g, %.12g, %.12g]\n", q.x(),
+                q.y(), q.z(), q.w());
+  y << line << "lidar:\n  model: " << config.lidar.model
+    << "\n  msop_port: " << config.lidar.msop_port << "\n  difop_port: " << config.lidar.difop_port
+    << "\nimu:\n  device: " << config.imu.device << "\n  baud: " << config.imu.baud
+    << "\nfiles: {lidar: lidar.pcap, imu: imu.xbus, imu_rx: imu.rx.csv}\n";
+}
+
+}  // namespace
+
+Recorder::Recorder(const DaemonConfig& config, const TimeScale& time)
+    : msop_port_(config.lidar.msop_port), difop_port_(config.lidar.difop_port), time_(time) {}
+
+Recorder::~Recorder() = default;
+
+std::unique_ptr<Recorder> Recorder::Create(const std::filesystem::path& dir,
+                                           const DaemonConfig& config,
+                                           const Eigen::Isometry3d& T_imu_lidar,
+                                           const TimeScale& time,
+                                           std::string* error) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    *error = "cannot create " + dir.string() + ": " + ec.message();
+    return nullptr;
+  }
+  std::unique_ptr<Recorder> r(new Recorder(config, time));
+  r->pcap_ = drivers::PcapWriter::Create((dir / "lidar.pcap").string(), {}, error);
+  if (!r->pcap_) return nullptr;
+  r->xbus_.open(dir / "imu.xbus", std::ios::binary);
+  r->rx_csv_.open(dir / "imu.rx.csv");
+  if (!r->xbus_ || !r->rx_csv_) {
+    *error = "cannot write imu.xbus / imu.rx.csv in " + dir.string();
+    return nullptr;
+  }
+  r->rx_csv_ << "byte_offset,bytes,t_rx_ns\n";
+  WriteManifest(dir / "manifest.yaml", config, T_imu_lidar);
+  return r;
+}
+
+void Recorder::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
+  int64_t next_flush_ns = MonotonicNowNs() + 1'000'000'000;
+  while (!stop.load(std::memory_order_relaxed)) {
+    beat.Beat();
+    LidarPacket p;
+    if (!Drain() && lidar_.WaitPop(&p, 50'000)) WritePacket(p);  // sleep until data arrives
+    const int64_t now = MonotonicNowNs();
+    if (now >= next_flush_ns) {
+      Flush();
+      next_flush_ns = now + 1'000'000'000;
+    }
+  }
+  while (Drain()) {
+  }
+  Flush();
+}
+
+void Recorder::WritePacket(const LidarPacket& p) {
+  const uint16_t port = p.difop ? difop_port_ : msop_port_;
+  const bool ok =
+      pcap_->Write(time_.ToDaemon(p.t_rx_ns), port, port, std::span(p.bytes).first(p.size));
+  (ok ? lidar_packets_ : write_errors_).fetch_add(1, std::memory_order_relaxed);
+}
+
+bool Recorder::Drain() {
+  bool any = false;
+  LidarPacket p;
+  while (lidar_.Pop(&p)) {
+    WritePacket(p);
+    any = true;
+  }
+  SerialChunk c;
+  while (serial_.Pop(&c)) {
+    xbus_.write(reinterpret_cast<const char*>(c.bytes.data()), c.size);
+    rx_csv_ << offset_ << ',' << c.size << ',' << time_.ToDaemon(c.t_rx_ns) << '\n';
+    offset_ += c.size;
+    serial_bytes_.fetch_add(c.size, std::memory_order_relaxed);
+    any = true;
+  }
+  return any;
+}
+
+void Recorder::Flush() {
+  const bool ok = pcap_->Flush() && xbus_.flush().good() && rx_csv_.flush().good();
+  if (!ok) write_errors_.fetch_add(1, std::memory_order_relaxed);
+}
+
+RecorderCounters Recorder::counters() const {
+  RecorderCounters c;
+  c.lidar_packets = lidar_packets_.load(std::memory_order_relaxed);
+  c.serial_bytes = serial_bytes_.load(std::memory_order_relaxed);
+  c.write_errors = write_errors_.load(std::memory_order_relaxed);
+  return c;
+}
+
+}  // namespace swlio::daemon
