@@ -8,13 +8,17 @@ namespace {
 
 void WriteManifest(const std::filesystem::path& path,
                    const DaemonConfig& config,
-                   const Eigen::Isometry3d& T_imu_lidar) {
+                   const Eigen::Isometry3d& T_imu_lidar,
+                   const TimeScale& time) {
   const Eigen::Vector3d t = T_imu_lidar.translation();
   const Eigen::Quaterniond q(T_imu_lidar.linear());
   char line[256];
   std::ofstream y(path);
   y << "# swliod recording: raw sensor bytes with host receive times (CLOCK_MONOTONIC ns)\n"
     << "format_version: 1\nmode: daemon\n"
+    << "# Receive times are on the daemon's time base (time_scale.h): host = origin + (t −\n"
+    << "# origin) / scale. Both are 1 / any on a robot (times are host times).\n"
+    << "time_scale: " << time.scale << "\ntime_origin_ns: " << time.origin_ns << "\n"
     << "extrinsic_T_imu_lidar:  # maps LiDAR points into the IMU frame (as configured)\n";
   std::snprintf(line, sizeof line, "  translation_m: [%.9g, %.9g, %.9g]\n", t.x(), t.y(), t.z());
   y << line;
@@ -54,7 +58,7 @@ std::unique_ptr<Recorder> Recorder::Create(const std::filesystem::path& dir,
     return nullptr;
   }
   r->rx_csv_ << "byte_offset,bytes,t_rx_ns\n";
-  WriteManifest(dir / "manifest.yaml", config, T_imu_lidar);
+  WriteManifest(dir / "manifest.yaml", config, T_imu_lidar, time);
   return r;
 }
 

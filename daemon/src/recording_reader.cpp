@@ -125,6 +125,19 @@ bool RecordingReader::Next(RecordingEvent* event) {
   return true;
 }
 
+TimeScale ManifestTimeScale(const std::filesystem::path& dir) {
+  std::ifstream in(dir / "manifest.yaml");
+  std::string line;
+  TimeScale t;
+  double scale = 0.0;
+  long long origin = 0;
+  while (std::getline(in, line)) {
+    if (std::sscanf(line.c_str(), "time_scale: %lf", &scale) == 1 && scale > 0.0) t.scale = scale;
+    if (std::sscanf(line.c_str(), "time_origin_ns: %lld", &origin) == 1) t.origin_ns = origin;
+  }
+  return t;
+}
+
 drivers::LidarConfig WithManifestPorts(const std::filesystem::path& dir,
                                        drivers::LidarConfig lidar) {
   std::ifstream in(dir / "manifest.yaml");

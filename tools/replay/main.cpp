@@ -65,9 +65,10 @@ class DdsOut {
     path_.frame_id = frames_.world;
     return publisher_ != nullptr;
   }
-  void Sweep(const swlio::estimator::WindowResult& r) {
-    const swlio::ipc::Odometry m = swlio::daemon::ToOdometryMessage(
-        r.odometry.state, Eigen::Vector3d::Zero(), r.covariance, frames_);
+  /// `state`: the sweep's state with its stamp on the host clock.
+  void Sweep(const swlio::State& state, const swlio::estimator::WindowResult& r) {
+    const swlio::ipc::Odometry m =
+        swlio::daemon::ToOdometryMessage(state, Eigen::Vector3d::Zero(), r.covariance, frames_);
     publisher_->PublishOdometry(m);
     if (!r.odometry.keyframe) return;
     path_.poses.push_back({m.t_ns, frames_.world, m.pose});
@@ -103,6 +104,7 @@ int Run(const Options& opt) {
       config.estimator.extrinsic_imu_lidar.ToIsometry());
   const auto setup =
       swlio::daemon::MakeEstimatorSetup(config, T_imu_lidar, swlio::daemon::ModeFromConfig(config));
+  const swlio::daemon::TimeScale time = swlio::daemon::ManifestTimeScale(opt.dir);
   size_t sweeps = 0;
   swlio::daemon::EstimatorRunner runner(
       setup, nullptr, [&](const swlio::Scan&, const swlio::estimator::WindowResult& r) {
@@ -110,8 +112,10 @@ int Run(const Options& opt) {
         using swlio::estimator::OdometryStatus;
         const OdometryStatus st = r.odometry.status;
         if (st != OdometryStatus::kTracking && st != OdometryStatus::kMatchFailed) return;
-        WriteTum(tum, r.odometry.state);
-        if (publish) dds.Sweep(r);
+        swlio::State host = r.odometry.state;  // stamps back on the host clock
+        host.t_ns = time.ToHost(host.t_ns);
+        WriteTum(tum, host);
+        if (publish) dds.Sweep(host, r);
       });
   swlio::daemon::RecordingEvent e;
   int64_t first_event_ns = -1, wall_start_ns = 0;

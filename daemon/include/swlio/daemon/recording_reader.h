@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "swlio/core/types.h"
+#include "swlio/daemon/time_scale.h"
 #include "swlio/drivers/clock_model.h"
 #include "swlio/drivers/imu_config.h"
 #include "swlio/drivers/lidar_config.h"
@@ -80,6 +81,10 @@ std::optional<Eigen::Isometry3d> ManifestExtrinsic(const std::filesystem::path& 
 /// `lidar` with the UDP ports the recording's manifest.yaml names (its `msop_port:` and
 /// `difop_port:` lines, as the simulator and swliod --record write them), so a recording made
 /// on any ports replays without a matching configuration.
+/// The time base the recording's receive times are on (its `time_scale:` and `time_origin_ns:`
+/// lines, written by swliod --record --time-scale); the identity when absent.
+TimeScale ManifestTimeScale(const std::filesystem::path& dir);
+
 drivers::LidarConfig WithManifestPorts(const std::filesystem::path& dir,
                                        drivers::LidarConfig lidar);
 
