@@ -400,6 +400,19 @@ void Bind(Section s, LoggingConfig& c) {
   s.Finish();
 }
 
+void Bind(Section s, RealtimeConfig& c) {
+  s.Get("enabled", c.enabled);
+  s.Get("lock_memory", c.lock_memory);
+  s.ForEachChild("threads", [&](Section item) {
+    ThreadSchedConfig& t = c.threads.emplace_back();
+    item.Get("name", t.name);
+    item.Get("priority", t.priority);
+    item.Get("cpu", t.cpu);
+    item.Finish();
+  });
+  s.Finish();
+}
+
 void BindRoot(Section root, DaemonConfig& c, Context& ctx) {
   c.config_version = -1;
   root.Get("config_version", c.config_version);
@@ -415,6 +428,7 @@ void BindRoot(Section root, DaemonConfig& c, Context& ctx) {
   Bind(root.Child("estimator"), c.estimator, c.window);
   Bind(root.Child("ipc"), c.ipc);
   Bind(root.Child("logging"), c.logging);
+  Bind(root.Child("realtime"), c.realtime);
   root.Finish();
 }
 

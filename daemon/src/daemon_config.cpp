@@ -1,5 +1,6 @@
 #include "swlio/daemon/daemon_config.h"
 
+#include <algorithm>
 #include <array>
 
 namespace swlio::daemon {
@@ -26,6 +27,23 @@ ConfigIssues LoggingConfig::Validate() const {
   return issues;
 }
 
+ConfigIssues RealtimeConfig::Validate() const {
+  ConfigIssues issues;
+  constexpr std::array<const char*, 6> kThreads = {"lidar_rx",  "imu_rx",    "propagator",
+                                                   "optimizer", "publisher", "recorder"};
+  for (size_t i = 0; i < threads.size(); ++i) {
+    const ThreadSchedConfig& t = threads[i];
+    const std::string key = "threads[" + std::to_string(i) + "]";
+    const bool known = std::find(kThreads.begin(), kThreads.end(), t.name) != kThreads.end();
+    CheckThat(issues, known, key + ".name",
+              "must be lidar_rx, imu_rx, propagator, optimizer, publisher or recorder, got '" +
+                  t.name + "'");
+    CheckInRange<int64_t>(issues, key + ".priority", t.priority, 0, 99);
+    CheckInRange<int64_t>(issues, key + ".cpu", t.cpu, -1, 1023);
+  }
+  return issues;
+}
+
 ConfigIssues DaemonConfig::Validate() const {
   ConfigIssues issues;
   CheckThat(issues, config_version == kConfigVersion, "config_version",
@@ -42,6 +60,7 @@ ConfigIssues DaemonConfig::Validate() const {
   AppendWithPrefix(issues, "estimator.window", window_issues);
   AppendWithPrefix(issues, "ipc", ipc.Validate());
   AppendWithPrefix(issues, "logging", logging.Validate());
+  AppendWithPrefix(issues, "realtime", realtime.Validate());
   return issues;
 }
 

@@ -7,6 +7,7 @@
 #include <ctime>
 #include <string>
 
+#include "swlio/daemon/thread_setup.h"
 #include "swlio/daemon/watchdog.h"
 
 namespace swlio::daemon {
@@ -55,6 +56,9 @@ int RunDaemon(const DaemonConfig& config, const RuntimeOptions& options, int64_t
   SdNotifySink sink;
   SystemdNotifier notifier(&sink, &rt->watchdog(), SystemdWatchdogIntervalNs());
   rt->Start();
+  if (const std::string problem = LockMemory(config.realtime); !problem.empty()) {
+    spdlog::warn("realtime: {}", problem);
+  }
   spdlog::info("started: lidar {} on UDP {} (MSOP) / {} (DIFOP), imu {} at {} baud, mode {}",
                config.lidar.model, rt->msop_port(), config.lidar.difop_port, config.imu.device,
                config.imu.baud, config.estimator.mode);

@@ -1,9 +1,10 @@
 #include "swlio/daemon/runtime.h"
 
-#include <pthread.h>
+#include <spdlog/spdlog.h>
 
 #include <utility>
 
+#include "swlio/daemon/thread_setup.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
 
@@ -77,8 +78,11 @@ void Runtime::Spawn(std::vector<std::thread>* group,
                     const char* name,
                     std::function<void(const Watchdog::Handle&)> body) {
   Watchdog::Handle beat = watchdog_.Register(name);
-  group->emplace_back([name, beat, body = std::move(body)] {
-    pthread_setname_np(pthread_self(), name);  // ≤ 15 characters: shown by top -H, ps -L
+  group->emplace_back([this, name, beat, body = std::move(body)] {
+    for (const std::string& problem : SetUpThisThread(name, config_.realtime)) {
+      spdlog::warn("realtime: {}", problem);
+      sched_failures_.fetch_add(1);
+    }
     body(beat);
   });
 }

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "swlio/core/config_issue.h"
 #include "swlio/drivers/can_config.h"
@@ -31,6 +32,23 @@ struct LoggingConfig {
   ConfigIssues Validate() const;
 };
 
+/// Scheduling of one daemon thread (YAML `realtime.threads[i]`).
+struct ThreadSchedConfig {
+  std::string name;      ///< lidar_rx, imu_rx, propagator, optimizer, publisher or recorder
+  int64_t priority = 0;  ///< SCHED_FIFO priority 1–99; 0 keeps normal (SCHED_OTHER) scheduling
+  int64_t cpu = -1;      ///< pin to this CPU; −1: any
+};
+
+/// Real-time options (YAML `realtime`); all off by default. They need the capabilities the
+/// systemd drop-in swliod-realtime.conf grants (CAP_SYS_NICE, CAP_IPC_LOCK); a refusal is
+/// logged and the daemon runs on without it.
+struct RealtimeConfig {
+  bool enabled = false;      ///< apply `threads` (priorities and CPU pinning)
+  bool lock_memory = false;  ///< mlockall(MCL_CURRENT | MCL_FUTURE) once the threads run
+  std::vector<ThreadSchedConfig> threads;
+  ConfigIssues Validate() const;
+};
+
 /// Version of the configuration schema this build reads (`config_version` in the file).
 inline constexpr int64_t kConfigVersion = 1;
 
@@ -46,6 +64,7 @@ struct DaemonConfig {
   estimator::WindowEstimatorConfig window;
   ipc::IpcConfig ipc;
   LoggingConfig logging;
+  RealtimeConfig realtime;
 
   /// Every violated rule, keys prefixed by section ("lidar.max_range_m").
   ConfigIssues Validate() const;

@@ -68,6 +68,7 @@ class Runtime {
   const Watchdog& watchdog() const { return watchdog_; }
   uint16_t msop_port() const;
   uint16_t difop_port() const;
+  uint64_t sched_failures() const { return sched_failures_.load(); }
 
  private:
   struct Queues;
@@ -88,7 +89,8 @@ class Runtime {
   std::unique_ptr<OptimizerThread> optimizer_;
   std::unique_ptr<PublisherThread> publisher_thread_;
   std::unique_ptr<Recorder> recorder_;
-  HealthReporter published_health_;  ///< used by the publisher thread only
+  HealthReporter published_health_;          ///< used by the publisher thread only
+  std::atomic<uint64_t> sched_failures_{0};  ///< realtime settings a thread could not apply
   std::atomic<bool> stop_rx_{false};
   std::atomic<bool> stop_{false};
   std::vector<std::thread> rx_threads_;

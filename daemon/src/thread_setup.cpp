@@ -1,0 +1,49 @@
+#include "swlio/daemon/thread_setup.h"
+
+#include <pthread.h>
+#include <sched.h>
+#include <sys/mman.h>
+
+#include <cstring>
+
+namespace swlio::daemon {
+namespace {
+
+std::string Failure(const char* name, const char* what, int err) {
+  return std::string(name) + ": " + what + " failed: " + std::strerror(err);
+}
+
+}  // namespace
+
+std::vector<std::string> SetUpThisThread(const char* name, const RealtimeConfig& config) {
+  std::vector<std::string> problems;
+  pthread_setname_np(pthread_self(), name);
+  if (!config.enabled) return problems;
+  for (const ThreadSchedConfig& t : config.threads) {
+    if (t.name != name) continue;
+    if (t.priority > 0) {
+      sched_param p{};
+      p.sched_priority = static_cast<int>(t.priority);
+      if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); err != 0) {
+        problems.push_back(Failure(name, "SCHED_FIFO", err));
+      }
+    }
+    if (t.cpu >= 0) {
+      cpu_set_t set;
+      CPU_ZERO(&set);
+      CPU_SET(static_cast<size_t>(t.cpu), &set);
+      if (const int err = pthread_setaffinity_np(pthread_self(), sizeof set, &set); err != 0) {
+        problems.push_back(Failure(name, ("pinning to CPU " + std::to_string(t.cpu)).c_str(), err));
+      }
+    }
+  }
+  return problems;
+}
+
+std::string LockMemory(const RealtimeConfig& config) {
+  if (!config.lock_memory) return {};
+  if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) return Failure("process", "mlockall", errno);
+  return {};
+}
+
+}  // namespace swlio::daemon

@@ -1,0 +1,67 @@
+// The `realtime` configuration section: loading, validation, and applying it to a thread.
+
+#include "swlio/daemon/thread_setup.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <pthread.h>
+#include <sched.h>
+
+#include <thread>
+
+#include "swlio/daemon/config_loader.h"
+
+namespace swlio::daemon {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(RealtimeConfig, LoadsThreadsAndReportsBadEntriesWithTheirLine) {
+  const LoadedConfig ok = LoadConfigText(
+      "config_version: 1\nrealtime:\n  enabled: true\n  lock_memory: true\n  threads:\n"
+      "    - {name: imu_rx, priority: 80, cpu: 1}\n    - {name: optimizer}\n",
+      "t.yaml", "/etc/swlio");
+  ASSERT_TRUE(ok.ok()) << ok.ErrorReport();
+  ASSERT_EQ(ok.config.realtime.threads.size(), 2u);
+  EXPECT_TRUE(ok.config.realtime.enabled);
+  EXPECT_TRUE(ok.config.realtime.lock_memory);
+  EXPECT_EQ(ok.config.realtime.threads[0].priority, 80);
+  EXPECT_EQ(ok.config.realtime.threads[0].cpu, 1);
+  EXPECT_EQ(ok.config.realtime.threads[1].priority, 0);
+
+  const LoadedConfig bad = LoadConfigText(
+      "config_version: 1\nrealtime:\n  threads:\n    - {name: lidar, priority: 120, cpus: 2}\n",
+      "t.yaml", "/etc/swlio");
+  const std::string report = bad.ErrorReport();
+  EXPECT_THAT(report, HasSubstr("realtime.threads[0].name"));
+  EXPECT_THAT(report, HasSubstr("realtime.threads[0].priority"));
+  EXPECT_THAT(report, HasSubstr("cpus"));  // unknown key
+  EXPECT_THAT(report, HasSubstr("t.yaml:4"));
+}
+
+TEST(ThreadSetup, PinsTheThreadAndReportsWhatItCannotApply) {
+  RealtimeConfig config;
+  config.enabled = true;
+  config.threads = {{"imu_rx", 0, 0}, {"publisher", 0, 1023}};
+  std::vector<std::string> pinned_problems, bad_problems;
+  cpu_set_t pinned;
+  CPU_ZERO(&pinned);
+  std::thread a([&] {
+    pinned_problems = SetUpThisThread("imu_rx", config);
+    pthread_getaffinity_np(pthread_self(), sizeof pinned, &pinned);
+  });
+  a.join();
+  EXPECT_TRUE(pinned_problems.empty());
+  EXPECT_EQ(CPU_COUNT(&pinned), 1);
+  EXPECT_TRUE(CPU_ISSET(0, &pinned));
+  std::thread b([&] { bad_problems = SetUpThisThread("publisher", config); });
+  b.join();
+  ASSERT_EQ(bad_problems.size(), 1u);
+  EXPECT_THAT(bad_problems[0], HasSubstr("publisher: pinning to CPU 1023 failed"));
+  config.enabled = false;
+  std::thread c([&] { EXPECT_TRUE(SetUpThisThread("publisher", config).empty()); });
+  c.join();
+}
+
+}  // namespace
+}  // namespace swlio::daemon
