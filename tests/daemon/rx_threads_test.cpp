@@ -1,0 +1,137 @@
+// The rx threads: every datagram / Xbus sample arrives in the queue with its receive time, what
+// cannot be taken is counted, and the steady state allocates nothing (design.md: "no
+// allocation after start-up").
+
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <pty.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <thread>
+#include <vector>
+
+#include "allocation_counter.h"
+#include "sim_recording.h"
+#include "swlio/daemon/imu_rx.h"
+#include "swlio/daemon/lidar_rx.h"
+#include "test_data.h"
+
+namespace swlio::daemon {
+namespace {
+
+/// Sends `bytes` to 127.0.0.1:port.
+void SendTo(int fd, uint16_t port, const std::vector<uint8_t>& bytes) {
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(port);
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to),
+            static_cast<ssize_t>(bytes.size()));
+}
+
+/// Pops until `n` elements came or 5 s passed; returns how many.
+template <class T>
+size_t PopN(SpscQueue<T>& q, size_t n, std::vector<T>* out = nullptr) {
+  size_t got = 0;
+  T v;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (got < n && std::chrono::steady_clock::now() < deadline) {
+    if (!q.WaitPop(&v, 10'000)) continue;
+    if (out != nullptr && out->size() < out->capacity()) out->push_back(v);
+    ++got;
+  }
+  return got;
+}
+
+TEST(LidarRx, QueuesEveryDatagramWithoutAllocating) {
+  drivers::LidarConfig config;
+  config.bind_address = "127.0.0.1";
+  config.msop_port = 0;
+  config.difop_port = 0;
+  SpscQueue<LidarPacket> q("lidar_packets", "lidar_rx", "test", 4096);
+  std::string error;
+  auto rx = LidarRx::Open(config, &q, &error);
+  ASSERT_NE(rx, nullptr) << error;
+  std::atomic<bool> stop{false};
+  std::thread t([&] { rx->Run(stop, {}); });
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  std::vector<uint8_t> msop(1248, 0x11), difop(1248, 0x22), huge(2000, 0x33);
+  for (int i = 0; i < 100; ++i) SendTo(fd, rx->msop_port(), msop);  // warm-up
+  ASSERT_EQ(PopN(q, 100), 100u);
+  const int64_t before = test::HeapAllocations();
+  for (int i = 0; i < 500; ++i) {
+    SendTo(fd, rx->msop_port(), msop);
+    if (i % 100 == 0) SendTo(fd, rx->difop_port(), difop);
+  }
+  const size_t got = PopN(q, 505);
+  const int64_t allocations = test::HeapAllocations() - before;
+  EXPECT_EQ(got, 505u);
+  EXPECT_EQ(allocations, 0) << "heap allocations while 505 datagrams went through";
+  SendTo(fd, rx->difop_port(), huge);
+  SendTo(fd, rx->difop_port(), difop);
+  std::vector<LidarPacket> last;
+  last.reserve(1);
+  ASSERT_EQ(PopN(q, 1, &last), 1u);
+  EXPECT_TRUE(last[0].difop);
+  EXPECT_EQ(last[0].size, 1248);
+  EXPECT_EQ(last[0].bytes[0], 0x22);
+  EXPECT_GT(last[0].t_rx_ns, 0);
+  stop = true;
+  t.join();
+  close(fd);
+  EXPECT_EQ(rx->counters().truncated, 1u) << "the 2000-byte datagram is dropped and counted";
+  EXPECT_EQ(rx->counters().datagrams, 100u + 505u + 2u);
+}
+
+TEST(ImuRx, QueuesEverySampleWithoutAllocating) {
+  int master = -1, slave = -1;
+  char name[256] = {};
+  if (openpty(&master, &slave, name, nullptr, nullptr) != 0) GTEST_SKIP() << "no pty";
+  drivers::ImuConfig config;
+  config.device = name;
+  config.configure_on_start = false;
+  SpscQueue<ImuRaw> q("imu_raw", "imu_rx", "test", 4096);
+  ImuRx rx(config, &q);
+  std::atomic<bool> stop{false};
+  std::thread t([&] { rx.Run(stop, {}); });
+  std::vector<uint8_t> frame(256);
+  auto write_samples = [&](int first, int n) {
+    for (int k = first; k < first + n; ++k) {
+      sim::SimImuSample s;
+      s.sample_time_fine = static_cast<uint32_t>(1000 + 25 * k);
+      s.packet_counter = static_cast<uint16_t>(k);
+      s.acc_mps2 = Eigen::Vector3d(0.1, 0.2, 9.8);
+      s.gyro_radps = Eigen::Vector3d(0.01, 0.0, -0.01);
+      const size_t size = sim::EncodeImuFrame(s, frame);
+      ASSERT_EQ(write(master, frame.data(), size), static_cast<ssize_t>(size));
+    }
+  };
+  // The port opens the device within its re-open interval; write once it streams.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!rx.counters().streaming && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  write_samples(0, 100);
+  ASSERT_EQ(PopN(q, 100), 100u);
+  const int64_t before = test::HeapAllocations();
+  write_samples(100, 400);
+  const size_t got = PopN(q, 400);
+  const int64_t allocations = test::HeapAllocations() - before;
+  stop = true;
+  t.join();
+  close(master);
+  close(slave);
+  EXPECT_EQ(got, 400u);
+  EXPECT_EQ(allocations, 0) << "heap allocations while 400 samples went through";
+  EXPECT_EQ(rx.counters().samples, 500u);
+  EXPECT_EQ(rx.counters().checksum_errors, 0u);
+  EXPECT_EQ(rx.counters().missing_packets, 0u);
+}
+
+}  // namespace
+}  // namespace swlio::daemon
