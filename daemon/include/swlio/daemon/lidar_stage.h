@@ -54,6 +54,8 @@ class LidarStage {
   /// allocation in steady state). False when none is ready.
   bool Pop(HostSweep* out);
 
+  /// Host time of a sensor time under the clock model as it stands now.
+  int64_t ToHost(int64_t sensor_t_ns) const { return clock_.ToHost(sensor_t_ns); }
   const LidarStageCounters& counters() const { return counters_; }
   const drivers::ClockModelStats& clock() const { return clock_.stats(); }
   const drivers::ScanAssemblerStats& assembler() const { return assembler_.stats(); }
