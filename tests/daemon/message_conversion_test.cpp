@@ -1,0 +1,90 @@
+// Estimator values → ROS 2-shaped messages: pose, body-frame twist, covariance order.
+
+#include "swlio/daemon/message_conversion.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "swlio/daemon/health.h"
+#include "swlio/daemon/propagator_thread.h"
+
+namespace swlio::daemon {
+namespace {
+
+State Yawed90(const Eigen::Vector3d& p, const Eigen::Vector3d& v_world) {
+  State s;
+  s.t_ns = 1'234'567'890'123;
+  s.T_world_imu.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).matrix();
+  s.T_world_imu.translation() = p;
+  s.vel_world = v_world;
+  return s;
+}
+
+TEST(MessageConversion, OdometryCarriesPoseInWorldAndTwistInTheBody) {
+  estimator::StateCovariance c;
+  c.valid = true;
+  for (int i = 0; i < estimator::kStateCovSize; ++i) c.P(i, i) = 0.01 * (i + 1);
+  c.P(0, 3) = c.P(3, 0) = 0.001;
+  const State s = Yawed90({1, 2, 3}, {0, 1.5, 0});  // moving along world y = body x
+  const ipc::Odometry m = ToOdometryMessage(s, {0, 0, 0.2}, c, FrameIds{});
+  EXPECT_EQ(m.t_ns, s.t_ns);
+  EXPECT_EQ(m.frame_id, "map");
+  EXPECT_EQ(m.child_frame_id, "imu_link");
+  EXPECT_DOUBLE_EQ(m.pose.position_m[2], 3.0);
+  EXPECT_NEAR(m.pose.orientation_xyzw[2], std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(m.pose.orientation_xyzw[3], std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(m.twist.linear_mps[0], 1.5, 1e-12);
+  EXPECT_NEAR(m.twist.linear_mps[1], 0.0, 1e-12);
+  EXPECT_DOUBLE_EQ(m.twist.angular_radps[2], 0.2);
+  EXPECT_DOUBLE_EQ(m.pose_covariance[0], 0.01);          // x
+  EXPECT_DOUBLE_EQ(m.pose_covariance[6 * 3 + 3], 0.04);  // rotation about X
+  EXPECT_DOUBLE_EQ(m.pose_covariance[3], 0.001);         // x–rotX, row-major
+  // Body-frame velocity covariance: world P_vv = diag(0.07, 0.08, 0.09) rotated by −90° yaw.
+  EXPECT_NEAR(m.twist_covariance[0], 0.08, 1e-12);
+  EXPECT_NEAR(m.twist_covariance[7], 0.07, 1e-12);
+}
+
+TEST(MessageConversion, ImuRateCovarianceGrowsWithTheTimeSinceTheLastState) {
+  estimator::StateCovariance c;
+  c.valid = true;
+  c.P.setIdentity();
+  c.P *= 1e-4;
+  EXPECT_DOUBLE_EQ(GrownPoseCovariance(c, 0.0)[0], 1e-4);
+  EXPECT_DOUBLE_EQ(GrownPoseCovariance(c, 2.0)[0], 1e-4 + 1e-4 * 4.0);
+  EXPECT_DOUBLE_EQ(GrownPoseCovariance(c, 2.0)[6 * 3 + 3], 1e-4) << "attitude unchanged";
+  EXPECT_EQ(GrownPoseCovariance(estimator::StateCovariance{}, 1.0)[0], 0.0) << "unknown: zeros";
+}
+
+TEST(HealthReporter, ReportsRatesStatesAndDrops) {
+  HealthSnapshot a;
+  a.t_ns = 1'000'000'000;
+  HealthSnapshot b = a;
+  b.t_ns = 2'000'000'000;
+  b.propagator.samples = 400;
+  b.optimizer.lidar.data_packets = 750;
+  b.optimizer.lidar.sweeps = 10;
+  b.optimizer.tracking = TrackingState::kDegraded;
+  QueueCounters q;
+  q.name = "poses";
+  q.producer = "propagator";
+  q.consumer = "publisher";
+  q.dropped = 3;
+  b.queues = {q};
+  HealthReporter r;
+  r.Diagnostics(a);
+  const ipc::DiagnosticArray d = r.Diagnostics(b);
+  ASSERT_EQ(d.status.size(), 4u);
+  EXPECT_EQ(d.status[0].level, ipc::DiagnosticLevel::kOk);  // lidar streaming
+  EXPECT_EQ(d.status[1].values[0].value, "400.0");          // imu rate_hz
+  EXPECT_EQ(d.status[2].message, "degraded");
+  EXPECT_EQ(d.status[3].level, ipc::DiagnosticLevel::kWarn);
+  EXPECT_EQ(d.status[3].message, "3 dropped");
+  EXPECT_EQ(TotalDrops(b), 3u);
+  const ipc::DiagnosticArray silent = r.Diagnostics(b);  // nothing new for a second
+  EXPECT_EQ(silent.status[0].level, ipc::DiagnosticLevel::kError);
+  EXPECT_EQ(silent.status[1].message, "device not open");
+}
+
+}  // namespace
+}  // namespace swlio::daemon
