@@ -29,15 +29,16 @@ ConfigIssues LoggingConfig::Validate() const {
 
 ConfigIssues RealtimeConfig::Validate() const {
   ConfigIssues issues;
-  constexpr std::array<const char*, 6> kThreads = {"lidar_rx",  "imu_rx",    "propagator",
-                                                   "optimizer", "publisher", "recorder"};
+  constexpr std::array<const char*, 7> kThreads = {
+      "lidar_rx", "imu_rx", "can_rx", "propagator", "optimizer", "publisher", "recorder"};
   for (size_t i = 0; i < threads.size(); ++i) {
     const ThreadSchedConfig& t = threads[i];
     const std::string key = "threads[" + std::to_string(i) + "]";
     const bool known = std::find(kThreads.begin(), kThreads.end(), t.name) != kThreads.end();
-    CheckThat(issues, known, key + ".name",
-              "must be lidar_rx, imu_rx, propagator, optimizer, publisher or recorder, got '" +
-                  t.name + "'");
+    CheckThat(
+        issues, known, key + ".name",
+        "must be lidar_rx, imu_rx, can_rx, propagator, optimizer, publisher or recorder, got '" +
+            t.name + "'");
     CheckInRange<int64_t>(issues, key + ".priority", t.priority, 0, 99);
     CheckInRange<int64_t>(issues, key + ".cpu", t.cpu, -1, 1023);
   }

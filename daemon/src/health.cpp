@@ -62,6 +62,23 @@ ipc::DiagnosticStatus ImuStatus(const HealthSnapshot& s, const HealthRates& r) {
   return d;
 }
 
+ipc::DiagnosticStatus CanStatus(const HealthSnapshot& s, const HealthRates& r) {
+  ipc::DiagnosticStatus d;
+  d.name = "swlio: can";
+  d.hardware_id = "socketcan";
+  const bool streaming = r.can_frames_hz > 0.0;
+  d.level =
+      streaming && !s.can_rx.closed ? ipc::DiagnosticLevel::kOk : ipc::DiagnosticLevel::kError;
+  d.message = s.can_rx.closed ? "interface closed" : streaming ? "streaming" : "no frames";
+  d.values = {{"frames_hz", Num(r.can_frames_hz, "%.1f")},
+              {"frames", Count(s.can_rx.frames)},
+              {"odometry_samples", Count(s.can_rx.odometry_samples)},
+              {"unknown_id", Count(s.can_rx.unknown_id)},
+              {"bad_frames", Count(s.can_rx.bad_frames)},
+              {"read_errors", Count(s.can_rx.read_errors)}};
+  return d;
+}
+
 ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates& r) {
   ipc::DiagnosticStatus d;
   d.name = "swlio: estimator";
@@ -126,6 +143,7 @@ HealthRates HealthReporter::Rates(const HealthSnapshot& now) {
     r.sweeps_hz = PerSecond(now.optimizer.lidar.sweeps, previous_.optimizer.lidar.sweeps, dt);
     r.imu_hz = PerSecond(now.propagator.samples, previous_.propagator.samples, dt);
     r.poses_hz = PerSecond(now.publisher.poses, previous_.publisher.poses, dt);
+    r.can_frames_hz = PerSecond(now.can_rx.frames, previous_.can_rx.frames, dt);
   }
   previous_ = now;
   have_previous_ = true;
@@ -137,6 +155,7 @@ ipc::DiagnosticArray HealthReporter::Diagnostics(const HealthSnapshot& now) {
   ipc::DiagnosticArray a;
   a.t_ns = now.t_ns;
   a.status = {LidarStatus(now, r), ImuStatus(now, r), EstimatorStatus(now, r), QueueStatus(now)};
+  if (now.can_enabled) a.status.push_back(CanStatus(now, r));
   return a;
 }
 

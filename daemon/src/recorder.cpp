@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <cstdio>
 
+#include "swlio/drivers/candump_log.h"
+
 namespace swlio::daemon {
 namespace {
 
@@ -58,6 +60,14 @@ std::unique_ptr<Recorder> Recorder::Create(const std::filesystem::path& dir,
     return nullptr;
   }
   r->rx_csv_ << "byte_offset,bytes,t_rx_ns\n";
+  if (config.can.enabled) {
+    r->can_interface_ = config.can.interface;
+    r->can_log_.open(dir / "can.log");
+    if (!r->can_log_) {
+      *error = "cannot write can.log in " + dir.string();
+      return nullptr;
+    }
+  }
   WriteManifest(dir / "manifest.yaml", config, T_imu_lidar, time);
   return r;
 }
@@ -93,6 +103,13 @@ bool Recorder::Drain() {
     WritePacket(p);
     any = true;
   }
+  drivers::CanRxFrame f;
+  while (can_.Pop(&f)) {
+    const bool ok = drivers::WriteCandumpLine(
+        can_log_, drivers::MakeCandumpRecord(time_.ToDaemon(f.t_ns), can_interface_, f.frame));
+    if (!ok) write_errors_.fetch_add(1, std::memory_order_relaxed);
+    any = true;
+  }
   SerialChunk c;
   while (serial_.Pop(&c)) {
     xbus_.write(reinterpret_cast<const char*>(c.bytes.data()), c.size);
@@ -105,7 +122,8 @@ bool Recorder::Drain() {
 }
 
 void Recorder::Flush() {
-  const bool ok = pcap_->Flush() && xbus_.flush().good() && rx_csv_.flush().good();
+  bool ok = pcap_->Flush() && xbus_.flush().good() && rx_csv_.flush().good();
+  if (can_log_.is_open()) ok = can_log_.flush().good() && ok;
   if (!ok) write_errors_.fetch_add(1, std::memory_order_relaxed);
 }
 

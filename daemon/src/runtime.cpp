@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <unistd.h>
+
 #include <utility>
 
 #include "swlio/daemon/thread_setup.h"
@@ -32,7 +34,10 @@ Runtime::Runtime(const DaemonConfig& config, const RuntimeOptions& options)
       watchdog_(options.stall_timeout_ns),
       queues_(std::make_unique<Queues>()) {}
 
-Runtime::~Runtime() { Stop(); }
+Runtime::~Runtime() {
+  Stop();
+  if (can_socket_ >= 0) close(can_socket_);
+}
 
 std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
                                          const RuntimeOptions& options,
@@ -48,6 +53,13 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
     if (!rt->publisher_) return nullptr;
   }
   rt->imu_rx_ = std::make_unique<ImuRx>(config.imu, &q.imu_raw);
+  if (config.can.enabled) {
+    int fd = options.can_fd;
+    if (fd < 0) fd = rt->can_socket_ = drivers::OpenCanRawSocket(config.can.interface, error);
+    if (fd < 0) return nullptr;
+    rt->can_rx_ = CanRx::Create(config.can, fd, error);
+    if (!rt->can_rx_) return nullptr;
+  }
   const TimeScale time{MonotonicNowNs(), options.time_scale};
   const Eigen::Isometry3d T_imu_lidar =
       options.T_imu_lidar.value_or(config.estimator.extrinsic_imu_lidar.ToIsometry());
@@ -59,6 +71,7 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
     if (!rt->recorder_) return nullptr;
     rt->lidar_rx_->RecordTo(&rt->recorder_->lidar_queue());
     rt->imu_rx_->RecordTo(&rt->recorder_->serial_queue());
+    if (rt->can_rx_) rt->can_rx_->RecordTo(&rt->recorder_->can_queue());
   }
   estimator::ImuRatePropagatorConfig propagator;
   propagator.gravity_mps2 = config.estimator.gravity_mps2;
@@ -92,6 +105,9 @@ void Runtime::Start() {
   auto* others = &threads_;
   Spawn(rx, "lidar_rx", [this](const Watchdog::Handle& b) { lidar_rx_->Run(stop_rx_, b); });
   Spawn(rx, "imu_rx", [this](const Watchdog::Handle& b) { imu_rx_->Run(stop_rx_, b); });
+  if (can_rx_) {
+    Spawn(rx, "can_rx", [this](const Watchdog::Handle& b) { can_rx_->Run(stop_rx_, b); });
+  }
   Spawn(others, "propagator", [this](const Watchdog::Handle& b) { propagator_->Run(stop_, b); });
   Spawn(others, "optimizer", [this](const Watchdog::Handle& b) { optimizer_->Run(stop_, b); });
   Spawn(others, "publisher",
@@ -122,6 +138,8 @@ HealthSnapshot Runtime::Snapshot() const {
   s.t_ns = MonotonicNowNs();
   s.lidar_rx = lidar_rx_->counters();
   s.imu_rx = imu_rx_->counters();
+  if (can_rx_) s.can_rx = can_rx_->counters();
+  s.can_enabled = can_rx_ != nullptr;
   s.propagator = propagator_->counters();
   s.optimizer = optimizer_->counters();
   s.publisher = publisher_thread_->counters();

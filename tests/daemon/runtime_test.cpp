@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <iostream>
 #include <thread>
 
 #include "sim_live.h"
@@ -40,7 +41,7 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   config.ipc.dds_config_file = (test::SourceDir() / "config" / "cyclonedds-loopback.xml").string();
   RuntimeOptions options;
   options.T_imu_lidar = setup->lidar.T_imu_lidar;
-  const double speed = kSanitized ? 0.5 : 2.0;
+  const double speed = kSanitized ? 0.5 : 1.0;
   options.time_scale = speed;
   options.record_dir = dir / "recording";
   std::string error;
@@ -92,7 +93,6 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   EXPECT_GE(odometry, 70u);
   EXPECT_GE(health, 5u);
   EXPECT_EQ(s.optimizer.lidar.bad_packets, 0u);
-  EXPECT_EQ(s.imu_rx.checksum_errors, 0u);
   // The recording holds every datagram and serial byte the rx threads received, and reads
   // back through the replay path.
   std::string read_error;
@@ -108,8 +108,24 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   EXPECT_GE(scans, s.optimizer.processed);
   EXPECT_NEAR(ManifestExtrinsic(options.record_dir)->translation().x(),
               setup->lidar.T_imu_lidar.translation().x(), 1e-8);
-  if (!kSanitized) {
-    EXPECT_EQ(TotalDrops(s), 0u) << HealthReporter().StatusLine(s);
+  // Lossless whenever the simulator kept its schedule. On a loaded machine it can fall behind
+  // and then write more than the pty holds (it drops and counts those bytes, as a UART would):
+  // the daemon must then report them, not hide them.
+  const bool fed_on_time = stats.imu_bytes_dropped == 0 && stats.max_lateness_ms < 50.0;
+  if (fed_on_time) {
+    EXPECT_EQ(s.imu_rx.checksum_errors, 0u);
+    EXPECT_EQ(s.imu_rx.missing_packets, 0u);
+    if (!kSanitized) {
+      EXPECT_EQ(TotalDrops(s), 0u) << HealthReporter().StatusLine(s);
+    }
+  } else {
+    std::cout << "[ note ] the simulator fell behind (" << stats.max_lateness_ms << " ms, "
+              << stats.imu_bytes_dropped
+              << " IMU bytes dropped); daemon: " << HealthReporter().StatusLine(s) << "\n";
+    EXPECT_GT(s.imu_rx.missing_packets + s.imu_rx.checksum_errors + s.imu_rx.skipped_bytes +
+                  s.optimizer.lidar.missing_packets,
+              0u)
+        << "what the simulator dropped shows in the health";
   }
 }
 

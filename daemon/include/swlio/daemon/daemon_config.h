@@ -34,7 +34,7 @@ struct LoggingConfig {
 
 /// Scheduling of one daemon thread (YAML `realtime.threads[i]`).
 struct ThreadSchedConfig {
-  std::string name;      ///< lidar_rx, imu_rx, propagator, optimizer, publisher or recorder
+  std::string name;      ///< lidar_rx, imu_rx, can_rx, propagator, optimizer, publisher or recorder
   int64_t priority = 0;  ///< SCHED_FIFO priority 1–99; 0 keeps normal (SCHED_OTHER) scheduling
   int64_t cpu = -1;      ///< pin to this CPU; −1: any
 };

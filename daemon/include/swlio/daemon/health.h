@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "swlio/daemon/can_rx.h"
 #include "swlio/daemon/imu_rx.h"
 #include "swlio/daemon/lidar_rx.h"
 #include "swlio/daemon/optimizer_thread.h"
@@ -22,6 +23,8 @@ struct HealthSnapshot {
   int64_t t_ns = 0;  ///< host time of the snapshot
   LidarRxCounters lidar_rx;
   ImuRxCounters imu_rx;
+  bool can_enabled = false;
+  CanRxCounters can_rx;
   PropagatorCounters propagator;
   OptimizerCounters optimizer;
   PublisherCounters publisher;
@@ -34,6 +37,7 @@ struct HealthRates {
   double sweeps_hz = 0.0;
   double imu_hz = 0.0;
   double poses_hz = 0.0;
+  double can_frames_hz = 0.0;
 };
 
 class HealthReporter {

@@ -3,13 +3,13 @@
 /// `swliod --record DIR`: the raw bytes of every sensor with their host receive times, in the
 /// layout the recording reader (swlio-run, swlio-replay) and the simulator share:
 ///
-/// | file          | content |
-/// |---------------|---------|
-/// | lidar.pcap    | every LiDAR datagram (MSOP and DIFOP) as received, record time = kernel
-/// receive time (CLOCK_MONOTONIC ns), UDP destination port = the configured port | | imu.xbus |
-/// every byte read from the serial port, in order | | imu.rx.csv    | `byte_offset,bytes,t_rx_ns`:
-/// one row per read(2) | | manifest.yaml | what the daemon was configured with: extrinsic, LiDAR
-/// model and ports, serial baud |
+/// - lidar.pcap: every LiDAR datagram (MSOP and DIFOP) as received; record time = kernel
+///   receive time (CLOCK_MONOTONIC ns); UDP destination port = the configured port.
+/// - imu.xbus: every byte read from the serial port, in order.
+/// - imu.rx.csv: `byte_offset,bytes,t_rx_ns`, one row per read(2).
+/// - can.log (with `can.enabled`): every CAN frame in candump format (`(s.us) can0 123#…`).
+/// - manifest.yaml: what the daemon was configured with (extrinsic, LiDAR model and ports,
+///   serial baud, time base).
 ///
 /// Receive times are written on the daemon's time base (host time; stretched by --time-scale,
 /// time_scale.h, so a simulator recording at N× replays with consistent physics).
@@ -30,6 +30,7 @@
 #include "swlio/daemon/spsc_queue.h"
 #include "swlio/daemon/time_scale.h"
 #include "swlio/daemon/watchdog.h"
+#include "swlio/drivers/can_reader.h"
 #include "swlio/drivers/pcap_file.h"
 
 namespace swlio::daemon {
@@ -61,8 +62,9 @@ class Recorder {
 
   SpscQueue<LidarPacket>& lidar_queue() { return lidar_; }
   SpscQueue<SerialChunk>& serial_queue() { return serial_; }
+  SpscQueue<drivers::CanRxFrame>& can_queue() { return can_; }
   std::vector<QueueCounters> QueueCountersList() const {
-    return {lidar_.Counters(), serial_.Counters()};
+    return {lidar_.Counters(), serial_.Counters(), can_.Counters()};
   }
   /// Writes until `stop` is set, then drains the queues and flushes.
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
@@ -79,6 +81,9 @@ class Recorder {
   TimeScale time_;       ///< receive times are written on the daemon's time base
   SpscQueue<LidarPacket> lidar_{"record_lidar", "lidar_rx", "recorder", 8192};
   SpscQueue<SerialChunk> serial_{"record_serial", "imu_rx", "recorder", 4096};
+  SpscQueue<drivers::CanRxFrame> can_{"record_can", "can_rx", "recorder", 4096};
+  std::string can_interface_;
+  std::ofstream can_log_;
   std::unique_ptr<drivers::PcapWriter> pcap_;
   std::ofstream xbus_;
   std::ofstream rx_csv_;

@@ -22,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include "swlio/daemon/can_rx.h"
 #include "swlio/daemon/daemon_config.h"
 #include "swlio/daemon/estimator_runner.h"
 #include "swlio/daemon/health.h"
@@ -45,6 +46,9 @@ struct RuntimeOptions {
   std::optional<Eigen::Isometry3d> T_imu_lidar;
   /// Record the raw sensor bytes into this folder (recorder.h); empty: no recording.
   std::filesystem::path record_dir;
+  /// With `can.enabled`: read CAN frames from this fd instead of opening `can.interface` (tests
+  /// use a socketpair; not owned). −1: open the interface.
+  int can_fd = -1;
 };
 
 class Runtime {
@@ -85,6 +89,8 @@ class Runtime {
   std::unique_ptr<ipc::Publisher> publisher_;
   std::unique_ptr<LidarRx> lidar_rx_;
   std::unique_ptr<ImuRx> imu_rx_;
+  std::unique_ptr<CanRx> can_rx_;  ///< only with can.enabled
+  int can_socket_ = -1;            ///< the CAN_RAW socket Runtime opened (closed on destruction)
   std::unique_ptr<PropagatorThread> propagator_;
   std::unique_ptr<OptimizerThread> optimizer_;
   std::unique_ptr<PublisherThread> publisher_thread_;
