@@ -64,7 +64,10 @@ int Run(int argc, char** argv) {
     return 2;
   }
   swlio::daemon::DaemonConfig config;
-  if (!LoadChecked(config_path, &config)) return 1;
+  // EX_CONFIG (sysexits.h): the unit's RestartPreventExitStatus= does not restart a daemon
+  // whose configuration is wrong (systemd/README.md).
+  constexpr int kExitConfig = 78;
+  if (!LoadChecked(config_path, &config)) return kExitConfig;
   std::string error;
   if (!swlio::daemon::SetupLogging(config.logging, &error)) {
     std::cerr << "swliod: " << error << "\n";
