@@ -40,6 +40,10 @@ void OptimizerThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle&
     DrainLidar();
     Publish();
   }
+  // Stopping: the rx threads and the propagator have stopped; finish what they queued.
+  while (q_.imu_in->Pop(&sample)) runner_.AddImu(sample);
+  DrainLidar();
+  Publish();
 }
 
 void OptimizerThread::DrainLidar() {

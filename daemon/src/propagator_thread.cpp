@@ -31,6 +31,8 @@ void PropagatorThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle
     Handle(raw);
     if (stage_.counters().samples % 100 == 0) Publish();
   }
+  ApplyStates();  // stopping: the rx threads have stopped; finish what they queued
+  while (q_.imu_in->Pop(&raw)) Handle(raw);
   Publish();
 }
 

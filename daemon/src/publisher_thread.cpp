@@ -31,6 +31,8 @@ void PublisherThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle&
     while (q_.odometry_in->Pop(&estimate)) WriteOdometry(estimate);
     Periodic(MonotonicNowNs());
   }
+  while (q_.poses_in->Pop(&pose)) WritePose(pose);  // stopping: what the others queued last
+  while (q_.odometry_in->Pop(&estimate)) WriteOdometry(estimate);
 }
 
 void PublisherThread::Count(bool ok, std::atomic<uint64_t>* counter) {

@@ -61,7 +61,7 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   live.pty_link = config.imu.device;
   live.start_delay_s = 0.5;
   live.out_dir = dir / "sim";
-  volatile bool stop = false;
+  volatile bool stop = false;  // never set: RunLive's flag is for signal handlers, not threads
   sim::LiveStats stats;
   bool sim_ok = false;
   std::atomic<bool> sim_done{false};
@@ -78,12 +78,11 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
     odometry += subscriber->TakeOdometry().size();
     health += subscriber->TakeHealth().size();
     ready = ready || rt->Ready();
-    if (sim_done || rt->Snapshot().optimizer.processed >= 100) break;
+    if (sim_done) break;  // the 12 s drive has been streamed
   }
-  stop = true;
   simulator.join();
+  rt->Stop();  // the consumers drain what the rx threads received
   const HealthSnapshot s = rt->Snapshot();
-  rt->Stop();
   ASSERT_TRUE(sim_ok) << error;
   EXPECT_TRUE(ready) << "READY condition: sensors stream and the estimator has a state";
   EXPECT_GE(s.optimizer.processed, 90u);
@@ -108,14 +107,14 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   EXPECT_GE(scans, s.optimizer.processed);
   EXPECT_NEAR(ManifestExtrinsic(options.record_dir)->translation().x(),
               setup->lidar.T_imu_lidar.translation().x(), 1e-8);
-  // Lossless whenever the simulator kept its schedule. On a loaded machine it can fall behind
-  // and then write more than the pty holds (it drops and counts those bytes, as a UART would):
-  // the daemon must then report them, not hide them.
-  const bool fed_on_time = stats.imu_bytes_dropped == 0 && stats.max_lateness_ms < 50.0;
-  if (fed_on_time) {
+  // Lossless whenever the simulator delivered everything. On a loaded machine it can fall
+  // behind and then write more than the pty holds (it drops and counts those bytes, as a UART
+  // would): the daemon must then report them, not hide them.
+  const bool fed_everything = stats.imu_bytes_dropped == 0 && stats.udp_errors == 0;
+  if (fed_everything) {
     EXPECT_EQ(s.imu_rx.checksum_errors, 0u);
     EXPECT_EQ(s.imu_rx.missing_packets, 0u);
-    if (!kSanitized) {
+    if (!kSanitized && stats.max_lateness_ms < 50.0) {
       EXPECT_EQ(TotalDrops(s), 0u) << HealthReporter().StatusLine(s);
     }
   } else {

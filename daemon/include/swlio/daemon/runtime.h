@@ -8,9 +8,10 @@
 ///
 /// With --record, a recorder thread takes copies from both rx threads.
 /// Each thread registers with the Watchdog and beats every loop (≤ 100 ms apart when idle).
-/// Stop() first stops and joins the rx threads, then the others (so the recorder and the
-/// estimator see everything that was received). No allocation on the rx threads after
-/// Create().
+/// Stop() stops and joins in stages, upstream first: the rx threads; the propagator; the
+/// optimizer; the publisher and the recorder. Each finishes what is queued for it, so the
+/// estimator, the outputs and the recording see everything that was received.
+/// No allocation on the rx threads after Create().
 
 #include <Eigen/Geometry>
 #include <atomic>
@@ -98,9 +99,13 @@ class Runtime {
   HealthReporter published_health_;          ///< used by the publisher thread only
   std::atomic<uint64_t> sched_failures_{0};  ///< realtime settings a thread could not apply
   std::atomic<bool> stop_rx_{false};
-  std::atomic<bool> stop_{false};
+  std::atomic<bool> stop_propagator_{false};
+  std::atomic<bool> stop_optimizer_{false};
+  std::atomic<bool> stop_out_{false};  ///< publisher, recorder
   std::vector<std::thread> rx_threads_;
-  std::vector<std::thread> threads_;
+  std::vector<std::thread> propagator_threads_;
+  std::vector<std::thread> optimizer_threads_;
+  std::vector<std::thread> out_threads_;
 };
 
 }  // namespace swlio::daemon
