@@ -102,15 +102,16 @@ void Runtime::Spawn(std::vector<std::thread>* group,
 
 void Runtime::Start() {
   auto* rx = &rx_threads_;
-  auto* work = &work_threads_;
   auto* out = &out_threads_;
   Spawn(rx, "lidar_rx", [this](const Watchdog::Handle& b) { lidar_rx_->Run(stop_rx_, b); });
   Spawn(rx, "imu_rx", [this](const Watchdog::Handle& b) { imu_rx_->Run(stop_rx_, b); });
   if (can_rx_) {
     Spawn(rx, "can_rx", [this](const Watchdog::Handle& b) { can_rx_->Run(stop_rx_, b); });
   }
-  Spawn(work, "propagator", [this](const Watchdog::Handle& b) { propagator_->Run(stop_work_, b); });
-  Spawn(work, "optimizer", [this](const Watchdog::Handle& b) { optimizer_->Run(stop_work_, b); });
+  Spawn(&propagator_threads_, "propagator",
+        [this](const Watchdog::Handle& b) { propagator_->Run(stop_propagator_, b); });
+  Spawn(&optimizer_threads_, "optimizer",
+        [this](const Watchdog::Handle& b) { optimizer_->Run(stop_optimizer_, b); });
   Spawn(out, "publisher",
         [this](const Watchdog::Handle& b) { publisher_thread_->Run(stop_out_, b); });
   if (recorder_) {
@@ -120,8 +121,8 @@ void Runtime::Start() {
 
 void Runtime::Stop() {
   for (auto [flag, group] :
-       {std::pair{&stop_rx_, &rx_threads_}, std::pair{&stop_work_, &work_threads_},
-        std::pair{&stop_out_, &out_threads_}}) {
+       {std::pair{&stop_rx_, &rx_threads_}, std::pair{&stop_propagator_, &propagator_threads_},
+        std::pair{&stop_optimizer_, &optimizer_threads_}, std::pair{&stop_out_, &out_threads_}}) {
     flag->store(true);
     for (std::thread& t : *group) {
       if (t.joinable()) t.join();
