@@ -3,14 +3,15 @@
 // pseudo-terminal) into the daemon's Runtime, which publishes over DDS (loopback XML); a
 // subscriber in this process takes every sample.
 //
-// - IMU → pose: from the moment the simulator wrote the frame carrying a sample on the pty to
-//   the moment the subscriber took the IMU-rate pose of that sample. The pose's stamp is the
-//   sample's time on the host clock; it is matched to the nearest simulated sample (400 Hz, so
-//   unambiguous), whose write time the simulator scheduled (start + its receive time).
+// - IMU → pose: from the moment the simulator wrote the frame carrying a sample on the pty
+//   (CLOCK_MONOTONIC just before write(2), recorded by the simulator) to the moment the
+//   subscriber took the IMU-rate pose of that sample. The pose's stamp is the sample's time on
+//   the host clock; it is matched to the nearest simulated sample (400 Hz, so unambiguous).
 // - sweep → odometry: from the sweep's end (its last firing; the last packet leaves ≈ 1.3 ms
 //   later) to the odometry's take. An upper bound of "last packet sent → odometry received".
 //
 // Usage: swlio_daemon_latency [--scenario S] [--seed N] [--duration S] [--dds-config XML]
+//                             [--realtime]   (config/swlio.yaml's thread priorities, SCHED_FIFO)
 // Prints the percentiles and the daemon's drop counters; run on an otherwise idle machine.
 
 #include <CLI/CLI.hpp>
@@ -48,6 +49,7 @@ void Report(const char* what, const std::vector<double>& ms) {
 /// IMU → pose latencies: each pose matched to its simulated sample's pty write time.
 std::vector<double> PoseLatencies(const std::vector<Taken>& poses,
                                   const std::vector<swlio::sim::SimImuSample>& imu,
+                                  const std::vector<int64_t>& written_ns,
                                   int64_t start_ns) {
   std::vector<double> ms;
   for (const Taken& p : poses) {
@@ -57,12 +59,27 @@ std::vector<double> PoseLatencies(const std::vector<Taken>& poses,
     if (it == imu.end()) continue;
     if (it != imu.begin() && t_sim - std::prev(it)->t_true_ns < it->t_true_ns - t_sim) --it;
     if (std::llabs(it->t_true_ns - t_sim) > 1'000'000) continue;  // not matched within 1 ms
-    ms.push_back(static_cast<double>(p.take_ns - (start_ns + it->t_rx_ns)) * 1e-6);
+    const auto k = static_cast<size_t>(it - imu.begin());
+    if (k >= written_ns.size() || written_ns[k] == 0) continue;
+    ms.push_back(static_cast<double>(p.take_ns - written_ns[k]) * 1e-6);
   }
   return ms;
 }
 
-int Run(const std::string& scenario, int seed, double duration_s, const std::string& xml) {
+/// config/swlio.yaml's example thread priorities (realtime.threads), SCHED_FIFO.
+swlio::daemon::RealtimeConfig RealtimeExample() {
+  swlio::daemon::RealtimeConfig r;
+  r.enabled = true;
+  r.threads = {
+      {"lidar_rx", 80, -1}, {"imu_rx", 80, -1}, {"propagator", 70, -1}, {"publisher", 60, -1}};
+  return r;
+}
+
+int Run(const std::string& scenario,
+        int seed,
+        double duration_s,
+        const std::string& xml,
+        bool realtime) {
   const auto setup = swlio::sim::MakeSimSetup(scenario, static_cast<uint64_t>(seed), duration_s);
   if (!setup) return 1;
   swlio::daemon::DaemonConfig config;
@@ -73,6 +90,7 @@ int Run(const std::string& scenario, int seed, double duration_s, const std::str
   config.imu.configure_on_start = false;
   config.ipc.domain_id = 119;
   config.ipc.dds_config_file = xml;
+  if (realtime) config.realtime = RealtimeExample();
   swlio::daemon::RuntimeOptions options;
   options.T_imu_lidar = setup->lidar.T_imu_lidar;
   std::string error;
@@ -87,6 +105,8 @@ int Run(const std::string& scenario, int seed, double duration_s, const std::str
   live.difop_port = rt->difop_port();
   live.pty_link = config.imu.device;
   live.start_delay_s = 1.0;
+  std::vector<int64_t> written_ns;
+  live.imu_write_ns = &written_ns;
   volatile bool stop = false;
   swlio::sim::LiveStats stats;
   std::atomic<bool> done{false};
@@ -107,7 +127,8 @@ int Run(const std::string& scenario, int seed, double duration_s, const std::str
   const swlio::daemon::HealthSnapshot s = rt->Snapshot();
   rt->Stop();
   const auto imu = swlio::sim::SimulateImu(*setup->trajectory, setup->imu, setup->seed);
-  Report("IMU frame written on the pty -> pose taken", PoseLatencies(poses, imu, stats.start_ns));
+  Report("IMU frame written on the pty -> pose taken",
+         PoseLatencies(poses, imu, written_ns, stats.start_ns));
   std::vector<double> odom_ms;
   for (const Taken& o : odometry)
     odom_ms.push_back(static_cast<double>(o.take_ns - o.stamp_ns) * 1e-6);
@@ -133,6 +154,8 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed)->capture_default_str();
   app.add_option("--duration", duration_s, "seconds of the drive")->capture_default_str();
   app.add_option("--dds-config", xml)->capture_default_str();
+  bool realtime = false;
+  app.add_flag("--realtime", realtime, "SCHED_FIFO for the rx, propagator and publisher threads");
   CLI11_PARSE(app, argc, argv);
-  return Run(scenario, seed, duration_s, xml);
+  return Run(scenario, seed, duration_s, xml, realtime);
 }

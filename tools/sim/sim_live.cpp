@@ -151,9 +151,15 @@ bool RunLive(const SimSetup& setup,
       continue;
     }
     burst.clear();
+    const size_t first = i;
     for (const int64_t t = imu[i].t_rx_ns; i < imu.size() && imu[i].t_rx_ns == t; ++i) {
       const size_t n = EncodeImuFrame(imu[i], frame);
       burst.insert(burst.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(n));
+    }
+    if (options.imu_write_ns != nullptr) {
+      options.imu_write_ns->resize(imu.size(), 0);
+      const int64_t now = MonotonicNs();
+      for (size_t k = first; k < i; ++k) (*options.imu_write_ns)[k] = now;
     }
     WritePty(ep.pty_master, burst, stats);
   }

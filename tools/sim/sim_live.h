@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "sim_setup.h"
 
@@ -18,6 +19,9 @@ struct LiveOptions {
   std::string pty_link;           ///< if set, a symlink to the pty's slave device
   std::filesystem::path out_dir;  ///< groundtruth.tum and manifest.yaml (host times) go here
   double start_delay_s = 0.0;     ///< wait after opening the pty before streaming
+  /// If set, receives for every IMU sample (in SimulateImu's order) the CLOCK_MONOTONIC time
+  /// just before its frame was written to the pty (0: not written), for latency measurements.
+  std::vector<int64_t>* imu_write_ns = nullptr;
 };
 
 struct LiveStats {
