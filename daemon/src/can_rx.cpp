@@ -22,13 +22,13 @@ std::unique_ptr<CanRx> CanRx::Create(const drivers::CanConfig& config, int fd, s
     filters.push_back(
         {s.id, s.extended, s.extended ? drivers::kCanMaxExtendedId : drivers::kCanMaxStandardId});
   }
-  return std::unique_ptr<CanRx>(new CanRx(fd, filters, std::move(*decoder)));
+  return std::unique_ptr<CanRx>(new CanRx(fd, filters, *decoder));
 }
 
 CanRx::CanRx(int fd,
              std::span<const drivers::CanIdFilter> filters,
-             drivers::WheelOdomDecoder decoder)
-    : reader_(fd, filters), decoder_(std::move(decoder)) {}
+             const drivers::WheelOdomDecoder& decoder)
+    : reader_(fd, filters), decoder_(decoder) {}
 
 void CanRx::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
   while (!stop.load(std::memory_order_relaxed)) {

@@ -1,6 +1,12 @@
 #include "swlio/daemon/message_conversion.h"
 
 namespace swlio::daemon {
+namespace {
+
+/// Index of (row, col) in a row-major 6×6 ROS covariance.
+size_t Row6(Eigen::Index row, Eigen::Index col) { return static_cast<size_t>(6 * row + col); }
+
+}  // namespace
 
 ipc::Pose ToPose(const State& state) {
   ipc::Pose p;
@@ -15,8 +21,8 @@ ipc::Pose ToPose(const State& state) {
 ipc::Covariance6 PoseCovariance(const estimator::StateCovariance& covariance) {
   ipc::Covariance6 c{};
   if (!covariance.valid) return c;
-  for (int i = 0; i < 6; ++i) {
-    for (int j = 0; j < 6; ++j) c[static_cast<size_t>(6 * i + j)] = covariance.P(i, j);
+  for (Eigen::Index i = 0; i < 6; ++i) {
+    for (Eigen::Index j = 0; j < 6; ++j) c[Row6(i, j)] = covariance.P(i, j);
   }
   return c;
 }
@@ -49,8 +55,8 @@ ipc::Odometry ToOdometryMessage(const State& state,
   if (covariance.valid) {  // body velocity: Rᵀ P_vv R (the attitude's share is neglected)
     const Eigen::Matrix3d P_v =
         R_imu_world * covariance.P.block<3, 3>(6, 6) * R_imu_world.transpose();
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) m.twist_covariance[static_cast<size_t>(6 * i + j)] = P_v(i, j);
+    for (Eigen::Index i = 0; i < 3; ++i) {
+      for (Eigen::Index j = 0; j < 3; ++j) m.twist_covariance[Row6(i, j)] = P_v(i, j);
     }
   }
   return m;

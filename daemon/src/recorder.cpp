@@ -35,7 +35,7 @@ void WriteManifest(const std::filesystem::path& path,
 }  // namespace
 
 Recorder::Recorder(const DaemonConfig& config, const TimeScale& time)
-    : msop_port_(config.lidar.msop_port), difop_port_(config.lidar.difop_port), time_(time) {}
+    : time_(time), msop_port_(config.lidar.msop_port), difop_port_(config.lidar.difop_port) {}
 
 Recorder::~Recorder() = default;
 

@@ -146,9 +146,7 @@ int Run(const Options& opt) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Main(int argc, char** argv) {
   CLI::App app{"swlio-replay: a recording through the daemon's decoders, clocks and estimator"};
   Options opt;
   app.add_option("dir", opt.dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")
@@ -165,10 +163,18 @@ int main(int argc, char** argv) {
   app.add_flag("--deterministic", opt.deterministic,
                "no pacing, no clock reads: byte-identical output on every run");
   CLI11_PARSE(app, argc, argv);
+  return Run(opt);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
   try {
-    return Run(opt);
+    return Main(argc, argv);
   } catch (const std::exception& ex) {
     std::cerr << "swlio-replay: " << ex.what() << "\n";
-    return 2;
+  } catch (...) {
+    std::cerr << "swlio-replay: unknown error\n";
   }
+  return 2;
 }

@@ -44,7 +44,9 @@ class CanRx {
   CanRxCounters counters() const;
 
  private:
-  CanRx(int fd, std::span<const drivers::CanIdFilter> filters, drivers::WheelOdomDecoder decoder);
+  CanRx(int fd,
+        std::span<const drivers::CanIdFilter> filters,
+        const drivers::WheelOdomDecoder& decoder);
   void Publish(bool closed);
 
   drivers::CanReader reader_;

@@ -76,19 +76,20 @@ class Recorder {
   void WritePacket(const LidarPacket& p);
   void Flush();
 
-  uint16_t msop_port_;   ///< written as the UDP ports of MSOP records
-  uint16_t difop_port_;  ///< and of DIFOP records
-  TimeScale time_;       ///< receive times are written on the daemon's time base
+  // In clang-tidy's padding order (the queues are cache-line aligned).
   SpscQueue<LidarPacket> lidar_{"record_lidar", "lidar_rx", "recorder", 8192};
   SpscQueue<SerialChunk> serial_{"record_serial", "imu_rx", "recorder", 4096};
   SpscQueue<drivers::CanRxFrame> can_{"record_can", "can_rx", "recorder", 4096};
-  std::string can_interface_;
-  std::ofstream can_log_;
   std::unique_ptr<drivers::PcapWriter> pcap_;
-  std::ofstream xbus_;
-  std::ofstream rx_csv_;
   uint64_t offset_ = 0;
   std::atomic<uint64_t> lidar_packets_{0}, serial_bytes_{0}, write_errors_{0};
+  TimeScale time_;  ///< receive times are written on the daemon's time base
+  std::string can_interface_;
+  std::ofstream can_log_;
+  std::ofstream xbus_;
+  std::ofstream rx_csv_;
+  uint16_t msop_port_;   ///< written as the UDP ports of MSOP records
+  uint16_t difop_port_;  ///< and of DIFOP records
 };
 
 }  // namespace swlio::daemon

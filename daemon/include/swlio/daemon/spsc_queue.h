@@ -49,11 +49,11 @@ template <class T>
 class SpscQueue {
  public:
   SpscQueue(std::string name, std::string producer, std::string consumer, size_t capacity)
-      : name_(std::move(name)),
-        producer_(std::move(producer)),
-        consumer_(std::move(consumer)),
+      : queue_(capacity),
         capacity_(capacity),
-        queue_(capacity) {}
+        name_(std::move(name)),
+        producer_(std::move(producer)),
+        consumer_(std::move(consumer)) {}
   SpscQueue(const SpscQueue&) = delete;
   SpscQueue& operator=(const SpscQueue&) = delete;
 
@@ -95,14 +95,15 @@ class SpscQueue {
   }
 
  private:
-  std::string name_;
-  std::string producer_;
-  std::string consumer_;
-  size_t capacity_;
+  // In clang-tidy's padding order (moodycamel aligns its indices to cache lines).
   moodycamel::BlockingReaderWriterQueue<T> queue_;
+  size_t capacity_;
   std::atomic<uint64_t> pushed_{0};
   std::atomic<uint64_t> dropped_{0};
   std::atomic<size_t> high_water_{0};
+  std::string name_;
+  std::string producer_;
+  std::string consumer_;
 };
 
 }  // namespace swlio::daemon
