@@ -40,7 +40,13 @@ void EstimatorRunner::AddImu(const ImuSample& sample) {
     return;
   }
   window_->AddImu(sample);
-  while (!waiting_.empty() && waiting_.front().t_end_ns < sample.t_ns) {
+  newest_imu_t_ns_ = sample.t_ns;
+  have_imu_ = true;
+  ProcessCovered();
+}
+
+void EstimatorRunner::ProcessCovered() {
+  while (have_imu_ && !waiting_.empty() && waiting_.front().t_end_ns < newest_imu_t_ns_) {
     Process(waiting_.front());
     waiting_.pop_front();
   }
@@ -56,6 +62,7 @@ void EstimatorRunner::AddScan(Scan&& scan) {
     waiting_.pop_front();
     ++dropped_waiting_;
   }
+  ProcessCovered();
 }
 
 void EstimatorRunner::Process(const Scan& scan) {

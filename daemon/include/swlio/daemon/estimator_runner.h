@@ -2,10 +2,11 @@
 /// @file
 /// Sweeps and IMU samples (host clock, each stream in time order) → estimator results, in
 /// either mode. The one sync rule both the daemon's optimizer thread and swlio-run / replay
-/// use: the tightly coupled window pre-integrates the IMU up to a sweep's end, so a sweep
-/// waits until an IMU sample past its end has arrived (serial bursts and stalls deliver
-/// samples late; otherwise the factor would extrapolate held rates). LiDAR-only mode takes
-/// sweeps as they come. Single-threaded; no clock is read here.
+/// use: the tightly coupled window pre-integrates the IMU up to a sweep's end, so a sweep is
+/// processed once an IMU sample past its end has arrived — at once when one already has (live,
+/// the IMU usually runs ahead of the sweep's last packet), else with that sample (serial bursts
+/// and stalls deliver samples late; otherwise the factor would extrapolate held rates).
+/// LiDAR-only mode takes sweeps as they come. Single-threaded; no clock is read here.
 
 #include <Eigen/Geometry>
 #include <cstddef>
@@ -68,12 +69,16 @@ class EstimatorRunner {
 
  private:
   void Process(const Scan& scan);
+  /// Processes the waiting sweeps whose end the newest IMU sample has passed.
+  void ProcessCovered();
 
   EstimatorMode mode_;
   std::unique_ptr<estimator::LidarOdometry> odometry_;
   std::unique_ptr<estimator::WindowEstimator> window_;
   Sink sink_;
   std::deque<Scan> waiting_;
+  int64_t newest_imu_t_ns_ = 0;
+  bool have_imu_ = false;
   size_t dropped_waiting_ = 0;
 };
 
