@@ -8,8 +8,6 @@
 // processes as fast as possible and guarantees byte-identical output on every run (no clock
 // is read: stage timings are not taken).
 
-#include <time.h>
-
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
@@ -23,6 +21,7 @@
 #include "swlio/daemon/estimator_runner.h"
 #include "swlio/daemon/message_conversion.h"
 #include "swlio/daemon/recording_reader.h"
+#include "swlio/daemon/watchdog.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
 
@@ -34,12 +33,6 @@ struct Options {
   double speed = 1.0;
   bool deterministic = false;
 };
-
-int64_t MonotonicNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 void WriteTum(std::ostream& out, const swlio::State& s) {
   const Eigen::Quaterniond q = swlio::lie::PositiveW(Eigen::Quaterniond(s.T_world_imu.linear()));
@@ -123,10 +116,10 @@ int Run(const Options& opt) {
     const bool imu = e.kind == swlio::daemon::RecordingEvent::Kind::kImu;
     const int64_t t = imu ? e.imu.t_ns : e.scan.t_end_ns;
     if (!opt.deterministic) {  // pace: wait until this event's recorded time (× speed)
-      if (first_event_ns < 0) first_event_ns = t, wall_start_ns = MonotonicNs();
+      if (first_event_ns < 0) first_event_ns = t, wall_start_ns = swlio::daemon::MonotonicNowNs();
       const auto due =
           wall_start_ns + static_cast<int64_t>(static_cast<double>(t - first_event_ns) / opt.speed);
-      const int64_t wait = due - MonotonicNs();
+      const int64_t wait = due - swlio::daemon::MonotonicNowNs();
       if (wait > 0) std::this_thread::sleep_for(std::chrono::nanoseconds(wait));
     }
     if (imu) {
