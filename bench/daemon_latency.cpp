@@ -12,18 +12,21 @@
 //
 // Usage: swlio_daemon_latency [--scenario S] [--seed N] [--duration S] [--dds-config XML]
 //                             [--realtime]   (config/swlio.yaml's thread priorities, SCHED_FIFO)
+//                             [--plain]      (without config/swlio.yaml's nice values)
 // Prints the percentiles and the daemon's drop counters; run on an otherwise idle machine.
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <cstdlib>
 #include <thread>
 #include <vector>
 
 #include "imu_sim.h"
 #include "sim_live.h"
 #include "sim_setup.h"
+#include "swlio/daemon/config_loader.h"
 #include "swlio/daemon/runtime.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/subscriber.h"
@@ -66,12 +69,18 @@ std::vector<double> PoseLatencies(const std::vector<Taken>& poses,
   return ms;
 }
 
-/// config/swlio.yaml's example thread priorities (realtime.threads), SCHED_FIFO.
-swlio::daemon::RealtimeConfig RealtimeExample() {
-  swlio::daemon::RealtimeConfig r;
-  r.enabled = true;
-  r.threads = {
-      {"lidar_rx", 80, -1}, {"imu_rx", 80, -1}, {"propagator", 70, -1}, {"publisher", 60, -1}};
+/// config/swlio.yaml's thread scheduling (`realtime`): its nice values, and with `realtime`
+/// its SCHED_FIFO priorities too; `plain`: none of it (every thread at nice 0).
+swlio::daemon::RealtimeConfig ShippedScheduling(bool realtime, bool plain) {
+  const auto loaded = swlio::daemon::LoadConfigFile(SWLIO_SOURCE_DIR "/config/swlio.yaml");
+  if (!loaded.ok()) {
+    std::fprintf(stderr, "%s", loaded.ErrorReport().c_str());
+    std::exit(1);
+  }
+  swlio::daemon::RealtimeConfig r = loaded.config.realtime;
+  r.enabled = realtime;
+  r.lock_memory = false;
+  if (plain) r.threads.clear();
   return r;
 }
 
@@ -79,7 +88,8 @@ int Run(const std::string& scenario,
         int seed,
         double duration_s,
         const std::string& xml,
-        bool realtime) {
+        bool realtime,
+        bool plain) {
   const auto setup = swlio::sim::MakeSimSetup(scenario, static_cast<uint64_t>(seed), duration_s);
   if (!setup) return 1;
   swlio::daemon::DaemonConfig config;
@@ -90,7 +100,7 @@ int Run(const std::string& scenario,
   config.imu.configure_on_start = false;
   config.ipc.domain_id = 119;
   config.ipc.dds_config_file = xml;
-  if (realtime) config.realtime = RealtimeExample();
+  config.realtime = ShippedScheduling(realtime, plain);
   swlio::daemon::RuntimeOptions options;
   options.T_imu_lidar = setup->lidar.T_imu_lidar;
   std::string error;
@@ -154,8 +164,9 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed)->capture_default_str();
   app.add_option("--duration", duration_s, "seconds of the drive")->capture_default_str();
   app.add_option("--dds-config", xml)->capture_default_str();
-  bool realtime = false;
+  bool realtime = false, plain = false;
   app.add_flag("--realtime", realtime, "SCHED_FIFO for the rx, propagator and publisher threads");
+  app.add_flag("--plain", plain, "no nice values either: every thread at nice 0");
   CLI11_PARSE(app, argc, argv);
-  return Run(scenario, seed, duration_s, xml, realtime);
+  return Run(scenario, seed, duration_s, xml, realtime, plain);
 }

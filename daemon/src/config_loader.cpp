@@ -316,6 +316,18 @@ void Bind(Section s, estimator::DynamicInitializer::Options& c) {
   s.Finish();
 }
 
+void Bind(Section s, estimator::DivergenceConfig& c) {
+  s.Get("enabled", c.enabled);
+  s.Get("max_speed_mps", c.max_speed_mps);
+  s.Get("max_bias_acc_mps2", c.max_bias_acc_mps2);
+  s.Get("max_bias_gyro_radps", c.max_bias_gyro_radps);
+  s.Get("max_failed_sweeps", c.max_failed_sweeps);
+  s.Get("max_prediction_error_m", c.max_prediction_error_m);
+  s.Get("max_prediction_error_rad", c.max_prediction_error_rad);
+  s.Get("max_inconsistent_sweeps", c.max_inconsistent_sweeps);
+  s.Finish();
+}
+
 /// `odometry` is not a key: the estimator takes it from the window's.
 void Bind(Section s, estimator::DynamicBootstrapConfig& c) {
   Bind(s.Child("initializer"), c.initializer);
@@ -359,6 +371,7 @@ void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   s.Get("init_tilt_follows_bias", c.init_tilt_follows_bias);
   s.Get("estimate_gravity_tilt", c.estimate_gravity_tilt);
   Bind(s.Child("bootstrap"), c.bootstrap);
+  Bind(s.Child("divergence"), c.divergence);
   s.Finish();
 }
 
@@ -408,6 +421,7 @@ void Bind(Section s, RealtimeConfig& c) {
     item.Get("name", t.name);
     item.Get("priority", t.priority);
     item.Get("cpu", t.cpu);
+    item.Get("nice", t.nice);
     item.Finish();
   });
   s.Finish();

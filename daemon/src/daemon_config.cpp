@@ -41,6 +41,7 @@ ConfigIssues RealtimeConfig::Validate() const {
             t.name + "'");
     CheckInRange<int64_t>(issues, key + ".priority", t.priority, 0, 99);
     CheckInRange<int64_t>(issues, key + ".cpu", t.cpu, -1, 1023);
+    CheckInRange<int64_t>(issues, key + ".nice", t.nice, -20, 19);
   }
   return issues;
 }

@@ -32,6 +32,7 @@ ipc::DiagnosticStatus LidarStatus(const HealthSnapshot& s, const HealthRates& r)
               {"rx_errors", Count(s.lidar_rx.errors)},
               {"bad_packets", Count(l.bad_packets)},
               {"difop_packets", Count(l.info_packets)},
+              {"difop_errors", Count(l.info_errors)},
               {"missing_packets", Count(l.missing_packets)},
               {"partial_sweeps", Count(l.partial_sweeps)},
               {"clock_offset_s", Num(s.optimizer.lidar_clock.offset_ns * 1e-9, "%.6f")},
@@ -53,6 +54,7 @@ ipc::DiagnosticStatus ImuStatus(const HealthSnapshot& s, const HealthRates& r) {
               {"skipped_bytes", Count(s.imu_rx.skipped_bytes)},
               {"missing_packets", Count(s.imu_rx.missing_packets)},
               {"dropped_samples", Count(s.propagator.dropped)},
+              {"invalid_samples", Count(s.propagator.invalid)},
               {"disconnects", Count(s.imu_rx.disconnects)},
               {"configurations", Count(s.imu_rx.configurations)},
               {"config_failures", Count(s.imu_rx.config_failures)},
@@ -89,6 +91,10 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
             : t == TrackingState::kDegraded     ? ipc::DiagnosticLevel::kWarn
                                                 : ipc::DiagnosticLevel::kError;
   d.message = ToString(t);
+  if (s.optimizer.recovering)
+    d.message += std::string(": re-initializing after ") + s.optimizer.last_divergence;
+  if (s.optimizer.imu_only_s > 0.0)
+    d.message += ": no LiDAR sweeps, IMU only for " + Num(s.optimizer.imu_only_s, "%.1f") + " s";
   d.values = {
       {"state", ToString(t)},
       {"sweeps", Count(s.optimizer.processed)},
@@ -96,7 +102,10 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
       {"solve_ms", Num(s.optimizer.last_update_ms, "%.2f")},
       {"solve_ms_max", Num(s.optimizer.max_update_ms, "%.2f")},
       {"pose_rate_hz", Num(r.poses_hz, "%.1f")},
-      {"sweeps_without_imu_dropped", Count(s.optimizer.dropped_waiting)}};
+      {"sweeps_without_imu_dropped", Count(s.optimizer.dropped_waiting)},
+      {"reinitializations", Count(s.optimizer.reinitializations)},
+      {"imu_only_s", Num(s.optimizer.imu_only_s, "%.2f")},
+      {"last_divergence", s.optimizer.last_divergence}};
   return d;
 }
 
@@ -165,13 +174,14 @@ std::string HealthReporter::StatusLine(const HealthSnapshot& now) {
   std::snprintf(line, sizeof line,
                 "status %s | lidar %.0f pkt/s %.1f sweeps/s, missing %llu | imu %.0f Hz, "
                 "checksum errors %llu, gaps %llu | pose %.0f Hz | update %.1f ms (max %.1f) | "
-                "drops %llu",
+                "drops %llu | reinit %llu",
                 ToString(now.optimizer.tracking), r.lidar_packets_hz, r.sweeps_hz,
                 static_cast<unsigned long long>(now.optimizer.lidar.missing_packets), r.imu_hz,
                 static_cast<unsigned long long>(now.imu_rx.checksum_errors),
                 static_cast<unsigned long long>(now.imu_rx.missing_packets), r.poses_hz,
                 now.optimizer.last_update_ms, now.optimizer.max_update_ms,
-                static_cast<unsigned long long>(TotalDrops(now)));
+                static_cast<unsigned long long>(TotalDrops(now)),
+                static_cast<unsigned long long>(now.optimizer.reinitializations));
   return line;
 }
 

@@ -69,6 +69,13 @@ bool LidarStage::Pop(HostSweep* out) {
   std::swap(out->scan, assembled_.scan);
   out->scan.t_start_ns = clock_.ToHost(out->scan.t_start_ns);
   out->scan.t_end_ns = clock_.ToHost(out->scan.t_end_ns);
+  const int64_t overlap_ns = last_end_ns_ - out->scan.t_start_ns;
+  if (overlap_ns > 0 && overlap_ns <= kMaxAbsorbedOverlapNs) {
+    out->scan.t_start_ns += overlap_ns;  // points keep their dt_ns from the start
+    out->scan.t_end_ns += overlap_ns;
+    ++counters_.overlaps_absorbed;
+  }
+  last_end_ns_ = out->scan.t_end_ns;
   out->host_rx_last_ns = assembled_.host_rx_last_ns;
   out->missing_packets = assembled_.missing_packets;
   ++counters_.sweeps;

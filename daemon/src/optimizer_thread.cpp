@@ -1,21 +1,11 @@
 #include "swlio/daemon/optimizer_thread.h"
 
-#include <time.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <utility>
 
 namespace swlio::daemon {
-namespace {
-
-/// Stage times in this thread's CPU time (what the work took on its core).
-int64_t ThreadCpuNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-}  // namespace
 
 OptimizerThread::OptimizerThread(const drivers::LidarConfig& lidar,
                                  const EstimatorSetup& setup,
@@ -24,7 +14,7 @@ OptimizerThread::OptimizerThread(const drivers::LidarConfig& lidar,
     : q_(queues),
       time_(time),
       lidar_(lidar),
-      runner_(setup, &ThreadCpuNs, [this](const Scan& scan, const estimator::WindowResult& r) {
+      runner_(setup, &ThreadCpuNowNs, [this](const Scan& scan, const estimator::WindowResult& r) {
         OnResult(scan, r);
       }) {}
 
@@ -32,10 +22,11 @@ void OptimizerThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle&
   ImuSample sample;
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
+    q_.wake->Wait(20'000);  // a LiDAR packet or an IMU sample, whichever comes first
     // IMU first: a sweep is processed once a sample past its end has arrived.
-    if (q_.imu_in->WaitPop(&sample, 20'000)) {
+    while (q_.imu_in->Pop(&sample)) {
       runner_.AddImu(sample);
-      while (q_.imu_in->Pop(&sample)) runner_.AddImu(sample);
+      newest_imu_t_ns_ = sample.t_ns;
     }
     DrainLidar();
     Publish();
@@ -67,8 +58,10 @@ int64_t OptimizerThread::LastRxOf(int64_t t_end_ns) const {
 
 TrackingState OptimizerThread::Classify(const estimator::OdometryResult& r) {
   using estimator::OdometryStatus;
-  if (r.status == OdometryStatus::kInitializing) return TrackingState::kInitializing;
+  if (r.status == OdometryStatus::kInitializing)
+    return recovering_ ? TrackingState::kLost : TrackingState::kInitializing;
   if (r.status == OdometryStatus::kSkipped) return tracking_;
+  recovering_ = false;
   failed_in_a_row_ = r.status == OdometryStatus::kMatchFailed ? failed_in_a_row_ + 1 : 0;
   if (failed_in_a_row_ >= kLostAfterSweeps) return TrackingState::kLost;
   if (failed_in_a_row_ > 0 || r.match.degenerate_directions > 0) return TrackingState::kDegraded;
@@ -77,7 +70,18 @@ TrackingState OptimizerThread::Classify(const estimator::OdometryResult& r) {
 
 void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& result) {
   const estimator::OdometryResult& r = result.odometry;
+  reinitializations_ = result.reinitializations;  // the estimator's count
+  if (result.diverged != estimator::DivergenceReason::kNone) {
+    recovering_ = true;
+    last_divergence_ = result.diverged;
+    spdlog::warn(
+        "estimator: state diverged ({}) at the sweep ending {:.3f} s; re-initializing "
+        "(static or moving start) at the last good pose, with a new local map",
+        estimator::ToString(result.diverged),
+        static_cast<double>(time_.ToHost(scan.t_end_ns)) * 1e-9);
+  }
   tracking_ = Classify(r);
+  last_sweep_t_ns_ = scan.t_end_ns;
   degenerate_ = r.match.degenerate_directions;
   last_ms_ = r.times.total_ms;
   max_ms_ = std::max(max_ms_, last_ms_);
@@ -91,6 +95,7 @@ void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& 
   e.update_ms = last_ms_;
   e.scan_last_rx_ns = LastRxOf(scan.t_end_ns);
   e.keyframe = r.keyframe;
+  e.reset = result.diverged != estimator::DivergenceReason::kNone;
   q_.states_out->Push(e);
   q_.odometry_out->Push(e);
 }
@@ -102,9 +107,21 @@ void OptimizerThread::Publish() {
   snapshot_.processed = processed_;
   snapshot_.dropped_waiting = runner_.dropped_waiting();
   snapshot_.tracking = tracking_;
+  const int64_t imu_only_ns = newest_imu_t_ns_ - last_sweep_t_ns_;
+  const bool carried =
+      tracking_ == TrackingState::kTracking || tracking_ == TrackingState::kDegraded;
+  snapshot_.imu_only_s = 0.0;
+  if (carried && last_sweep_t_ns_ > 0 && imu_only_ns > kImuOnlyDegradedNs) {
+    snapshot_.tracking = TrackingState::kDegraded;
+    snapshot_.imu_only_s =
+        static_cast<double>(time_.ToHost(newest_imu_t_ns_) - time_.ToHost(last_sweep_t_ns_)) * 1e-9;
+  }
   snapshot_.degenerate_directions = degenerate_;
   snapshot_.last_update_ms = last_ms_;
   snapshot_.max_update_ms = max_ms_;
+  snapshot_.reinitializations = reinitializations_;
+  snapshot_.recovering = recovering_;
+  snapshot_.last_divergence = estimator::ToString(last_divergence_);
 }
 
 OptimizerCounters OptimizerThread::counters() const {

@@ -39,7 +39,15 @@ void PropagatorThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle
 void PropagatorThread::ApplyStates() {
   SweepEstimate e;
   while (q_.states_in->Pop(&e)) {
-    if (e.status == estimator::OdometryStatus::kInitializing) continue;
+    if (e.reset) {  // the estimator restarted: no output from its diverged state
+      propagator_.Clear();
+      covariance_ = {};
+      continue;
+    }
+    if (e.status == estimator::OdometryStatus::kInitializing ||
+        e.status == estimator::OdometryStatus::kSkipped) {
+      continue;  // no state
+    }
     if (propagator_.SetState(e.state)) {
       covariance_ = e.covariance;
       ++states_;
@@ -72,6 +80,7 @@ void PropagatorThread::Publish() {
   const ImuStageCounters& c = stage_.counters();
   a_samples_.store(c.samples, kRelaxed);
   a_dropped_.store(c.no_sample_time + c.incomplete + c.out_of_order, kRelaxed);
+  a_invalid_.store(c.incomplete, kRelaxed);
   a_poses_.store(poses_, kRelaxed);
   a_states_.store(states_, kRelaxed);
   a_jumps_.store(stage_.clock().jumps, kRelaxed);
@@ -85,6 +94,7 @@ PropagatorCounters PropagatorThread::counters() const {
   PropagatorCounters c;
   c.samples = a_samples_.load(kRelaxed);
   c.dropped = a_dropped_.load(kRelaxed);
+  c.invalid = a_invalid_.load(kRelaxed);
   c.poses = a_poses_.load(kRelaxed);
   c.states = a_states_.load(kRelaxed);
   c.clock_jumps = a_jumps_.load(kRelaxed);

@@ -24,10 +24,8 @@ void PublisherThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle&
   SweepEstimate estimate;
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
-    if (q_.poses_in->WaitPop(&pose, 20'000)) {
-      WritePose(pose);
-      while (q_.poses_in->Pop(&pose)) WritePose(pose);
-    }
+    q_.wake->Wait(20'000);  // a pose or an odometry, whichever comes first
+    while (q_.poses_in->Pop(&pose)) WritePose(pose);
     while (q_.odometry_in->Pop(&estimate)) WriteOdometry(estimate);
     Periodic(MonotonicNowNs());
   }

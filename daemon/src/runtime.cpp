@@ -21,6 +21,15 @@ struct Runtime::Queues {
   SpscQueue<SweepEstimate> states{"states", "optimizer", "propagator", 64};
   SpscQueue<SweepEstimate> odometry{"odometry", "optimizer", "publisher", 64};
   SpscQueue<ImuRatePose> poses{"poses", "propagator", "publisher", 1024};
+  Doorbell optimizer_wake;  // rung by lidar and imu
+  Doorbell publisher_wake;  // rung by poses and odometry
+
+  Queues() {
+    lidar.RingOnPush(&optimizer_wake);
+    imu.RingOnPush(&optimizer_wake);
+    poses.RingOnPush(&publisher_wake);
+    odometry.RingOnPush(&publisher_wake);
+  }
 
   std::vector<QueueCounters> Counters() const {
     return {lidar.Counters(),  imu_raw.Counters(),  imu.Counters(),
@@ -79,11 +88,12 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
       config.imu.baud, propagator, PropagatorQueues{&q.imu_raw, &q.states, &q.imu, &q.poses}, time);
   const EstimatorSetup setup = MakeEstimatorSetup(config, T_imu_lidar, ModeFromConfig(config));
   rt->optimizer_ = std::make_unique<OptimizerThread>(
-      config.lidar, setup, OptimizerQueues{&q.lidar, &q.imu, &q.states, &q.odometry}, time);
+      config.lidar, setup,
+      OptimizerQueues{&q.lidar, &q.imu, &q.states, &q.odometry, &q.optimizer_wake}, time);
   Runtime* self = rt.get();
   rt->publisher_thread_ = std::make_unique<PublisherThread>(
-      rt->publisher_.get(), FrameIds{}, PublisherQueues{&q.poses, &q.odometry}, time,
-      [self](int64_t) { return self->published_health_.Diagnostics(self->Snapshot()); });
+      rt->publisher_.get(), FrameIds{}, PublisherQueues{&q.poses, &q.odometry, &q.publisher_wake},
+      time, [self](int64_t) { return self->published_health_.Diagnostics(self->Snapshot()); });
   return rt;
 }
 

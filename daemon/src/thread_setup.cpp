@@ -3,6 +3,10 @@
 #include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <cerrno>
 
 #include <cstring>
 
@@ -13,14 +17,23 @@ std::string Failure(const char* name, const char* what, int err) {
   return std::string(name) + ": " + what + " failed: " + std::strerror(err);
 }
 
+/// Linux keeps the nice value per thread (pthreads(7)): setpriority on the thread's id.
+void SetNice(const char* name, int64_t nice, std::vector<std::string>* problems) {
+  if (setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), static_cast<int>(nice)) != 0) {
+    problems->push_back(Failure(name, ("nice " + std::to_string(nice)).c_str(), errno));
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> SetUpThisThread(const char* name, const RealtimeConfig& config) {
   std::vector<std::string> problems;
   pthread_setname_np(pthread_self(), name);
-  if (!config.enabled) return problems;
   for (const ThreadSchedConfig& t : config.threads) {
     if (t.name != name) continue;
+    const bool fifo = config.enabled && t.priority > 0;
+    if (t.nice != 0 && !fifo) SetNice(name, t.nice, &problems);
+    if (!config.enabled) continue;
     if (t.priority > 0) {
       sched_param p{};
       p.sched_priority = static_cast<int>(t.priority);

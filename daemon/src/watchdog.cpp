@@ -27,6 +27,12 @@ int64_t SystemdWatchdogIntervalNs() {
   return static_cast<int64_t>(std::min(usec, kMaxUsec)) * 1000;
 }
 
+int64_t ThreadCpuNowNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
 int64_t MonotonicNowNs() {
   timespec ts{};
   clock_gettime(CLOCK_MONOTONIC, &ts);

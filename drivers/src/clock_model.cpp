@@ -49,27 +49,49 @@ void ClockModel::AddToEnvelope(double x, double d) {
   }
 }
 
+// The line under every window minimum that is closest to them in sum (Moon, Skelly, Towsley,
+// "Estimation and removal of clock skew from network delay measurements", INFOCOM 1999: the
+// linear-programming skew estimate). Its optimum is the lower convex hull's edge that spans
+// the minima's mean x. Unlike a least-squares line, a window whose every sample was delayed
+// (a loaded host: its minimum lies high) cannot tilt it; only low points, which delays never
+// make, shape it.
+double ClockModel::HullSlope(size_t count) const {
+  std::vector<const WindowMin*>& hull = hull_;
+  hull.clear();
+  double mean_x = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    const WindowMin* p = &windows_[i];
+    mean_x += p->x;
+    // Windows are in x order: Andrew's monotone chain, lower half.
+    while (hull.size() >= 2) {
+      const WindowMin& a = *hull[hull.size() - 2];
+      const WindowMin& b = *hull.back();
+      if ((b.x - a.x) * (p->d - a.d) - (b.d - a.d) * (p->x - a.x) > 0.0) break;  // left turn
+      hull.pop_back();
+    }
+    hull.push_back(p);
+  }
+  mean_x /= static_cast<double>(count);
+  for (size_t i = 1; i < hull.size(); ++i) {
+    if (hull[i]->x >= mean_x || i + 1 == hull.size()) {
+      const double dx = hull[i]->x - hull[i - 1]->x;
+      return dx > 0.0 ? (hull[i]->d - hull[i - 1]->d) / dx : 0.0;
+    }
+  }
+  return 0.0;
+}
+
 void ClockModel::Fit() {
   // The newest window is still filling: its minimum is not yet representative, so the slope
   // comes from completed windows only (at least 4, else no drift), and every window, the
   // newest included, then lowers the line onto the envelope.
   const size_t completed = windows_.size() - 1;
   c0_ = 0.0;
-  c1_ = 0.0;
   if (completed >= 4) {
-    double sx = 0, sd = 0, sxx = 0, sxd = 0;
-    for (size_t i = 0; i < completed; ++i) {
-      sx += windows_[i].x;
-      sd += windows_[i].d;
-    }
-    const double mx = sx / static_cast<double>(completed);
-    const double md = sd / static_cast<double>(completed);
-    for (size_t i = 0; i < completed; ++i) {
-      sxx += (windows_[i].x - mx) * (windows_[i].x - mx);
-      sxd += (windows_[i].x - mx) * (windows_[i].d - md);
-    }
-    c1_ = sxx > 0.0 ? sxd / sxx : 0.0;
-    c0_ = md - c1_ * mx;
+    const double slope = HullSlope(completed);
+    if (std::abs(slope) * 1e6 <= config_.max_drift_ppm) c1_ = slope;
+  } else {
+    c1_ = 0.0;
   }
   double lowest = windows_.front().d - Predict(windows_.front().x);
   for (const WindowMin& w : windows_) lowest = std::min(lowest, w.d - Predict(w.x));
@@ -88,10 +110,16 @@ int64_t ClockModel::Observe(int64_t sensor_t_ns, int64_t host_rx_ns) {
   if (!windows_.empty()) {
     const double residual = d - Predict(x);
     const int sign = residual > 0 ? 1 : -1;
-    if (std::abs(residual) > static_cast<double>(config_.jump_threshold_ns)) {
+    // In the first window the model rests on its first sample, which may itself have been late
+    // (a loaded host at start): earlier arrivals then only lower the envelope.
+    const bool young = windows_.size() == 1 && sign < 0;
+    if (!young && std::abs(residual) > static_cast<double>(config_.jump_threshold_ns)) {
       jump_run_ = (sign == jump_sign_) ? jump_run_ + 1 : 1;
       jump_sign_ = sign;
-      if (jump_run_ < config_.jump_confirm_samples) {
+      if (jump_run_ == 1) jump_run_start_x_ = x;
+      const bool lasted =
+          sign < 0 || x - jump_run_start_x_ >= static_cast<double>(config_.late_jump_confirm_ns);
+      if (jump_run_ < config_.jump_confirm_samples || !lasted) {
         ++stats_.rejected;
         return ToHost(sensor_t_ns);
       }

@@ -56,18 +56,23 @@ bool IsOldTopFirmware(const uint8_t* b) {
 
 // pitch_cali: 16 × 24-bit big-endian magnitudes in 0.0001°, channels 0–7 negative
 // (rs_driver decoder_RS16.hpp). Blank when the first 4 bytes are each 0x00 or 0xFF.
-bool ParsePitchCali(const uint8_t* p, std::array<double, 16>* angles_deg) {
+// Fills has_vertical_calibration (and the angles) or damaged_vertical_calibration; a blank
+// field (a unit without calibration) is neither.
+void ParsePitchCali(const uint8_t* p, Rs16DifopInfo* d) {
   const bool blank = std::all_of(p, p + 4, [](uint8_t b) { return b == 0x00 || b == 0xFF; });
-  if (blank) return false;
+  if (blank) return;
   std::array<double, 16> a{};
   for (size_t i = 0; i < a.size(); ++i) {
     const double magnitude =
         static_cast<double>(bytes::ReadUBe(p + 3 * i, 3)) * kPitchCaliResolutionDeg;
-    if (magnitude > 90.0) return false;
+    if (magnitude > 90.0) {
+      d->damaged_vertical_calibration = true;
+      return;
+    }
     a[i] = i < 8 ? -magnitude : magnitude;
   }
-  *angles_deg = a;
-  return true;
+  d->vertical_angles_deg = a;
+  d->has_vertical_calibration = true;
 }
 
 // Block flags FF EE and azimuths (0.01°, < 36000) of all 12 blocks; false when any is invalid.
@@ -120,7 +125,7 @@ DecodeStatus ParseRs16Difop(std::span<const uint8_t> packet, Rs16DifopInfo* info
   d.return_mode =
       d.supports_dual_return ? ModeFromByte(p[kDifopReturnMode]) : ReturnMode::kStrongest;
   d.time_valid = ParseTime(p + kDifopTime, TimeFormat::kYmd, &d.t_sensor_ns);
-  d.has_vertical_calibration = ParsePitchCali(p + kDifopPitchCali, &d.vertical_angles_deg);
+  ParsePitchCali(p + kDifopPitchCali, &d);
   *info = d;
   return DecodeStatus::kOk;
 }
@@ -137,6 +142,7 @@ Rs16Decoder::Rs16Decoder(const LidarConfig& config, Rs16DecoderOptions options)
     const auto i = static_cast<size_t>(c);
     vertical_deg_[i] = config.vertical_angles_deg[kNominalRingOfChannel[i]];
   }
+  configured_vertical_deg_ = vertical_deg_;
   UpdateLaserTables();
 }
 
@@ -272,6 +278,13 @@ DecodeStatus Rs16Decoder::DecodeInfo(std::span<const uint8_t> packet) {
   Rs16DifopInfo info;
   const DecodeStatus status = ParseRs16Difop(packet, &info);
   if (status != DecodeStatus::kOk) return status;
+  if (info.damaged_vertical_calibration) return DecodeStatus::kImplausible;
+  if (info.has_vertical_calibration) {
+    for (size_t c = 0; c < info.vertical_angles_deg.size(); ++c) {
+      const double off = std::abs(info.vertical_angles_deg[c] - configured_vertical_deg_[c]);
+      if (!(off <= kMaxCalibrationDeviationDeg)) return DecodeStatus::kImplausible;
+    }
+  }
   if (info.rpm >= 60.0 && info.rpm <= 2400.0) rpm_ = info.rpm;
   if (info.return_mode != ReturnMode::kUnknown) return_mode_ = info.return_mode;
   if (options_.distance_resolution_m <= 0.0 && info.distance_resolution_m != resolution_m_) {

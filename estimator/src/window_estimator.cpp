@@ -82,7 +82,8 @@ WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn no
       matcher_(config.odometry.matcher),
       huber_(config.huber_m / config.lidar_sigma_m),
       extrinsic_(kPoseSize),
-      gravity_tilt_(kGravityTiltSize, 0.0) {
+      gravity_tilt_(kGravityTiltSize, 0.0),
+      divergence_(config.divergence) {
   PoseToParameters(config.odometry.T_imu_lidar, extrinsic_.data());
   ResetExtrinsicPrior();
   if (config.calibrate_extrinsic_s > 0.0) {
@@ -125,6 +126,9 @@ void WindowEstimator::AddImu(const ImuSample& sample) {
   if (initializer_.Add(sample).status == InitStatus::kInitialized && lidar_agrees) {
     initialized_ = true;
     init_state_ = initializer_.result().state;
+    const Eigen::Isometry3d T_fix = AnchorFor(init_state_.T_world_imu, init_state_.t_ns, false);
+    init_state_.T_world_imu = T_fix * init_state_.T_world_imu;
+    anchor_.reset();
     imu_.assign(1, sample);
     bootstrap_.Reset();
     return;
@@ -140,13 +144,22 @@ void WindowEstimator::StartFromBootstrap() {
   const BootstrapResult& r = bootstrap_.result();
   initialized_ = true;
   init_state_ = r.state;
+  // Anchored where the new world starts: the alignment window's oldest sweep.
+  const std::vector<BootstrapKeyframe>& kfs = bootstrap_.keyframes();
+  const Eigen::Isometry3d T_fix =
+      kfs.empty()
+          ? AnchorFor(r.state.T_world_imu, r.state.t_ns, true)
+          : AnchorFor(kfs.front().T_world_lidar * T_imu_lidar().inverse(), kfs.front().t_ns, true);
+  init_state_.T_world_imu = T_fix * r.state.T_world_imu;
+  init_state_.vel_world = T_fix.linear() * r.state.vel_world;
+  anchor_.reset();
   // The first frame's prior from the alignment's own uncertainty (never tighter than the
   // configured static one).
   init_sigma_velocity_mps_ = std::max(config_.init_sigma_velocity_mps, r.velocity_std_mps);
   init_sigma_tilt_rad_ = std::max(config_.init_sigma_rotation_rad, r.gravity_tilt_std_rad);
   init_sigma_bias_acc_mps2_ = std::max(config_.init_sigma_bias_acc_mps2, r.bias_acc_std.maxCoeff());
-  for (const BootstrapKeyframe& kf : bootstrap_.keyframes()) {
-    InsertKeyframe(kf.T_world_lidar, kf.planes_lidar, kf.edges_lidar);
+  for (const BootstrapKeyframe& kf : kfs) {
+    InsertKeyframe(T_fix * kf.T_world_lidar, kf.planes_lidar, kf.edges_lidar);
   }
   while (imu_.size() > 1 && imu_[1].t_ns <= init_state_.t_ns) imu_.pop_front();
 }
@@ -261,6 +274,7 @@ Eigen::MatrixXd WindowEstimator::CorrelatedInitialPriorW(const Frame& f) const {
 WindowResult WindowEstimator::AddScan(const Scan& scan) {
   StageTimer timer(now_ns_);
   WindowResult out;
+  out.reinitializations = reinitializations_;  // also on the results while re-initializing
   OdometryResult& result = out.odometry;
   result.points_in = scan.points.size();
   if (calibration_) calibration_->AddScan(scan);
@@ -272,7 +286,10 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     }
     return out;
   }
-  if (scan.t_start_ns < t_last) return out;  // skipped
+  if (scan.t_start_ns < t_last) {  // out of order or overlapping: not used
+    result.status = OdometryStatus::kSkipped;
+    return out;
+  }
 
   PropagateAndExtract(scan, &result);
   const Eigen::Quaterniond Q = GravityTiltRotation(gravity_tilt_.data());
@@ -293,7 +310,12 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     // factor: starting from the registered pose put a 10⁸ cost on that factor, which the
     // solver did not work off in its iterations.
     const std::array<double, kPoseSize> predicted = frame->pose;
-    if (config_.prealign) Prealign(frame.get());
+    if (config_.prealign && Prealign(frame.get())) {
+      const Eigen::Isometry3d d =
+          PoseFromParameters(predicted.data()).inverse() * PoseFromParameters(frame->pose.data());
+      out.prediction_error_m = d.translation().norm();
+      out.prediction_error_rad = Eigen::AngleAxisd(d.linear()).angle();
+    }
     Relinearize(frame.get(), &result.match, &degenerate);
     frame->pose = predicted;
   }
@@ -318,6 +340,17 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   result.status = OdometryStatus::kTracking;
   if (have_map && newest.plane_factors + newest.line_factors < config_.odometry.min_inliers) {
     result.status = OdometryStatus::kMatchFailed;  // the IMU carries this frame
+  }
+  out.diverged = CheckDivergence(out);
+  out.reinitializations = reinitializations_;  // counting this sweep's
+  if (out.diverged != DivergenceReason::kNone) {
+    const StageTimes times = result.times;
+    result = OdometryResult{};  // kInitializing: nothing of this sweep is to be used
+    result.times = times;
+    result.times.optimize_ms += timer.Lap();
+    result.times.total_ms =
+        result.times.frontend_ms + result.times.match_ms + result.times.optimize_ms;
+    return out;
   }
   const Eigen::Isometry3d T_world_lidar = PoseFromParameters(newest.pose.data()) * T_imu_lidar();
   result.keyframe = IsKeyframe(T_world_lidar);

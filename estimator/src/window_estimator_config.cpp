@@ -13,6 +13,7 @@ ConfigIssues WindowEstimatorConfig::Validate() const {
         issues.push_back({"bootstrap." + issue.key, issue.reason});
     }
   }
+  AppendWithPrefix(issues, "divergence", divergence.Validate());
   CheckInRange<size_t>(issues, "window_size", window_size, 2, 50);
   CheckInRange(issues, "max_iterations", max_iterations, 1, 50);
   CheckInRange(issues, "reassociations", reassociations, 0, 5);

@@ -64,6 +64,46 @@ TEST(LidarStage, AssemblesSweepsOnTheHostClock) {
   EXPECT_TRUE(stage.clock().valid);
 }
 
+// Sweeps of a stage fed five revolutions, packet k received rx_delay_ns(k) after it left.
+template <typename Delay>
+std::vector<HostSweep> FiveRevolutions(LidarStage* stage, Delay rx_delay_ns) {
+  std::vector<HostSweep> sweeps;
+  HostSweep sweep;
+  for (int k = 0; k < 75 * 5; ++k) {
+    stage->Add(Msop(k), kHost0 + int64_t{k} * kPacketNs + 1'323'000 + rx_delay_ns(k));
+    while (stage->Pop(&sweep)) sweeps.push_back(sweep);
+  }
+  return sweeps;
+}
+
+// The first two sweeps arrive 450 µs later than the rest: the lower envelope then steps down
+// and maps the third sweep to start before the second ended, which the estimator would skip.
+TEST(LidarStage, AClockRefitThatMapsASweepBackIsAbsorbed) {
+  LidarStage stage{drivers::LidarConfig{}};
+  const auto sweeps =
+      FiveRevolutions(&stage, [](int k) { return 200'000 + (k < 150 ? 450'000 : 0); });
+  ASSERT_GE(sweeps.size(), 4u);
+  for (size_t i = 1; i < sweeps.size(); ++i) {
+    EXPECT_GE(sweeps[i].scan.t_start_ns, sweeps[i - 1].scan.t_end_ns) << "sweep " << i;
+    EXPECT_LT(sweeps[i].scan.t_start_ns - sweeps[i - 1].scan.t_end_ns, 1'000'000) << i;
+  }
+  EXPECT_GE(stage.counters().overlaps_absorbed, 1u);
+}
+
+// A step back larger than a re-fit can explain (a clock jump) is passed on unchanged.
+TEST(LidarStage, ALargerStepBackIsNotHidden) {
+  LidarStage stage{drivers::LidarConfig{}};
+  const auto sweeps =
+      FiveRevolutions(&stage, [](int k) { return 200'000 + (k < 150 ? 5'000'000 : 0); });
+  ASSERT_GE(sweeps.size(), 4u);
+  bool overlapped = false;
+  for (size_t i = 1; i < sweeps.size(); ++i) {
+    overlapped = overlapped || sweeps[i].scan.t_start_ns < sweeps[i - 1].scan.t_end_ns;
+  }
+  EXPECT_TRUE(overlapped);
+  EXPECT_EQ(stage.counters().overlaps_absorbed, 0u);
+}
+
 TEST(LidarStage, RejectsAnUnknownModel) {
   drivers::LidarConfig config;
   config.model = "hdl64";

@@ -86,5 +86,34 @@ TEST(HealthReporter, ReportsRatesStatesAndDrops) {
   EXPECT_EQ(silent.status[1].message, "device not open");
 }
 
+TEST(HealthReporter, SaysWhyTheEstimatorIsLostWhileItReinitializes) {
+  HealthSnapshot s;
+  s.t_ns = 1'000'000'000;
+  s.optimizer.tracking = TrackingState::kLost;
+  s.optimizer.recovering = true;
+  s.optimizer.reinitializations = 2;
+  s.optimizer.last_divergence = "speed out of bounds";
+  HealthReporter r;
+  const ipc::DiagnosticArray d = r.Diagnostics(s);
+  EXPECT_EQ(d.status[2].level, ipc::DiagnosticLevel::kError);
+  EXPECT_EQ(d.status[2].message, "lost: re-initializing after speed out of bounds");
+  bool counted = false;
+  for (const auto& kv : d.status[2].values)
+    counted |= kv.key == "reinitializations" && kv.value == "2";
+  EXPECT_TRUE(counted);
+  EXPECT_NE(r.StatusLine(s).find("reinit 2"), std::string::npos);
+}
+
+TEST(HealthReporter, SaysHowLongTheImuAloneHasCarriedTheState) {
+  HealthSnapshot s;
+  s.t_ns = 1'000'000'000;
+  s.optimizer.tracking = TrackingState::kDegraded;
+  s.optimizer.imu_only_s = 1.25;
+  HealthReporter r;
+  const ipc::DiagnosticArray d = r.Diagnostics(s);
+  EXPECT_EQ(d.status[2].level, ipc::DiagnosticLevel::kWarn);
+  EXPECT_EQ(d.status[2].message, "degraded: no LiDAR sweeps, IMU only for 1.2 s");
+}
+
 }  // namespace
 }  // namespace swlio::daemon

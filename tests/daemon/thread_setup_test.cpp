@@ -6,6 +6,10 @@
 #include <gtest/gtest.h>
 #include <pthread.h>
 #include <sched.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <cerrno>
 
 #include <thread>
 
@@ -61,6 +65,34 @@ TEST(ThreadSetup, PinsTheThreadAndReportsWhatItCannotApply) {
   config.enabled = false;
   std::thread c([&] { EXPECT_TRUE(SetUpThisThread("publisher", config).empty()); });
   c.join();
+}
+
+TEST(ThreadSetup, SetsTheNiceValueOfThisThreadOnlyEvenWithoutRealtime) {
+  RealtimeConfig config;  // enabled: false
+  config.threads = {{"optimizer", 0, -1, 5}};
+  int nice = 0;
+  std::vector<std::string> problems;
+  std::thread t([&] {
+    problems = SetUpThisThread("optimizer", config);
+    errno = 0;
+    nice = getpriority(PRIO_PROCESS, static_cast<id_t>(gettid()));
+  });
+  t.join();
+  EXPECT_TRUE(problems.empty());
+  EXPECT_EQ(nice, 5);
+  EXPECT_EQ(getpriority(PRIO_PROCESS, static_cast<id_t>(gettid())), 0) << "other threads keep 0";
+}
+
+TEST(RealtimeConfig, NiceIsLoadedAndBounded) {
+  const LoadedConfig ok =
+      LoadConfigText("config_version: 1\nrealtime:\n  threads:\n    - {name: imu_rx, nice: -10}\n",
+                     "t.yaml", "/etc/swlio");
+  ASSERT_TRUE(ok.ok()) << ok.ErrorReport();
+  EXPECT_EQ(ok.config.realtime.threads[0].nice, -10);
+  const LoadedConfig bad =
+      LoadConfigText("config_version: 1\nrealtime:\n  threads:\n    - {name: imu_rx, nice: -21}\n",
+                     "t.yaml", "/etc/swlio");
+  EXPECT_THAT(bad.ErrorReport(), HasSubstr("realtime.threads[0].nice"));
 }
 
 }  // namespace

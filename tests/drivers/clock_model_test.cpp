@@ -53,6 +53,55 @@ TEST(ClockModel, RecoversOffsetAndDriftThroughBursts) {
   EXPECT_EQ(model.stats().jumps, 0u);
 }
 
+// A loaded host: for two whole seconds every sample arrives 20–25 ms late (the reader was not
+// scheduled in time). Those windows' minima lie high; the drift must not follow them (a
+// least-squares line through the minima read thousands of ppm here in a live run).
+TEST(ClockModel, WindowsOfLateArrivalsDoNotTiltTheDrift) {
+  Stream st;
+  ClockModelConfig config;
+  config.fixed_latency_ns = st.latency_ns;
+  ClockModel model(config);
+  double worst_ns = 0.0;
+  double worst_ppm = 0.0;
+  for (int64_t host = 1'000'000'000; host < 41'000'000'000; host += st.period_ns) {
+    const bool loaded = host >= 4'000'000'000 && host < 6'000'000'000;
+    model.Observe(st.Sensor(host), st.Arrival(host) + (loaded ? 20'000'000 : 0));
+    if (host > 7'000'000'000) {
+      worst_ns =
+          std::max(worst_ns, std::abs(static_cast<double>(model.ToHost(st.Sensor(host)) - host)));
+      worst_ppm = std::max(worst_ppm, std::abs(model.stats().drift_ppm + 100.0));
+    }
+  }
+  EXPECT_LT(worst_ns, 500'000.0) << "mapped within 0.5 ms";
+  EXPECT_LT(worst_ppm, 20.0) << "worst drift error after the load";
+  EXPECT_EQ(model.stats().jumps, 0u);
+}
+
+// The first two seconds all arrive 100 ms late (a sender or reader behind on a loaded host):
+// two of the first four windows lie high, which no line through the minima can ignore; a drift
+// that no clock has is refused, and the mapping is right once punctual samples arrive.
+TEST(ClockModel, LateFirstWindowsDoNotGiveAnImpossibleDrift) {
+  Stream st;
+  ClockModelConfig config;
+  config.fixed_latency_ns = st.latency_ns;
+  ClockModel model(config);
+  double worst_ns = 0.0;
+  double worst_ppm = 0.0;
+  for (int64_t host = 1'000'000'000; host < 21'000'000'000; host += st.period_ns) {
+    const bool late = host < 3'000'000'000;
+    model.Observe(st.Sensor(host), st.Arrival(host) + (late ? 100'000'000 : 0));
+    if (host > 4'000'000'000) {
+      worst_ns =
+          std::max(worst_ns, std::abs(static_cast<double>(model.ToHost(st.Sensor(host)) - host)));
+      worst_ppm = std::max(worst_ppm, std::abs(model.stats().drift_ppm));
+    }
+  }
+  EXPECT_LT(worst_ns, 500'000.0) << "mapped within 0.5 ms";
+  EXPECT_LE(worst_ppm, config.max_drift_ppm);
+  EXPECT_NEAR(model.stats().drift_ppm, -100.0, 5.0) << "at the end";
+  EXPECT_EQ(model.stats().jumps, 0u);
+}
+
 TEST(ClockModel, UnwrapsAWrappingCounter) {
   Stream st;
   st.offset_ns = 429'490'000'000'000.0;  // SampleTimeFine wraps at 2³² × 100 µs ≈ 429,496.73 s
@@ -89,6 +138,47 @@ TEST(ClockModel, DetectsAJumpAndRelocks) {
   EXPECT_EQ(model.stats().jumps, 1u);
   EXPECT_GE(model.stats().rejected, 4u);
   EXPECT_LT(std::abs(static_cast<double>(model.ToHost(st.Sensor(19'900'000'000)) - 19'900'000'000)),
+            500'000.0);
+}
+
+// A stalled sender (a loaded host): for 0.6 s every sample arrives 250–400 ms late, the backlog
+// draining. Not a jump, and those samples are still mapped right. A sensor clock set back by
+// 10 s, which also makes samples look late, is confirmed a second later.
+TEST(ClockModel, ABacklogIsNotAJumpButAClockSetBackIs) {
+  Stream st;
+  ClockModelConfig config;
+  config.fixed_latency_ns = st.latency_ns;
+  ClockModel model(config);
+  double worst_ns = 0.0;
+  for (int64_t host = 0; host < 10'000'000'000; host += st.period_ns) {
+    const bool stalled = host >= 6'000'000'000 && host < 6'600'000'000;
+    const int64_t backlog = stalled ? 400'000'000 - (host - 6'000'000'000) / 4 : 0;
+    const int64_t mapped = model.Observe(st.Sensor(host), st.Arrival(host) + backlog);
+    if (host > 5'000'000'000) worst_ns = std::max(worst_ns, std::abs(double(mapped - host)));
+  }
+  EXPECT_EQ(model.stats().jumps, 0u);
+  EXPECT_LT(worst_ns, 500'000.0);
+  st.offset_ns -= 10e9;  // the sensor's clock is set back by 10 s
+  for (int64_t host = 10'000'000'000; host < 14'000'000'000; host += st.period_ns) {
+    model.Observe(st.Sensor(host), st.Arrival(host));
+  }
+  EXPECT_EQ(model.stats().jumps, 1u);
+  EXPECT_LT(std::abs(static_cast<double>(model.ToHost(st.Sensor(13'900'000'000)) - 13'900'000'000)),
+            500'000.0);
+}
+
+// The very first sample arrives 300 ms late (the reader started under load): the punctual ones
+// after it lower the young model instead of counting as a jump.
+TEST(ClockModel, ALateFirstSampleIsNotAJump) {
+  Stream st;
+  ClockModelConfig config;
+  config.fixed_latency_ns = st.latency_ns;
+  ClockModel model(config);
+  for (int64_t host = 0; host < 5'000'000'000; host += st.period_ns) {
+    model.Observe(st.Sensor(host), st.Arrival(host) + (host == 0 ? 300'000'000 : 0));
+  }
+  EXPECT_EQ(model.stats().jumps, 0u);
+  EXPECT_LT(std::abs(static_cast<double>(model.ToHost(st.Sensor(4'900'000'000)) - 4'900'000'000)),
             500'000.0);
 }
 

@@ -161,16 +161,25 @@ TEST(Rs16Decoder, AzimuthWrapsAndJumpsUseNominalStep) {
 }
 
 TEST(Rs16Decoder, DifopSetsDualModeCalibrationRpmAndPorts) {
-  Rs16Decoder d(OpenRangeConfig());
+  // An unusual channel order, configured as such (the configuration is by ring in the nominal
+  // channel order), so that the DIFOP's calibration (0.05° off it) is plausible.
+  const std::array<double, 16> by_channel = {-1, -3, -5, -7, -9, -11, -13, -15,
+                                             2,  4,  6,  8,  10, 12,  14,  0};
+  LidarConfig config = OpenRangeConfig();
+  for (size_t c = 0; c < 16; ++c)
+    config.vertical_angles_deg[rs16::kNominalRingOfChannel[c]] = by_channel[c];
+  Rs16Decoder d(config);
   Rs16DifopContent info;
   info.rpm = 1200;
   info.msop_port = 2244;
   info.difop_port = 7788;
   info.return_mode = ReturnMode::kDual;
-  info.vertical_angles_deg = {-1, -3, -5, -7, -9, -11, -13, -15, 2, 4, 6, 8, 10, 12, 14, 0};
+  for (size_t c = 0; c < 16; ++c)
+    info.vertical_angles_deg[c] = by_channel[c] + (c < 8 ? -0.05 : 0.05);
   Packet difop(1248);
   ASSERT_TRUE(EncodeRs16Difop(info, difop));
   ASSERT_EQ(d.DecodeInfo(difop), DecodeStatus::kOk);
+  EXPECT_NEAR(d.vertical_deg_by_channel()[0], -1.05, 1e-9);
   EXPECT_EQ(d.Rpm(), 1200.0);
   EXPECT_EQ(d.return_mode(), ReturnMode::kDual);
   EXPECT_EQ(d.difop().msop_dst_port, 2244);
@@ -204,6 +213,26 @@ TEST(Rs16Decoder, BlankDifopCalibrationKeepsConfigAngles) {
   EXPECT_EQ(d.vertical_deg_by_channel()[15], 1.0);
   difop[0] = 0;
   EXPECT_EQ(d.DecodeInfo(difop), DecodeStatus::kBadHeader);
+}
+
+// One flipped bit (2^14 · 0.0001° = 1.64°) in a calibration angle: the DIFOP is damaged, and
+// nothing of it (not even its rpm) is adopted.
+TEST(Rs16Decoder, DamagedDifopCalibrationIsRefused) {
+  Rs16Decoder d(OpenRangeConfig());
+  Rs16DifopContent info;
+  info.rpm = 1200;
+  info.vertical_angles_deg[3] -= 0.03;  // a factory calibration: adopted
+  Packet difop(1248);
+  ASSERT_TRUE(EncodeRs16Difop(info, difop));
+  ASSERT_EQ(d.DecodeInfo(difop), DecodeStatus::kOk);
+  EXPECT_NEAR(d.vertical_deg_by_channel()[3], -9.03, 1e-9);
+  info.rpm = 300;
+  Packet damaged(1248);
+  ASSERT_TRUE(EncodeRs16Difop(info, damaged));
+  damaged[rs16::kDifopPitchCali + 3 * 3 + 1] ^= 0x40;  // bit 14 of channel 3's magnitude
+  EXPECT_EQ(d.DecodeInfo(damaged), DecodeStatus::kImplausible);
+  EXPECT_EQ(d.Rpm(), 1200.0);
+  EXPECT_NEAR(d.vertical_deg_by_channel()[3], -9.03, 1e-9);
 }
 
 TEST(Rs16Decoder, LensOffsetAlongTheFiringAzimuth) {

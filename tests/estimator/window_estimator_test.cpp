@@ -49,6 +49,31 @@ TEST(WindowEstimator, StandingStillTheImuHoldsThePoseAndTheWindowSlides) {
   EXPECT_EQ(r.odometry.times.total_ms, 0.0) << "no clock injected: no timings";
 }
 
+// A sweep that starts before the newest frame (out of order) is not used, and says so: a
+// consumer must not take its empty state, nor read it as "initializing again".
+TEST(WindowEstimator, AnOutOfOrderSweepIsSkippedAndTrackingGoesOn) {
+  WindowEstimatorConfig config;
+  config.window_size = 4;
+  WindowEstimator estimator(config);
+  int64_t t = 0;
+  for (; t < 2 * kNsPerSec; t += 2'500'000) estimator.AddImu(LevelImu(t));
+  ASSERT_TRUE(estimator.initialized());
+  for (int sweep = 0; sweep < 3; ++sweep) {
+    const int64_t t_end = t + 100 * kNsPerMs;
+    for (; t < t_end; t += 2'500'000) estimator.AddImu(LevelImu(t));
+    const OdometryStatus s = estimator.AddScan(WallSweep(t_end - 100 * kNsPerMs)).odometry.status;
+    ASSERT_TRUE(s == OdometryStatus::kTracking || s == OdometryStatus::kMatchFailed);  // used
+  }
+  const WindowResult late = estimator.AddScan(WallSweep(t - 150 * kNsPerMs));
+  EXPECT_EQ(late.odometry.status, OdometryStatus::kSkipped);
+  const int64_t t_end = t + 100 * kNsPerMs;
+  for (; t < t_end; t += 2'500'000) estimator.AddImu(LevelImu(t));
+  const WindowResult next = estimator.AddScan(WallSweep(t_end - 100 * kNsPerMs));
+  EXPECT_TRUE(next.odometry.status == OdometryStatus::kTracking ||
+              next.odometry.status == OdometryStatus::kMatchFailed);
+  EXPECT_EQ(next.odometry.state.t_ns, t_end - kNsPerMs);  // WallSweep lasts 99 ms
+}
+
 TEST(WindowEstimator, WithTheGravityTiltThePriorAlsoSpansIt) {
   WindowEstimatorConfig config;
   config.window_size = 4;

@@ -6,6 +6,9 @@
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <mutex>
+#include <system_error>
+#include <vector>
 
 namespace swlio::test {
 
@@ -29,6 +32,38 @@ std::filesystem::path SourceDir() {
   return SWLIO_SOURCE_DIR;
 }
 
+namespace {
+
+/// The folders MakeTempDir made, removed when the test process exits (a test's outputs are
+/// seconds of sensor data each; they used to pile up in /tmp). SWLIO_KEEP_TEST_DIRS=1 keeps them.
+class TempDirRegistry {
+ public:
+  void Add(const std::filesystem::path& dir) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    dirs_.push_back(dir);
+  }
+  ~TempDirRegistry() {
+    if (std::getenv("SWLIO_KEEP_TEST_DIRS") != nullptr || ::getpid() != pid_) return;
+    std::error_code ec;
+    for (const auto& dir : dirs_) std::filesystem::remove_all(dir, ec);
+  }
+  TempDirRegistry() = default;
+  TempDirRegistry(const TempDirRegistry&) = delete;
+  TempDirRegistry& operator=(const TempDirRegistry&) = delete;
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::filesystem::path> dirs_;
+  pid_t pid_ = ::getpid();  ///< a forked child must not remove its parent's folders
+};
+
+TempDirRegistry& TempDirs() {
+  static TempDirRegistry registry;
+  return registry;
+}
+
+}  // namespace
+
 std::filesystem::path MakeTempDir(const std::string& tag) {
   static std::atomic<int> counter{0};
   const auto dir =
@@ -36,6 +71,7 @@ std::filesystem::path MakeTempDir(const std::string& tag) {
                                                 "_" + std::to_string(counter.fetch_add(1)));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  TempDirs().Add(dir);
   return dir;
 }
 

@@ -18,7 +18,8 @@ std::filesystem::path DataFile(const std::string& relative);
 /// The checkout's root (for config/ and other checked-in files).
 std::filesystem::path SourceDir();
 
-/// A fresh empty directory under the system temp dir, unique per call.
+/// A fresh empty directory under the system temp dir, unique per call; removed with everything
+/// in it when the test process exits (SWLIO_KEEP_TEST_DIRS=1 keeps it).
 std::filesystem::path MakeTempDir(const std::string& tag);
 
 /// A program built next to the running test (build/bin/<name>), or empty when absent.

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "sim_recording.h"
+#include "shared_sim_recording.h"
 #include "sim_setup.h"
 #include "state_nees.h"
 #include "swlio/eval/evaluate.h"
@@ -37,15 +37,15 @@ size_t CountLines(const fs::path& path, std::string* first) {
 class RunOnShortDrive : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(test::MakeTempDir("swlio_run"));
-    auto setup = sim::MakeSimSetup("short", 11, 25.0);
-    sim::RecordingStats stats;
     std::string error;
-    recorded_ = setup && sim::WriteRecording(*setup, *dir_, &stats, &error);
+    dir_ = new fs::path(test::SharedSimRecording("short", 11, 25.0, &error));
+    out_ = new fs::path(test::MakeTempDir("swlio_run"));
+    recorded_ = !dir_->empty();
   }
   static void TearDownTestSuite() {
     delete dir_;
-    dir_ = nullptr;
+    delete out_;
+    dir_ = out_ = nullptr;
   }
   void SetUp() override {
     tool_ = test::ToolPath("swlio-run");
@@ -59,14 +59,15 @@ class RunOnShortDrive : public ::testing::Test {
                              options);
   }
 
-  static inline fs::path* dir_ = nullptr;
+  static inline fs::path* dir_ = nullptr;  ///< the shared recording (read only)
+  static inline fs::path* out_ = nullptr;  ///< this process's outputs
   static inline bool recorded_ = false;
   fs::path tool_;
 };
 
 TEST_F(RunOnShortDrive, LidarOnlyFollowsTheSimulatedDrive) {
   const fs::path& tool = tool_;
-  const fs::path dir = *dir_ / "lidar-only";
+  const fs::path dir = *out_ / "lidar-only";
   fs::create_directories(dir);
 
   int code = 0;
@@ -101,7 +102,7 @@ TEST_F(RunOnShortDrive, LidarOnlyFollowsTheSimulatedDrive) {
 
 TEST_F(RunOnShortDrive, TightlyCoupledFollowsTheSimulatedDrive) {
   const fs::path& tool = tool_;
-  const fs::path dir = *dir_ / "tightly-coupled";
+  const fs::path dir = *out_ / "tightly-coupled";
   fs::create_directories(dir);
   int code = 0;
   // No --mode: tightly coupled is the default.
@@ -149,7 +150,7 @@ TEST_F(RunOnShortDrive, TightlyCoupledFollowsTheSimulatedDrive) {
 // Started 12 s into the drive, at speed: the window starts from the LiDAR-IMU alignment
 // (DynamicBootstrap), not from a "standing" IMU, so its first state already moves.
 TEST_F(RunOnShortDrive, TightlyCoupledStartsWhileMoving) {
-  const fs::path dir = *dir_ / "moving-start";
+  const fs::path dir = *out_ / "moving-start";
   fs::create_directories(dir);
   int code = 0;
   const std::string out = test::RunCommand(
@@ -189,7 +190,7 @@ TEST_F(RunOnShortDrive, TightlyCoupledStartsWhileMoving) {
 // --calibrate-extrinsic on a drive without turns: the online calibration is tried, refused
 // with its reason, and the run goes on with the given extrinsic (the truth here).
 TEST_F(RunOnShortDrive, ExtrinsicCalibrationRefusesAStraightDrive) {
-  const fs::path est = *dir_ / "calibrate.tum";
+  const fs::path est = *out_ / "calibrate.tum";
   int code = 0;
   const std::string out = test::RunCommand(tool_.string() + " " + dir_->string() + " --out " +
                                                est.string() + " --calibrate-extrinsic 10 2>&1",
@@ -207,7 +208,7 @@ TEST_F(RunOnShortDrive, ExtrinsicCalibrationRefusesAStraightDrive) {
 // printed at the end), a window flag given on the command line wins over the file, and an invalid
 // file value is reported with its place.
 TEST_F(RunOnShortDrive, ConfigWindowSectionAppliesAndFlagsOverride) {
-  const fs::path dir = *dir_ / "config";
+  const fs::path dir = *out_ / "config";
   fs::create_directories(dir);
   std::ofstream(dir / "w.yaml") << "config_version: 1\nestimator:\n  window:\n    window_size: 7\n"
                                    "    estimate_extrinsic: true\n";

@@ -16,11 +16,11 @@
 #include <string>
 #include <thread>
 
-#include "swlio/core/lie.h"
 #include "swlio/daemon/config_loader.h"
 #include "swlio/daemon/estimator_runner.h"
 #include "swlio/daemon/message_conversion.h"
 #include "swlio/daemon/recording_reader.h"
+#include "swlio/daemon/tum_output.h"
 #include "swlio/daemon/watchdog.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
@@ -33,17 +33,6 @@ struct Options {
   double speed = 1.0;
   bool deterministic = false;
 };
-
-void WriteTum(std::ostream& out, const swlio::State& s) {
-  const Eigen::Quaterniond q = swlio::lie::PositiveW(Eigen::Quaterniond(s.T_world_imu.linear()));
-  const Eigen::Vector3d p = s.T_world_imu.translation();
-  char line[256];
-  std::snprintf(line, sizeof line, "%lld.%09lld %.6f %.6f %.6f %.9f %.9f %.9f %.9f",
-                static_cast<long long>(s.t_ns / 1'000'000'000),
-                static_cast<long long>(s.t_ns % 1'000'000'000), p.x(), p.y(), p.z(), q.x(), q.y(),
-                q.z(), q.w());
-  out << line << '\n';
-}
 
 /// Publishes what the daemon's publisher thread would for each sweep.
 class DdsOut {
@@ -107,7 +96,7 @@ int Run(const Options& opt) {
         if (st != OdometryStatus::kTracking && st != OdometryStatus::kMatchFailed) return;
         swlio::State host = r.odometry.state;  // stamps back on the host clock
         host.t_ns = time.ToHost(host.t_ns);
-        WriteTum(tum, host);
+        swlio::daemon::WriteTumLine(tum, host);
         if (publish) dds.Sweep(host, r);
       });
   swlio::daemon::RecordingEvent e;

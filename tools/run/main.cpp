@@ -2,7 +2,6 @@
 // recording) through the same decoders and clock models as the daemon, and writes the IMU-frame
 // trajectory in TUM format (stamped at each sweep's end, host time) and per-scan stage timings.
 
-#include <time.h>
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -18,6 +17,8 @@
 #include "swlio/daemon/config_loader.h"
 #include "swlio/daemon/estimator_runner.h"
 #include "swlio/daemon/recording_reader.h"
+#include "swlio/daemon/tum_output.h"
+#include "swlio/daemon/watchdog.h"
 #include "swlio/estimator/lidar_odometry.h"
 #include "swlio/estimator/window_estimator.h"
 
@@ -51,26 +52,6 @@ struct Options {
   double calibrate_s = 0.0;     ///< window.calibrate_extrinsic_s (0: off)
   std::set<std::string> given;  ///< window flags present on the command line
 };
-
-/// Stage timings use this thread's CPU time: on a shared machine it is the time the work took
-/// on one core, unaffected by other load (on an idle core it equals the wall time).
-int64_t ThreadCpuNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-void WriteTum(std::ostream& out, const swlio::State& state) {
-  const Eigen::Quaterniond q =
-      swlio::lie::PositiveW(Eigen::Quaterniond(state.T_world_imu.linear()));
-  const Eigen::Vector3d p = state.T_world_imu.translation();
-  char line[256];
-  std::snprintf(line, sizeof line, "%lld.%09lld %.6f %.6f %.6f %.9f %.9f %.9f %.9f",
-                static_cast<long long>(state.t_ns / 1'000'000'000),
-                static_cast<long long>(state.t_ns % 1'000'000'000), p.x(), p.y(), p.z(), q.x(),
-                q.y(), q.z(), q.w());
-  out << line << '\n';
-}
 
 void WriteTimings(std::ostream& out, const OdometryResult& r, int64_t t_ns) {
   char line[256];
@@ -140,7 +121,7 @@ void WriteCovariance(std::ostream& out,
 
 /// Running means for the summary line.
 struct Summary {
-  size_t scans = 0, tracked = 0, failed = 0, skipped = 0;
+  size_t scans = 0, tracked = 0, failed = 0, skipped = 0, reinitializations = 0;
   double total_ms = 0.0, planes = 0.0, edges = 0.0, inliers = 0.0, iterations = 0.0;
 
   void Add(const OdometryResult& r) {
@@ -160,9 +141,9 @@ struct Summary {
         "{\"scans\": %zu, \"tracked\": %zu, \"match_failed\": %zu, \"skipped\": %zu, "
         "\"mean_scan_ms\": %.2f, "
         "\"mean_planes\": %.0f, \"mean_edges\": %.0f, \"mean_inliers\": %.0f, "
-        "\"mean_iterations\": %.2f}\n",
+        "\"mean_iterations\": %.2f, \"reinitializations\": %zu}\n",
         scans, tracked, failed, skipped, total_ms / n, planes / n, edges / n, inliers / n,
-        iterations / n);
+        iterations / n, reinitializations);
   }
 };
 
@@ -307,13 +288,18 @@ int Run(const Options& opt) {
     const OdometryResult& r = w.odometry;
     if (covariance && w.covariance.valid) WriteCovariance(covariance, r.state, w.covariance);
     summary.Add(r);
+    summary.reinitializations = w.reinitializations;  // the estimator's count
+    if (w.diverged != swlio::estimator::DivergenceReason::kNone) {
+      std::cerr << "swlio-run: sweep ending at " << static_cast<double>(scan.t_end_ns) * 1e-9
+                << " s: " << swlio::estimator::ToString(w.diverged) << ", re-initializing\n";
+    }
     if (timings) WriteTimings(timings, r, scan.t_end_ns);
     if (diagnostics) WriteDiagnostics(diagnostics, r, scan.t_end_ns);
     if (r.status == OdometryStatus::kTracking || r.status == OdometryStatus::kMatchFailed) {
-      WriteTum(tum, r.state);
+      swlio::daemon::WriteTumLine(tum, r.state);
     }
   };
-  swlio::daemon::EstimatorRunner runner(setup, &ThreadCpuNs, process);
+  swlio::daemon::EstimatorRunner runner(setup, &swlio::daemon::ThreadCpuNowNs, process);
   swlio::daemon::RecordingEvent e;
   // --start-s: the estimator sees nothing before that many seconds into the recording (the
   // decoders and clock models do: as a daemon started while the robot is already driving).

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -26,12 +27,22 @@ struct ImuNoiseModel {
   double gyro_bias_initial_sigma = 0.1 * std::numbers::pi / 180.0;  ///< rad/s, per axis
 };
 
-/// Device clock: device_time = (1 + drift_ppm·1e-6) · host_time + offset.
+/// Device clock: device_time = (1 + drift_ppm·1e-6) · host_time + offset, plus `step_s` from
+/// host time `step_at_s` on (a clock set anew, e.g. when GPS time arrives; a fault to inject).
 struct DeviceClock {
   double offset_s = 0.0;
   double drift_ppm = 0.0;
-  double ToDevice(double host_s) const { return (1.0 + drift_ppm * 1e-6) * host_s + offset_s; }
-  double ToHost(double device_s) const { return (device_s - offset_s) / (1.0 + drift_ppm * 1e-6); }
+  double step_at_s = std::numeric_limits<double>::infinity();
+  double step_s = 0.0;
+  double ToDevice(double host_s) const {
+    return (1.0 + drift_ppm * 1e-6) * host_s + offset_s + (host_s >= step_at_s ? step_s : 0.0);
+  }
+  /// Inverse of ToDevice; where a backward step makes it ambiguous, the later host time.
+  double ToHost(double device_s) const {
+    const double stepped = (device_s - offset_s - step_s) / (1.0 + drift_ppm * 1e-6);
+    if (stepped >= step_at_s) return stepped;
+    return (device_s - offset_s) / (1.0 + drift_ppm * 1e-6);
+  }
 };
 
 /// How the serial link delivers frames: in bursts every `burst_period_s` (± jitter), with an

@@ -17,6 +17,82 @@ namespace {
 volatile bool g_stop = false;
 void OnSignal(int) { g_stop = true; }
 
+/// "START:DURATION" in simulation seconds.
+swlio::sim::TimeWindow ParseWindow(const std::string& text) {
+  const std::string what = "expected two numbers (seconds) as A:B, got '" + text + "'";
+  const size_t colon = text.find(':');
+  if (colon == std::string::npos) throw std::invalid_argument(what);
+  try {
+    size_t used_a = 0, used_b = 0;
+    const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
+    const swlio::sim::TimeWindow w{std::stod(a, &used_a), std::stod(b, &used_b)};
+    if (used_a != a.size() || used_b != b.size()) throw std::invalid_argument(what);
+    return w;
+  } catch (const std::logic_error&) {  // stod: invalid_argument, out_of_range
+    throw std::invalid_argument(what);
+  }
+}
+
+std::vector<swlio::sim::TimeWindow> ParseWindows(const std::vector<std::string>& texts) {
+  std::vector<swlio::sim::TimeWindow> out;
+  out.reserve(texts.size());
+  for (const std::string& t : texts) out.push_back(ParseWindow(t));
+  return out;
+}
+
+/// The live mode's fault injection (sim_faults.h) on the command line.
+struct FaultArgs {
+  swlio::sim::LiveFaults faults;
+  std::vector<std::string> lidar_outages, imu_gaps, unplugs, one_range;
+  std::string difop, lidar_clock_jump;
+  double imu_wrap_at_s = -1.0;
+
+  void Add(CLI::App& app) {
+    auto& f = faults;
+    app.add_option("--udp-loss", f.udp_loss_fraction, "fault: MSOP loss fraction, in bursts")
+        ->check(CLI::Range(0.0, 0.9));
+    app.add_option("--udp-loss-burst", f.udp_loss_burst_packets, "fault: mean burst (datagrams)")
+        ->check(CLI::Range(1.0, 1000.0));
+    app.add_option("--lidar-outage", lidar_outages, "fault: no UDP during START:DURATION (s)");
+    app.add_option("--imu-gap", imu_gaps, "fault: no IMU frames during START:DURATION");
+    app.add_option("--serial-unplug", unplugs, "fault: the pty vanishes during START:DURATION");
+    app.add_option("--one-range", one_range, "fault: every return at --one-range-m");
+    app.add_option("--one-range-m", f.one_range_m, "range for --one-range (m)");
+    app.add_option("--serial-garbage", f.serial_garbage_bytes_per_s, "fault: random bytes/s");
+    app.add_option("--imu-nonfinite", f.imu_nonfinite_fraction, "fault: frames with NaN/Inf")
+        ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--difop", difop, "fault: missing | corrupt")
+        ->check(CLI::IsMember({"missing", "corrupt"}));
+    app.add_flag("--lidar-silent", f.lidar_silent, "fault: the LiDAR never sends");
+    app.add_flag("--imu-silent", f.imu_silent, "fault: the IMU never sends");
+    app.add_option("--lidar-clock-jump", lidar_clock_jump,
+                   "fault: AT:STEP, the LiDAR clock steps by STEP s at AT s");
+    app.add_option("--imu-wrap-at", imu_wrap_at_s,
+                   "fault: the IMU's SampleTimeFine counter wraps at this time (s)");
+  }
+
+  /// Into the options and the sensors' clocks.
+  void Apply(swlio::sim::SimSetup* setup, swlio::sim::LiveOptions* live) {
+    faults.lidar_outages = ParseWindows(lidar_outages);
+    faults.imu_gaps = ParseWindows(imu_gaps);
+    faults.serial_unplugs = ParseWindows(unplugs);
+    faults.lidar_one_range = ParseWindows(one_range);
+    faults.difop_missing = difop == "missing";
+    faults.difop_corrupt = difop == "corrupt";
+    faults.seed = setup->seed;
+    if (!lidar_clock_jump.empty()) {
+      const swlio::sim::TimeWindow w = ParseWindow(lidar_clock_jump);
+      setup->lidar.clock.step_at_s = w.start_s;
+      setup->lidar.clock.step_s = w.duration_s;
+    }
+    if (imu_wrap_at_s >= 0.0) {  // SampleTimeFine: 100 µs ticks, 2³² of them
+      auto& c = setup->imu.clock;
+      c.offset_s = 4294967296.0 * 1e-4 - imu_wrap_at_s * (1.0 + c.drift_ppm * 1e-6);
+    }
+    live->faults = faults;
+  }
+};
+
 int RunFile(const swlio::sim::SimSetup& setup, const std::string& out) {
   const auto t0 = std::chrono::steady_clock::now();
   swlio::sim::RecordingStats stats;
@@ -62,6 +138,8 @@ int Run(int argc, char** argv) {
   app.add_option("--difop-port", live_opts.difop_port, "live: UDP port for DIFOP");
   app.add_option("--pty-link", live_opts.pty_link, "live: symlink to the IMU pty");
   app.add_option("--start-delay", live_opts.start_delay_s, "live: seconds before streaming");
+  FaultArgs fault_args;
+  fault_args.Add(app);
   CLI11_PARSE(app, argc, argv);
 
   if (list) {
@@ -94,19 +172,25 @@ int Run(int argc, char** argv) {
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
   live_opts.out_dir = out;
+  fault_args.Apply(&*setup, &live_opts);
   swlio::sim::LiveStats stats;
   std::string error;
   if (!swlio::sim::RunLive(*setup, live_opts, &g_stop, &stats, &error)) {
     std::cerr << "swlio-sim: " << error << "\n";
     return 1;
   }
+  const swlio::sim::FaultCounts& f = stats.faults;
+  auto u = [](uint64_t v) { return static_cast<unsigned long long>(v); };
   std::printf(
       "{\"udp_sent\": %llu, \"udp_errors\": %llu, \"imu_bytes\": %llu, "
-      "\"imu_bytes_dropped\": %llu, \"max_lateness_ms\": %.3f}\n",
-      static_cast<unsigned long long>(stats.udp_sent),
-      static_cast<unsigned long long>(stats.udp_errors),
-      static_cast<unsigned long long>(stats.imu_bytes),
-      static_cast<unsigned long long>(stats.imu_bytes_dropped), stats.max_lateness_ms);
+      "\"imu_bytes_dropped\": %llu, \"max_lateness_ms\": %.3f, \"faults\": {\"msop_lost\": %llu, "
+      "\"msop_withheld\": %llu, \"difop_dropped\": %llu, \"difop_corrupted\": %llu, "
+      "\"msop_one_range\": %llu, \"imu_withheld\": %llu, \"imu_nonfinite\": %llu, "
+      "\"garbage_bytes\": %llu, \"unplugs\": %llu}}\n",
+      u(stats.udp_sent), u(stats.udp_errors), u(stats.imu_bytes), u(stats.imu_bytes_dropped),
+      stats.max_lateness_ms, u(f.msop_lost), u(f.msop_withheld), u(f.difop_dropped),
+      u(f.difop_corrupted), u(f.msop_one_range), u(f.imu_withheld), u(f.imu_nonfinite),
+      u(f.garbage_bytes), u(f.unplugs));
   return 0;
 }
 

@@ -38,18 +38,23 @@ struct Endpoints {
   int udp = -1;
   int pty_master = -1;
   int pty_slave = -1;  ///< kept open so the line never hangs up before the reader opens it
-  ~Endpoints() {
-    for (int fd : {udp, pty_master, pty_slave}) {
-      if (fd >= 0) close(fd);
+  void ClosePty() {
+    for (int* fd : {&pty_master, &pty_slave}) {
+      if (*fd >= 0) close(*fd);
+      *fd = -1;
     }
+  }
+  ~Endpoints() {
+    ClosePty();
+    if (udp >= 0) close(udp);
   }
 };
 
-bool OpenEndpoints(const LiveOptions& options, Endpoints* ep, std::string* error) {
-  ep->udp = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+/// A new pseudo-terminal in raw mode, behind `options.pty_link` when set.
+bool OpenPty(const LiveOptions& options, Endpoints* ep, std::string* error) {
   char name[128] = {};
-  if (ep->udp < 0 || openpty(&ep->pty_master, &ep->pty_slave, name, nullptr, nullptr) != 0) {
-    *error = "cannot open the UDP socket or a pseudo-terminal";
+  if (openpty(&ep->pty_master, &ep->pty_slave, name, nullptr, nullptr) != 0) {
+    *error = "cannot open a pseudo-terminal";
     return false;
   }
   termios tio{};
@@ -68,6 +73,33 @@ bool OpenEndpoints(const LiveOptions& options, Endpoints* ep, std::string* error
   }
   std::printf("pty: %s\n", name);
   std::fflush(stdout);
+  return true;
+}
+
+bool OpenEndpoints(const LiveOptions& options, Endpoints* ep, std::string* error) {
+  ep->udp = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (ep->udp < 0) {
+    *error = "cannot open the UDP socket";
+    return false;
+  }
+  return OpenPty(options, ep, error);
+}
+
+/// Serial unplug and replug: the device (and its link) goes away, then a new one appears at
+/// the same link, as a USB adapter re-enumerates.
+bool FollowPlug(const LiveOptions& options,
+                bool unplugged,
+                Endpoints* ep,
+                FaultCounts* counts,
+                std::string* error) {
+  const bool plugged = ep->pty_master >= 0;
+  if (unplugged && plugged) {
+    ep->ClosePty();
+    if (!options.pty_link.empty()) std::filesystem::remove(options.pty_link);
+    ++counts->unplugs;
+  } else if (!unplugged && !plugged) {
+    return OpenPty(options, ep, error);
+  }
   return true;
 }
 
@@ -102,6 +134,7 @@ void SendUdp(int fd, uint16_t port, std::span<const uint8_t> bytes, LiveStats* s
 }
 
 void WritePty(int fd, std::span<const uint8_t> bytes, LiveStats* stats) {
+  if (fd < 0 || bytes.empty()) return;  // unplugged
   const ssize_t n = write(fd, bytes.data(), bytes.size());
   const size_t written = n > 0 ? static_cast<size_t>(n) : 0;
   stats->imu_bytes += written;
@@ -132,6 +165,7 @@ bool RunLive(const SimSetup& setup,
   auto host_ns = [&](int64_t sim_ns) {
     return start_ns + static_cast<int64_t>(static_cast<double>(sim_ns) / options.speed);
   };
+  FaultInjector faults(options.faults);
   SimPacket packet;
   bool have_packet = lidar.Next(&packet);
   size_t i = 0;
@@ -143,17 +177,25 @@ bool RunLive(const SimSetup& setup,
     SleepUntil(due);
     stats->max_lateness_ms =
         std::max(stats->max_lateness_ms, static_cast<double>(MonotonicNs() - due) * 1e-6);
+    const double t_s = NsToSec(lidar_first ? packet.t_rx_ns : imu[i].t_rx_ns);
+    if (!FollowPlug(options, faults.Unplugged(t_s), &ep, faults.mutable_counts(), error)) {
+      return false;
+    }
     if (lidar_first) {
-      SendUdp(ep.udp,
-              packet.dst_port == setup.lidar.msop_port ? options.msop_port : options.difop_port,
-              packet.bytes, stats);
+      const bool difop = packet.dst_port != setup.lidar.msop_port;
+      if (faults.PassDatagram(t_s, difop, packet.bytes)) {
+        SendUdp(ep.udp, difop ? options.difop_port : options.msop_port, packet.bytes, stats);
+      }
       have_packet = lidar.Next(&packet);
       continue;
     }
     burst.clear();
+    faults.AppendGarbage(t_s, &burst);
     const size_t first = i;
     for (const int64_t t = imu[i].t_rx_ns; i < imu.size() && imu[i].t_rx_ns == t; ++i) {
-      const size_t n = EncodeImuFrame(imu[i], frame);
+      SimImuSample sample = imu[i];
+      if (!faults.PassImu(t_s, &sample)) continue;
+      const size_t n = EncodeImuFrame(sample, frame);
       burst.insert(burst.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(n));
     }
     if (options.imu_write_ns != nullptr) {
@@ -163,7 +205,8 @@ bool RunLive(const SimSetup& setup,
     }
     WritePty(ep.pty_master, burst, stats);
   }
-  WaitForPtyDrained(ep.pty_slave, 2.0);
+  stats->faults = faults.counts();
+  if (ep.pty_slave >= 0) WaitForPtyDrained(ep.pty_slave, 2.0);
   if (!options.out_dir.empty()) {
     std::filesystem::create_directories(options.out_dir);
     std::ofstream gt(options.out_dir / "groundtruth.tum");

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "sim_faults.h"
 #include "sim_setup.h"
 
 namespace swlio::sim {
@@ -22,6 +23,7 @@ struct LiveOptions {
   /// If set, receives for every IMU sample (in SimulateImu's order) the CLOCK_MONOTONIC time
   /// just before its frame was written to the pty (0: not written), for latency measurements.
   std::vector<int64_t>* imu_write_ns = nullptr;
+  LiveFaults faults;  ///< none by default
 };
 
 struct LiveStats {
@@ -33,6 +35,7 @@ struct LiveStats {
   /// Host time (CLOCK_MONOTONIC) of simulation time 0: a sample due at simulation time t is
   /// sent at start_ns + t / speed.
   int64_t start_ns = 0;
+  FaultCounts faults;  ///< what LiveOptions::faults injected
 };
 
 /// Runs until the route ends or `stop` becomes true. Destinations are always 127.0.0.1.

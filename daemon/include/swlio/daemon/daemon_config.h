@@ -37,13 +37,17 @@ struct ThreadSchedConfig {
   std::string name;      ///< lidar_rx, imu_rx, can_rx, propagator, optimizer, publisher or recorder
   int64_t priority = 0;  ///< SCHED_FIFO priority 1–99; 0 keeps normal (SCHED_OTHER) scheduling
   int64_t cpu = -1;      ///< pin to this CPU; −1: any
+  /// Nice value −20..19 under normal scheduling, applied even when `enabled` is false (Linux
+  /// nice is per thread). Below 0 it needs RLIMIT_NICE, which swliod.service grants down to −10
+  /// (LimitNICE), or CAP_SYS_NICE; ignored for a thread given a SCHED_FIFO priority.
+  int64_t nice = 0;
 };
 
 /// Real-time options (YAML `realtime`); all off by default. They need the capabilities the
 /// systemd drop-in swliod-realtime.conf grants (CAP_SYS_NICE, CAP_IPC_LOCK); a refusal is
 /// logged and the daemon runs on without it.
 struct RealtimeConfig {
-  bool enabled = false;      ///< apply `threads` (priorities and CPU pinning)
+  bool enabled = false;      ///< apply `threads`' priorities and CPU pinning (nice: always)
   bool lock_memory = false;  ///< mlockall(MCL_CURRENT | MCL_FUTURE) once the threads run
   std::vector<ThreadSchedConfig> threads;
   ConfigIssues Validate() const;

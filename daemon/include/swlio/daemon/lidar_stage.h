@@ -30,6 +30,9 @@ struct LidarStageCounters {
   uint64_t sweeps = 0;
   uint64_t partial_sweeps = 0;
   uint64_t missing_packets = 0;  ///< packets the assembler found missing inside sweeps
+  /// Sweeps moved later by at most kMaxAbsorbedOverlapNs so that they start where the previous
+  /// one ended (the clock model's re-fit had mapped them back): see LidarStage::Pop.
+  uint64_t overlaps_absorbed = 0;
 };
 
 /// A sweep on the host clock with what the assembler knew about it.
@@ -52,7 +55,14 @@ class LidarStage {
   void Flush();
   /// The oldest completed sweep, storage swapped with `out` (reuse one HostSweep: no
   /// allocation in steady state). False when none is ready.
+  /// Each sweep's times are mapped with the clock model as it stands at its end. A re-fit
+  /// between two sweeps can map the next one to start up to tens of µs before the previous one
+  /// ended (seen on the first full sweep); the estimator would refuse it as out of order. Such
+  /// an overlap of at most kMaxAbsorbedOverlapNs — far inside the model's error bound — is
+  /// absorbed by moving the sweep to start at the previous end. A larger step back (a clock
+  /// jump) is passed on as it is.
   bool Pop(HostSweep* out);
+  static constexpr int64_t kMaxAbsorbedOverlapNs = 500'000;
 
   /// Host time of a sensor time under the clock model as it stands now.
   int64_t ToHost(int64_t sensor_t_ns) const { return clock_.ToHost(sensor_t_ns); }
@@ -67,6 +77,7 @@ class LidarStage {
   drivers::LidarPacketDecoder::ReturnBuffer buffer_{};
   drivers::AssembledScan assembled_;
   LidarStageCounters counters_;
+  int64_t last_end_ns_ = 0;  ///< host time of the previous sweep's end
 };
 
 }  // namespace swlio::daemon

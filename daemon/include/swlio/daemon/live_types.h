@@ -36,6 +36,9 @@ struct SweepEstimate {
   double update_ms = 0.0;       ///< the whole update (front end + window), thread CPU
   int64_t scan_last_rx_ns = 0;  ///< host receive time of the sweep's last packet
   bool keyframe = false;        ///< the sweep's features went into the local map
+  /// The estimator re-initialized (its state diverged): the IMU-rate output must stop
+  /// propagating the old state until the next estimate.
+  bool reset = false;
 };
 
 /// One IMU-rate output, from the propagator to the publisher.

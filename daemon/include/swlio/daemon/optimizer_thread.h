@@ -30,6 +30,7 @@ struct OptimizerQueues {
   SpscQueue<ImuSample>* imu_in = nullptr;            ///< propagator → optimizer
   SpscQueue<SweepEstimate>* states_out = nullptr;    ///< optimizer → propagator
   SpscQueue<SweepEstimate>* odometry_out = nullptr;  ///< optimizer → publisher
+  Doorbell* wake = nullptr;                          ///< rung by lidar_in and imu_in
 };
 
 struct OptimizerCounters {
@@ -40,12 +41,20 @@ struct OptimizerCounters {
   TrackingState tracking = TrackingState::kInitializing;
   int degenerate_directions = 0;
   double last_update_ms = 0.0;
-  double max_update_ms = 0.0;  ///< since start
+  double max_update_ms = 0.0;      ///< since start
+  uint64_t reinitializations = 0;  ///< the estimator found its state diverged and restarted
+  bool recovering = false;         ///< re-initializing after the last one
+  /// How long the IMU alone has carried the state (IMU samples newer than the last processed
+  /// sweep by more than kImuOnlyDegradedNs: the LiDAR is out); the state then reads degraded.
+  double imu_only_s = 0.0;
+  /// Why the last one happened (estimator::ToString(DivergenceReason); "none" before any).
+  const char* last_divergence = "none";
 };
 
 class OptimizerThread {
  public:
   static constexpr int kLostAfterSweeps = 10;
+  static constexpr int64_t kImuOnlyDegradedNs = 300'000'000;  ///< three sweeps at 10 Hz
 
   OptimizerThread(const drivers::LidarConfig& lidar,
                   const EstimatorSetup& setup,
@@ -71,7 +80,12 @@ class OptimizerThread {
   int failed_in_a_row_ = 0;
   uint64_t processed_ = 0;
   TrackingState tracking_ = TrackingState::kInitializing;
+  bool recovering_ = false;  ///< re-initializing after a divergence: lost until tracked again
+  uint64_t reinitializations_ = 0;
+  estimator::DivergenceReason last_divergence_ = estimator::DivergenceReason::kNone;
   int degenerate_ = 0;
+  int64_t newest_imu_t_ns_ = 0;  ///< daemon time
+  int64_t last_sweep_t_ns_ = 0;  ///< end of the last processed sweep, daemon time
   double last_ms_ = 0.0;
   double max_ms_ = 0.0;
   // The copy health reads (not an rx thread: a short lock per sweep is fine here).

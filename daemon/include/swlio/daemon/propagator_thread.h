@@ -32,6 +32,7 @@ struct PropagatorQueues {
 struct PropagatorCounters {
   uint64_t samples = 0;  ///< mapped to host time
   uint64_t dropped = 0;  ///< no SampleTimeFine, incomplete or non-finite, out of order
+  uint64_t invalid = 0;  ///< of those: incomplete or non-finite values
   uint64_t poses = 0;    ///< IMU-rate poses sent to the publisher
   uint64_t states = 0;   ///< optimized states applied
   uint64_t clock_jumps = 0;
@@ -64,7 +65,8 @@ class PropagatorThread {
   uint64_t states_ = 0;
   int64_t last_sample_t_ns_ = 0;
   // The snapshot health reads (relaxed atomics; fields may be from adjacent updates).
-  std::atomic<uint64_t> a_samples_{0}, a_dropped_{0}, a_poses_{0}, a_states_{0}, a_jumps_{0};
+  std::atomic<uint64_t> a_samples_{0}, a_dropped_{0}, a_invalid_{0}, a_poses_{0}, a_states_{0},
+      a_jumps_{0};
   std::atomic<int64_t> a_last_sample_t_ns_{0};
   std::atomic<double> a_offset_ns_{0.0}, a_drift_ppm_{0.0};
 };

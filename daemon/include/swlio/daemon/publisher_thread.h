@@ -20,6 +20,7 @@ namespace swlio::daemon {
 struct PublisherQueues {
   SpscQueue<ImuRatePose>* poses_in = nullptr;       ///< propagator → publisher
   SpscQueue<SweepEstimate>* odometry_in = nullptr;  ///< optimizer → publisher
+  Doorbell* wake = nullptr;                         ///< rung by poses_in and odometry_in
 };
 
 struct PublisherCounters {

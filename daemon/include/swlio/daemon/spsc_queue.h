@@ -9,27 +9,14 @@
 /// the element when the queue is full, counting it. Counters are relaxed atomics that any
 /// thread may read.
 
-// TSan models no std::atomic_thread_fence, and moodycamel annotates its fences for TSan only
-// where the compiler has __has_feature (clang; GCC from 14). Under GCC's TSan, give it the same
-// happens-before annotations (libtsan's dynamic annotations) so the queue hand-over is seen.
-#if defined(__SANITIZE_THREAD__) && !defined(__clang__) && !defined(AE_TSAN_ANNOTATE_RELEASE)
-extern "C" void AnnotateHappensBefore(const char* file, int line, void* address);
-extern "C" void AnnotateHappensAfter(const char* file, int line, void* address);
-namespace swlio::daemon::detail {
-inline int tsan_queue_sync = 0;
-}  // namespace swlio::daemon::detail
-#define AE_TSAN_ANNOTATE_RELEASE() \
-  AnnotateHappensBefore(__FILE__, __LINE__, &::swlio::daemon::detail::tsan_queue_sync)
-#define AE_TSAN_ANNOTATE_ACQUIRE() \
-  AnnotateHappensAfter(__FILE__, __LINE__, &::swlio::daemon::detail::tsan_queue_sync)
-#endif
-#include <readerwriterqueue/readerwriterqueue.h>
-
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <utility>
+
+#include "swlio/daemon/doorbell.h"
+#include "swlio/daemon/moodycamel.h"
 
 namespace swlio::daemon {
 
@@ -57,12 +44,17 @@ class SpscQueue {
   SpscQueue(const SpscQueue&) = delete;
   SpscQueue& operator=(const SpscQueue&) = delete;
 
+  /// Every later Push also rings `bell` (the consumer's, shared by its inputs). Call before
+  /// the threads start; `bell` must outlive the queue's producer.
+  void RingOnPush(Doorbell* bell) { bell_ = bell; }
+
   /// Producer side. False (counted) when the queue is full.
   bool Push(T&& value) {
     if (!queue_.try_enqueue(std::move(value))) {
       dropped_.fetch_add(1, std::memory_order_relaxed);
       return false;
     }
+    if (bell_ != nullptr) bell_->Ring();
     pushed_.fetch_add(1, std::memory_order_relaxed);
     const size_t depth = queue_.size_approx();
     if (depth > high_water_.load(std::memory_order_relaxed)) {
@@ -98,6 +90,7 @@ class SpscQueue {
   // In clang-tidy's padding order (moodycamel aligns its indices to cache lines).
   moodycamel::BlockingReaderWriterQueue<T> queue_;
   size_t capacity_;
+  Doorbell* bell_ = nullptr;
   std::atomic<uint64_t> pushed_{0};
   std::atomic<uint64_t> dropped_{0};
   std::atomic<size_t> high_water_{0};

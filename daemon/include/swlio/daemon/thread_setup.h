@@ -12,7 +12,8 @@
 namespace swlio::daemon {
 
 /// Names the calling thread (≤ 15 characters, shown by top -H / ps -L) and applies its entry
-/// of `config.threads` when `config.enabled`. Returns the problems (empty when all applied).
+/// of `config.threads`: its nice value always, its SCHED_FIFO priority and CPU when
+/// `config.enabled`. Returns the problems (empty when all applied).
 std::vector<std::string> SetUpThisThread(const char* name, const RealtimeConfig& config);
 
 /// mlockall(MCL_CURRENT | MCL_FUTURE) when `config.lock_memory`; the problem or empty.

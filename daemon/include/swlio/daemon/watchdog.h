@@ -46,6 +46,10 @@ int64_t SystemdWatchdogIntervalNs();
 /// CLOCK_MONOTONIC in ns, the clock systemd's watchdog runs on.
 int64_t MonotonicNowNs();
 
+/// The calling thread's CPU time in ns (CLOCK_THREAD_CPUTIME_ID): what work took on its core,
+/// unaffected by other load; stage timings use it (on an idle core it equals the wall time).
+int64_t ThreadCpuNowNs();
+
 /// Per-thread progress tracking. Each long-running thread registers once and calls Beat() on
 /// every loop iteration, including the iterations where a blocking read timed out (so an idle
 /// but healthy thread keeps beating; a thread blocked forever does not).

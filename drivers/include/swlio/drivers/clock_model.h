@@ -7,16 +7,19 @@
 /// observation satisfies host_rx = true_host + delay with delay ≥ fixed latency, and USB-serial
 /// bursts or network queues only ever add delay, so the lower envelope of (host_rx − sensor) is
 /// the clock relation. The envelope is kept as the minimum per window (default 1 s of sensor
-/// time); a line is fitted through the recent window minima (least squares, then lowered so
-/// that no minimum lies under it) and the fixed latency is subtracted.
+/// time); the drift is the slope of the line under the recent window minima that lies closest
+/// to them (their lower convex hull), the line is lowered onto the minima, and the fixed
+/// latency is subtracted.
 ///
 /// Wraps (e.g. Xsens SampleTimeFine every 2³² × 100 µs) are unwrapped with the configured
 /// period. A jump (GPS time arriving, a device reset) shows as residuals beyond a threshold in
 /// the same direction for several consecutive samples: the model restarts and counts it.
 /// Pure: time is passed in; no system clock is read here.
 
+#include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <vector>
 
 namespace swlio::drivers {
 
@@ -27,6 +30,14 @@ struct ClockModelConfig {
   int64_t fixed_latency_ns = 0;             ///< known minimum delay (transmission time, …)
   int64_t jump_threshold_ns = 200'000'000;  ///< |residual| beyond this is a jump candidate
   int jump_confirm_samples = 5;             ///< consecutive candidates that confirm a jump
+  /// Samples arriving earlier than the model allows can only mean the sensor clock jumped
+  /// ahead; arriving later can also be a backlog (a stalled sender or reader on a loaded host,
+  /// hundreds of ms). A jump to later is therefore confirmed only once its candidates have
+  /// lasted this long in sensor time; until then they are mapped by the model as it stands.
+  int64_t late_jump_confirm_ns = 1'000'000'000;
+  /// A fitted drift beyond this is not a clock's (crystals: tens of ppm) but late arrivals
+  /// filling the first windows after a start (a loaded host); the previous drift is kept.
+  double max_drift_ppm = 1000.0;
 };
 
 struct ClockModelStats {
@@ -64,6 +75,8 @@ class ClockModel {
   void Restart(int64_t sensor_unwrapped, int64_t host_rx_ns);
   void AddToEnvelope(double x, double d);
   void Fit();
+  /// Drift from the first `count` windows (see clock_model.cpp).
+  double HullSlope(size_t count) const;
   double Predict(double x) const { return c0_ + c1_ * x; }
 
   ClockModelConfig config_;
@@ -76,8 +89,10 @@ class ClockModel {
   std::deque<WindowMin> windows_;
   double c0_ = 0.0;
   double c1_ = 0.0;
+  mutable std::vector<const WindowMin*> hull_;  ///< HullSlope's scratch (no allocation per call)
   int jump_run_ = 0;
   int jump_sign_ = 0;
+  double jump_run_start_x_ = 0.0;  ///< sensor time (x) of the run's first candidate
 };
 
 }  // namespace swlio::drivers

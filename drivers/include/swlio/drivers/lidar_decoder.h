@@ -55,6 +55,7 @@ enum class DecodeStatus : uint8_t {
   kWrongSize,       ///< packet length is not the format's
   kBadHeader,       ///< magic bytes / block flags do not match
   kBufferTooSmall,  ///< caller's output buffer cannot hold the packet's returns
+  kImplausible,     ///< well formed, but values the sensor cannot send (damaged content)
 };
 
 class LidarPacketDecoder {

@@ -43,8 +43,9 @@ struct Rs16DifopInfo {
   ReturnMode return_mode = ReturnMode::kUnknown;  ///< kStrongest when !supports_dual_return
   bool time_valid = false;
   int64_t t_sensor_ns = 0;  ///< DIFOP header time (YMD), sensor clock
-  /// false when pitch_cali is blank (all 0x00/0xFF, as rs_driver checks) or out of range.
+  /// false when pitch_cali is blank (all 0x00/0xFF, as rs_driver checks) or damaged.
   bool has_vertical_calibration = false;
+  bool damaged_vertical_calibration = false;     ///< not blank, but an angle beyond 90°
   std::array<double, 16> vertical_angles_deg{};  ///< by laser channel as transmitted, not ring
 };
 
@@ -78,8 +79,14 @@ class Rs16Decoder final : public LidarPacketDecoder {
                           std::span<LidarReturn> out,
                           LidarPacketSummary* summary) const override;
   /// Adopts rpm (when in 60…2400), return mode, distance resolution (unless fixed by the
-  /// options) and vertical calibration (when present).
+  /// options) and vertical calibration (when present). A calibration with an angle beyond 90°
+  /// or more than kMaxCalibrationDeviationDeg from the configured one is damaged content: the
+  /// packet is refused (kImplausible) and nothing of it adopted.
   DecodeStatus DecodeInfo(std::span<const uint8_t> packet) override;
+  /// Factory calibrations differ from the nominal RS16 angles by hundredths of a degree
+  /// (RoboSense's example angle.csv: at most 0.04°); one wrong bit in the 3-byte field moves an
+  /// angle by 0.0001° · 2^k, so beyond 1° the field is damaged, not calibrated.
+  static constexpr double kMaxCalibrationDeviationDeg = 1.0;
   double PacketsPerRevolution() const override;
   double Rpm() const override { return rpm_; }
   std::string Model() const override { return "rs16"; }
@@ -122,6 +129,7 @@ class Rs16Decoder final : public LidarPacketDecoder {
   bool has_difop_ = false;
   Rs16DifopInfo difop_;
   std::array<double, 16> vertical_deg_{};
+  std::array<double, 16> configured_vertical_deg_{};  ///< by channel, from the LidarConfig
   std::array<double, 16> horizontal_deg_{};
   std::array<uint16_t, 16> ring_{};
   std::array<double, 16> cos_vert_{};

@@ -39,8 +39,10 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <vector>
 
+#include "swlio/estimator/divergence_monitor.h"
 #include "swlio/estimator/dynamic_bootstrap.h"
 #include "swlio/estimator/extrinsic_calibration_run.h"
 #include "swlio/estimator/imu_factor.h"
@@ -68,6 +70,13 @@ struct WindowResult {
   Eigen::Vector2d gravity_tilt_rad = Eigen::Vector2d::Zero();
   /// The online extrinsic calibration finished with this sweep and the window restarted on it.
   bool extrinsic_calibrated = false;
+  /// The sweep's registration moved the IMU prediction by this much (negative: not registered).
+  double prediction_error_m = -1.0;
+  double prediction_error_rad = -1.0;
+  /// Not kNone: this sweep's state was not believable (divergence_monitor.h), so the window
+  /// re-initialized; the result is kInitializing and the state is not to be used.
+  DivergenceReason diverged = DivergenceReason::kNone;
+  size_t reinitializations = 0;  ///< so far, including this sweep's
 };
 
 class WindowEstimator {
@@ -137,6 +146,18 @@ class WindowEstimator {
   /// register the newest sweep.
   bool ApplyCalibration(const ExtrinsicCalibration& calibration);
   void ResetExtrinsicPrior();  ///< weak prior about the current extrinsic
+  /// Checks the newest frame (divergence_monitor.h); kNone, or the window re-initialized.
+  DivergenceReason CheckDivergence(const WindowResult& out);
+  /// Back to uninitialized with an empty map; the next initialization (static or moving) is
+  /// placed at the last believable pose (position and yaw) so the world frame carries on.
+  void Reinitialize();
+  /// The rigid yaw + translation that puts the new initialization's pose `T_new_imu` (at
+  /// `t_ns`) where the last believable state says the robot was then: its position moved on at
+  /// its velocity when `extrapolate` (a moving start), its yaw. Identity when there is no such
+  /// state, or no re-initialization is pending.
+  Eigen::Isometry3d AnchorFor(const Eigen::Isometry3d& T_new_imu,
+                              int64_t t_ns,
+                              bool extrapolate) const;
   void InsertKeyframe(const Eigen::Isometry3d& T_world_lidar,
                       const std::vector<Eigen::Vector3d>& planes_lidar,
                       const std::vector<Eigen::Vector3d>& edges_lidar);
@@ -149,7 +170,12 @@ class WindowEstimator {
   DynamicBootstrap bootstrap_;
   double init_sigma_velocity_mps_, init_sigma_tilt_rad_, init_sigma_bias_acc_mps2_;
   State init_state_;
+  /// Re-initialized: the next initialization is placed at this state (AnchorFor).
+  std::optional<State> anchor_;
   ImuPropagator propagator_;
+  /// Tracked states that passed the checks, the last kGoodHistoryNs of them: a divergence may
+  /// have begun a few sweeps before a check tripped, so the anchor is the oldest.
+  std::deque<State> good_;
   std::deque<ImuSample> imu_;  ///< samples from just before the newest frame on
   FrontEnd front_end_;
   FrontEndOutput features_;
@@ -173,6 +199,8 @@ class WindowEstimator {
   std::deque<std::unique_ptr<Frame>> frames_;  ///< oldest first; blocks stay at fixed addresses
   MarginalizationResult prior_;
   size_t marginalization_failures_ = 0;
+  DivergenceMonitor divergence_;
+  size_t reinitializations_ = 0;
   // Flags last (padding).
   bool initialized_ = false;
   bool have_keyframe_ = false;

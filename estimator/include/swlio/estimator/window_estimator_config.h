@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include "swlio/core/config_issue.h"
+#include "swlio/estimator/divergence_monitor.h"
 #include "swlio/estimator/dynamic_bootstrap.h"
 #include "swlio/estimator/lidar_odometry.h"
 
@@ -21,6 +22,8 @@ struct WindowEstimatorConfig {
   int reassociations = 1;
   double lidar_sigma_m = 0.05;  ///< point-to-plane / point-to-line standard deviation
   double huber_m = 0.1;         ///< Huber kernel width (metres of residual)
+  /// When the newest state is not believable: re-initialize (divergence_monitor.h).
+  DivergenceConfig divergence;
   /// A direction of the newest frame's LiDAR Hessian (ScanMatcher units: Σ JᵀJ over unwhitened
   /// residuals in metres, tangent [δp; δφ]) with a smaller eigenvalue is degenerate: its LiDAR
   /// row is left out and the IMU carries the estimate there (σ along it would be
