@@ -81,6 +81,13 @@ ipc::DiagnosticStatus CanStatus(const HealthSnapshot& s, const HealthRates& r) {
   return d;
 }
 
+/// How long ago (host seconds) the last processed sweep ended: the estimate's latency plus
+/// any backlog; it grows when the estimator falls behind its input or the LiDAR stops.
+std::string SweepAge(const HealthSnapshot& s) {
+  if (s.optimizer.last_sweep_end_host_ns == 0) return "none";
+  return Num(static_cast<double>(s.t_ns - s.optimizer.last_sweep_end_host_ns) * 1e-9, "%.2f");
+}
+
 ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates& r) {
   ipc::DiagnosticStatus d;
   d.name = "swlio: estimator";
@@ -105,6 +112,7 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
       {"sweeps_without_imu_dropped", Count(s.optimizer.dropped_waiting)},
       {"reinitializations", Count(s.optimizer.reinitializations)},
       {"imu_only_s", Num(s.optimizer.imu_only_s, "%.2f")},
+      {"sweep_age_s", SweepAge(s)},
       {"last_divergence", s.optimizer.last_divergence}};
   return d;
 }

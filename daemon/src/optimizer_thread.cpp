@@ -98,6 +98,7 @@ void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& 
   e.reset = result.diverged != estimator::DivergenceReason::kNone;
   q_.states_out->Push(e);
   q_.odometry_out->Push(e);
+  Publish();  // per sweep: a backlog drained in one go still shows each state in the health
 }
 
 void OptimizerThread::Publish() {
@@ -116,6 +117,7 @@ void OptimizerThread::Publish() {
     snapshot_.imu_only_s =
         static_cast<double>(time_.ToHost(newest_imu_t_ns_) - time_.ToHost(last_sweep_t_ns_)) * 1e-9;
   }
+  snapshot_.last_sweep_end_host_ns = last_sweep_t_ns_ > 0 ? time_.ToHost(last_sweep_t_ns_) : 0;
   snapshot_.degenerate_directions = degenerate_;
   snapshot_.last_update_ms = last_ms_;
   snapshot_.max_update_ms = max_ms_;

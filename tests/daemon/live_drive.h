@@ -75,6 +75,17 @@ struct LiveDriveResult {
     }
     return n;
   }
+  /// The health snapshots whose estimator state came from a sweep that ended in [from_s, to_s)
+  /// of simulation time: what the daemon made of those sweeps, however far behind it ran.
+  std::vector<const HealthSnapshot*> StatesOfSweepsBetween(double from_s, double to_s) const {
+    std::vector<const HealthSnapshot*> out;
+    for (const HealthSample& h : health) {
+      const int64_t end_ns = h.snapshot.optimizer.last_sweep_end_host_ns;
+      const double t = SimTime(end_ns);
+      if (end_ns != 0 && t >= from_s && t < to_s) out.push_back(&h.snapshot);
+    }
+    return out;
+  }
   /// The last health snapshot taken before simulation time t_s.
   const HealthSnapshot& HealthAt(double t_s) const {
     const HealthSnapshot* last = &health.front().snapshot;

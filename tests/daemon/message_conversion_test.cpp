@@ -115,5 +115,21 @@ TEST(HealthReporter, SaysHowLongTheImuAloneHasCarriedTheState) {
   EXPECT_EQ(d.status[2].message, "degraded: no LiDAR sweeps, IMU only for 1.2 s");
 }
 
+std::string EstimatorValue(const ipc::DiagnosticArray& d, const std::string& key) {
+  for (const auto& kv : d.status[2].values) {
+    if (kv.key == key) return kv.value;
+  }
+  return "(missing)";
+}
+
+TEST(HealthReporter, ReportsHowOldTheLastProcessedSweepIs) {
+  HealthSnapshot s;
+  s.t_ns = 10'000'000'000;
+  HealthReporter r;
+  EXPECT_EQ(EstimatorValue(r.Diagnostics(s), "sweep_age_s"), "none");
+  s.optimizer.last_sweep_end_host_ns = 7'500'000'000;
+  EXPECT_EQ(EstimatorValue(r.Diagnostics(s), "sweep_age_s"), "2.50");
+}
+
 }  // namespace
 }  // namespace swlio::daemon

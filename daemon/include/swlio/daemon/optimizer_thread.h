@@ -47,6 +47,10 @@ struct OptimizerCounters {
   /// How long the IMU alone has carried the state (IMU samples newer than the last processed
   /// sweep by more than kImuOnlyDegradedNs: the LiDAR is out); the state then reads degraded.
   double imu_only_s = 0.0;
+  /// Host time (CLOCK_MONOTONIC) of the end of the last processed sweep (0: none yet): the
+  /// health's sweep age, and which sweeps a snapshot's state describes when the estimator runs
+  /// behind its input.
+  int64_t last_sweep_end_host_ns = 0;
   /// Why the last one happened (estimator::ToString(DivergenceReason); "none" before any).
   const char* last_divergence = "none";
 };
