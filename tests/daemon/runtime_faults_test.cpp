@@ -157,10 +157,7 @@ TEST(RuntimeFaults, LidarClockJumpIsReportedAndTrackingGoesOn) {
 // taken for a clock jump, and no sample is lost.
 TEST(RuntimeFaults, ImuCounterWrapIsSeamless) {
   LiveDrive drive = Drive(8.0, 126);
-  drive.adjust_setup = [](sim::SimSetup* s) {
-    const double wrap_s = 4294967296.0 * 1e-4;
-    s->imu.clock.offset_s = wrap_s - 5.0 * (1.0 + s->imu.clock.drift_ppm * 1e-6);
-  };
+  drive.adjust_setup = [](sim::SimSetup* s) { sim::SetImuWrapAt(s, 5.0); };
   const LiveDriveResult r = RunLiveDrive(drive);
   ASSERT_TRUE(r.sim_ok) << r.error;
   r.ShowPublished(kImu);

@@ -38,6 +38,24 @@ TEST(SimClock, ImuSampleTimeFineMapsToHostWithinHalfAMillisecond) {
   }
 }
 
+TEST(SimClock, SetImuWrapAtMakesSampleTimeFineWrapThere) {
+  auto setup = MakeSimSetup("short", 1, 8.0);
+  ASSERT_TRUE(setup);
+  setup->imu.clock.drift_ppm = 80.0;
+  SetImuWrapAt(&*setup, 5.0);
+  const auto imu = SimulateImu(*setup->trajectory, setup->imu, 1);
+  size_t wraps = 0;
+  double wrap_t_s = -1.0;
+  for (size_t i = 1; i < imu.size(); ++i) {
+    if (imu[i].sample_time_fine < imu[i - 1].sample_time_fine) {
+      ++wraps;
+      wrap_t_s = NsToSec(imu[i].t_true_ns);
+    }
+  }
+  EXPECT_EQ(wraps, 1u);
+  EXPECT_NEAR(wrap_t_s, 5.0, 0.003);  // the first sample after it (400 Hz)
+}
+
 TEST(SimClock, LidarHeaderTimeMapsToHostWithinHalfAMillisecond) {
   auto setup = MakeSimSetup("short", 4, 9.0);
   ASSERT_TRUE(setup);

@@ -52,4 +52,10 @@ std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
 
 double SimDuration(const SimSetup& setup) { return setup.trajectory->duration_s(); }
 
+void SetImuWrapAt(SimSetup* setup, double at_s) {
+  constexpr double kWrapS = 4294967296.0 * 1e-4;  // 2³² ticks of 100 µs
+  auto& c = setup->imu.clock;
+  c.offset_s = kWrapS - at_s * (1.0 + c.drift_ppm * 1e-6);
+}
+
 }  // namespace swlio::sim

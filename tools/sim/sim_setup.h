@@ -36,4 +36,8 @@ std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
 /// Trajectory duration after the optional cut.
 double SimDuration(const SimSetup& setup);
 
+/// Sets the IMU clock's offset so that the Xsens SampleTimeFine counter (100 µs ticks, 2³² of
+/// them) wraps at simulation time `at_s` (a fault to inject).
+void SetImuWrapAt(SimSetup* setup, double at_s);
+
 }  // namespace swlio::sim
