@@ -9,6 +9,7 @@
 
 #include "scenarios.h"
 #include "sim_dump.h"
+#include "sim_laps.h"
 #include "sim_live.h"
 #include "sim_recording.h"
 
@@ -85,10 +86,7 @@ struct FaultArgs {
       setup->lidar.clock.step_at_s = w.start_s;
       setup->lidar.clock.step_s = w.duration_s;
     }
-    if (imu_wrap_at_s >= 0.0) {  // SampleTimeFine: 100 µs ticks, 2³² of them
-      auto& c = setup->imu.clock;
-      c.offset_s = 4294967296.0 * 1e-4 - imu_wrap_at_s * (1.0 + c.drift_ppm * 1e-6);
-    }
+    if (imu_wrap_at_s >= 0.0) swlio::sim::SetImuWrapAt(setup, imu_wrap_at_s);
     live->faults = faults;
   }
 };
@@ -123,6 +121,7 @@ int Run(int argc, char** argv) {
   uint64_t seed = 1;
   std::string out;
   double duration = 0.0;
+  int laps = 1;
   bool live = false, list = false;
   std::string dump_dir;
   swlio::sim::LiveOptions live_opts;
@@ -130,6 +129,10 @@ int Run(int argc, char** argv) {
   app.add_option("--seed", seed, "world and noise seed");
   app.add_option("--out", out, "output folder");
   app.add_option("--duration", duration, "cut the drive after this many seconds");
+  app.add_option("--laps", laps,
+                 "drive a closed route (loop943) this many times; live: the first lap's rays "
+                 "are cast before streaming and replayed (long runs at 10x)")
+      ->check(CLI::Range(1, 100000));
   app.add_flag("--list", list, "list the scenarios and exit");
   app.add_option("--dump-world", dump_dir, "write world.csv and route.csv to this folder, exit");
   app.add_flag("--live", live, "stream in real time: UDP to 127.0.0.1 and a pseudo-terminal");
@@ -152,6 +155,10 @@ int Run(int argc, char** argv) {
       scenario, seed, duration > 0.0 ? std::optional<double>(duration) : std::nullopt);
   if (!setup) {
     std::cerr << "swlio-sim: unknown scenario '" << scenario << "' (see --list)\n";
+    return 2;
+  }
+  if (std::string error; !swlio::sim::RepeatRoute(&*setup, laps, &error)) {
+    std::cerr << "swlio-sim: --laps: " << error << "\n";
     return 2;
   }
   if (!dump_dir.empty()) {

@@ -14,8 +14,10 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <optional>
 #include <vector>
 
+#include "sim_laps.h"
 #include "sim_recording.h"
 #include "swlio/core/time.h"
 
@@ -157,9 +159,21 @@ bool RunLive(const SimSetup& setup,
     std::ofstream(options.out_dir / "manifest.yaml") << ManifestYaml(
         setup, RecordingStats{}, MonotonicNs() + SecToNs(options.start_delay_s), "live");
   }
-  if (options.start_delay_s > 0.0) SleepUntil(MonotonicNs() + SecToNs(options.start_delay_s));
   const std::vector<SimImuSample> imu = SimulateImu(*setup.trajectory, setup.imu, setup.seed);
-  LidarSimulator lidar(setup.world.get(), setup.trajectory.get(), setup.lidar, setup.seed);
+  // A repeated route (RepeatRoute) casts its first lap before streaming and replays it.
+  std::optional<LidarLaps> laps;
+  std::optional<LidarSimulator> once;
+  if (setup.trajectory->lap_period_s() > 0.0) {
+    std::fprintf(stderr, "sim: casting the first lap (%.0f s of driving) before streaming\n",
+                 setup.trajectory->lap_period_s());
+    laps.emplace(setup);
+  } else {
+    once.emplace(setup.world.get(), setup.trajectory.get(), setup.lidar, setup.seed);
+  }
+  auto next_packet = [&](SimPacket* p) { return laps ? laps->Next(p) : once->Next(p); };
+  // The delay after the preparation above, so that a receiver started now is in time.
+  std::fprintf(stderr, "sim: streaming in %.1f s\n", options.start_delay_s);
+  if (options.start_delay_s > 0.0) SleepUntil(MonotonicNs() + SecToNs(options.start_delay_s));
   const int64_t start_ns = MonotonicNs();
   stats->start_ns = start_ns;
   auto host_ns = [&](int64_t sim_ns) {
@@ -167,7 +181,7 @@ bool RunLive(const SimSetup& setup,
   };
   FaultInjector faults(options.faults);
   SimPacket packet;
-  bool have_packet = lidar.Next(&packet);
+  bool have_packet = next_packet(&packet);
   size_t i = 0;
   std::vector<uint8_t> burst;
   std::array<uint8_t, 512> frame{};
@@ -186,7 +200,7 @@ bool RunLive(const SimSetup& setup,
       if (faults.PassDatagram(t_s, difop, packet.bytes)) {
         SendUdp(ep.udp, difop ? options.difop_port : options.msop_port, packet.bytes, stats);
       }
-      have_packet = lidar.Next(&packet);
+      have_packet = next_packet(&packet);
       continue;
     }
     burst.clear();
@@ -216,8 +230,8 @@ bool RunLive(const SimSetup& setup,
       gt << TumLine(setup, t, start_ns + SecToNs(t / options.speed)) << '\n';
     }
     RecordingStats rs;
-    rs.msop_packets = lidar.msop_packets();
-    rs.difop_packets = lidar.difop_packets();
+    rs.msop_packets = laps ? laps->msop_packets() : once->msop_packets();
+    rs.difop_packets = laps ? laps->difop_packets() : once->difop_packets();
     rs.imu_frames = imu.size();
     std::ofstream(options.out_dir / "manifest.yaml") << ManifestYaml(setup, rs, start_ns, "live");
   }

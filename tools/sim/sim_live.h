@@ -19,7 +19,9 @@ struct LiveOptions {
   double speed = 1.0;             ///< 2.0 = twice real time
   std::string pty_link;           ///< if set, a symlink to the pty's slave device
   std::filesystem::path out_dir;  ///< groundtruth.tum and manifest.yaml (host times) go here
-  double start_delay_s = 0.0;     ///< wait after opening the pty before streaming
+  /// Wait between the preparation (the IMU samples; a repeated route's first lap, minutes for
+  /// loop943) and streaming; "sim: streaming in N s" on stderr marks its start.
+  double start_delay_s = 0.0;
   /// If set, receives for every IMU sample (in SimulateImu's order) the CLOCK_MONOTONIC time
   /// just before its frame was written to the pty (0: not written), for latency measurements.
   std::vector<int64_t>* imu_write_ns = nullptr;

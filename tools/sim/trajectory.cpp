@@ -203,7 +203,26 @@ Eigen::Matrix3d Trajectory::Attitude(const Eigen::Vector2d& xy, double psi) cons
   return R;
 }
 
+void Trajectory::Repeat(int laps, double period_s) {
+  lap_period_s_ = std::max(period_s, duration_s_);
+  duration_s_ = lap_period_s_ * std::max(laps, 1);
+}
+
+bool Trajectory::EndsWhereItStarts() const {
+  const Kinematics a = AtInLap(0.0);
+  const Kinematics b = AtInLap(lap_period_s_ > 0.0 ? lap_period_s_ : duration_s_);
+  const double angle_rad = lie::Log(a.R_world_body.transpose() * b.R_world_body).norm();
+  return (a.p_world - b.p_world).norm() < 0.05 && angle_rad < 0.5 * kPi / 180.0 &&
+         b.v_world.norm() < 1e-6;
+}
+
 Kinematics Trajectory::At(double t) const {
+  if (lap_period_s_ <= 0.0) return AtInLap(t);
+  const double lap = std::floor(t / lap_period_s_);
+  return AtInLap(lap <= 0.0 ? t : t - lap * lap_period_s_);
+}
+
+Kinematics Trajectory::AtInLap(double t) const {
   double s = 0.0, v = 0.0, a_t = 0.0;
   SpeedAt(t, &s, &v, &a_t);
   const Eigen::Vector2d xy = Position(s);

@@ -51,6 +51,13 @@ class Trajectory {
   /// Ends the timeline early (the robot simply stops being simulated at `duration_s`).
   void Truncate(double duration_s) { duration_s_ = std::min(duration_s_, duration_s); }
   double length_m() const { return length_m_; }
+  /// Drives the route `laps` times, one lap every `period_s` (≥ the route's duration; the robot
+  /// stands at the end until the next lap starts). Only meaningful for a route that ends where
+  /// and as it starts (see EndsWhereItStarts); the duration becomes laps · period_s.
+  void Repeat(int laps, double period_s);
+  /// Whether the last pose is the first one (within 5 cm and 0.5°), so that laps join up.
+  bool EndsWhereItStarts() const;
+  double lap_period_s() const { return lap_period_s_; }  ///< 0: the route is driven once
   Kinematics At(double t_s) const;
 
  private:
@@ -70,6 +77,7 @@ class Trajectory {
   /// Arc length, speed and tangential acceleration at time t.
   void SpeedAt(double t, double* s, double* v, double* a) const;
   Eigen::Matrix3d Attitude(const Eigen::Vector2d& xy, double psi) const;
+  Kinematics AtInLap(double t_s) const;
 
   const Terrain* terrain_;
   double imu_height_m_ = 0.6;
@@ -79,6 +87,7 @@ class Trajectory {
   std::vector<double> turn_speed_;  ///< per segment: speed while in it (turns), 0 for straights
   double length_m_ = 0.0;
   double duration_s_ = 0.0;
+  double lap_period_s_ = 0.0;  ///< 0: one pass
 };
 
 }  // namespace swlio::sim
