@@ -13,10 +13,12 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "echo_format.h"
+#include "latency_summary.h"
 #include "swlio/core/time.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/subscriber.h"
@@ -35,6 +37,8 @@ struct EchoOptions {
   std::string record_tum;
   std::string record_from = "pose";
   std::string latency_csv;
+  std::string latency_summary_csv;
+  double summary_period_s = 10.0;
   bool quiet = false;
   double duration_s = 0.0;
   int64_t count = 0;
@@ -56,6 +60,11 @@ class Sink {
       if (!csv_) return Fail(error, "cannot write " + options_.latency_csv);
       csv_ << kLatencyHeader << "\n";
     }
+    if (!options_.latency_summary_csv.empty()) {
+      summary_csv_.open(options_.latency_summary_csv);
+      if (!summary_csv_) return Fail(error, "cannot write " + options_.latency_summary_csv);
+      summary_.emplace(&summary_csv_, options_.summary_period_s);
+    }
     return true;
   }
 
@@ -64,6 +73,10 @@ class Sink {
     for (const auto& r : samples) {
       if (!options_.quiet) std::cout << FormatLine(r.msg) << "\n";
       if (csv_.is_open()) csv_ << LatencyRow(topic, r) << "\n";
+      if (summary_) {
+        summary_->Add(topic, r.receive_steady_ns, r.receive_realtime_ns - r.source_realtime_ns,
+                      r.receive_steady_ns - r.msg.t_ns);
+      }
       if (tum_.is_open() && options_.record_from == ipc::TopicLabel(topic)) Record(r.msg);
       if (topic == Topic::kPose)
         transport_ns_.push_back(r.receive_realtime_ns - r.source_realtime_ns);
@@ -77,6 +90,7 @@ class Sink {
 
   /// Counts per topic and the pose write→take latency percentiles, to stderr.
   void Summary() {
+    if (summary_) summary_->Flush();
     std::fprintf(stderr, "swlio-echo: pose %lld, odometry %lld, health %lld, path %lld samples",
                  static_cast<long long>(counts_[0]), static_cast<long long>(counts_[1]),
                  static_cast<long long>(counts_[2]), static_cast<long long>(counts_[3]));
@@ -105,6 +119,8 @@ class Sink {
   const EchoOptions& options_;
   std::ofstream tum_;
   std::ofstream csv_;
+  std::ofstream summary_csv_;
+  std::optional<LatencySummary> summary_;
   std::array<int64_t, ipc::kTopicCount> counts_{};
   int64_t total_ = 0;
   std::vector<int64_t> transport_ns_;
@@ -130,6 +146,11 @@ void AddOptions(CLI::App& app, EchoOptions& o) {
       ->check(CLI::IsMember({"pose", "odometry"}))
       ->capture_default_str();
   app.add_option("--latency", o.latency_csv, "write one latency CSV row per sample");
+  app.add_option("--latency-summary", o.latency_summary_csv,
+                 "write latency percentiles per topic every --summary-period (long runs)");
+  app.add_option("--summary-period", o.summary_period_s, "seconds per --latency-summary row")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_flag("--quiet,-q", o.quiet, "do not print samples");
   app.add_option("--duration", o.duration_s, "exit after this many seconds (0: no limit)")
       ->check(CLI::NonNegativeNumber);
