@@ -1,0 +1,36 @@
+#!/usr/bin/python3
+"""Writes a swliod configuration for a live simulator run: the rig (LiDAR-IMU extrinsic) from
+the simulator's manifest.yaml, the ports and pty it streams to, DDS on the loopback-only XML,
+logs into WORK/log; everything else the defaults of config/swlio.yaml's keys.
+
+Usage: scripts/sim_daemon_config.py WORK ROOT MSOP_PORT DIFOP_PORT [STATUS_PERIOD_S]
+  reads WORK/sim/manifest.yaml, writes WORK/swlio.yaml (the pty is WORK/imu.pty).
+Used by scripts/demo and scripts/soak."""
+import re
+import sys
+
+work, root, msop, difop = sys.argv[1:5]
+status_period_s = sys.argv[5] if len(sys.argv) > 5 else "5.0"
+m = open(f"{work}/sim/manifest.yaml").read()
+t = re.search(r"extrinsic_T_imu_lidar:.*?translation_m: \[([^\]]*)\]", m, re.S).group(1)
+r = re.search(r"rotation_rpy_deg: \[([^\]]*)\]", m).group(1)
+open(f"{work}/swlio.yaml", "w").write(f"""config_version: 1
+lidar:
+  model: rs16
+  bind_address: 127.0.0.1
+  msop_port: {msop}
+  difop_port: {difop}
+imu:
+  device: {work}/imu.pty
+  configure_on_start: false   # the simulator streams without the configuration handshake
+estimator:
+  extrinsic_imu_lidar:
+    translation_m: [{t}]
+    rotation_rpy_deg: [{r}]
+ipc:
+  dds_config_file: {root}/config/cyclonedds-loopback.xml
+logging:
+  directory: {work}/log
+  stderr_level: warn
+  status_period_s: {status_period_s}
+""")
