@@ -70,7 +70,7 @@ TEST(ClockModel, RecoversOffsetAndDriftThroughBursts) {
   ClockModelConfig config;
   config.fixed_latency_ns = st.latency_ns;
   ClockModel model(config);
-  // After 10 s. Host per sensor: 1/(1+1e-4) − 1 ≈ −100 ppm.
+  // Checked after 10 s.
   const Worst w = Feed(model, st, 1'000'000'000, 121'000'000'000, 11'000'000'000, -100.0, OnTime);
   EXPECT_LT(w.mapping_ns, 500'000.0) << "mapped within 0.5 ms";
   EXPECT_NEAR(model.stats().drift_ppm, -100.0, 2.0);  // host per sensor: 1/(1+1e-4) − 1
