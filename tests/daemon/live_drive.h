@@ -40,7 +40,11 @@ struct LiveDrive {
   std::function<void(sim::SimSetup*)> adjust_setup;  ///< e.g. the sensors' clocks
   std::function<void(DaemonConfig*)> adjust_config;
   std::filesystem::path record_dir;  ///< empty: no recording
-  uint32_t dds_domain = 117;
+  /// Every test its own DDS domain, or one test's subscriber takes another's samples (the ipc
+  /// tests publish edge values such as NaN and DBL_MAX: a CI-like run of ctest -j2 saw them
+  /// arrive here). tests/ipc uses 101..133; the daemon tests 140..159: Runtime.* 140,
+  /// RuntimeFaults.* 141..153, SwliodCommand 154.
+  uint32_t dds_domain = 140;
 };
 
 struct HealthSample {
@@ -178,14 +182,21 @@ inline LiveDriveResult RunLiveDrive(const LiveDrive& drive) {
     for (auto& p : subscriber->TakePoses()) out.poses.push_back(std::move(p));
     out.odometry += subscriber->TakeOdometry().size();
     for (auto& h : subscriber->TakeHealth()) out.published_health.push_back(std::move(h));
+    // Every topic must be taken: a sample left unread keeps the wait set triggered, and this
+    // loop then spun, taking a snapshot every few microseconds on a core the daemon needs.
+    subscriber->TakePaths();
   };
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration<double>(drive.duration_s / out.speed + 60.0);
+  int64_t next_snapshot_ns = 0;
   while (!sim_done && std::chrono::steady_clock::now() < deadline) {
     subscriber->Wait(100'000'000);
     take();
     out.ready = out.ready || rt->Ready();
-    snapshots.emplace_back(MonotonicNowNs(), rt->Snapshot());
+    if (const int64_t now = MonotonicNowNs(); now >= next_snapshot_ns) {  // every 100 ms
+      snapshots.emplace_back(now, rt->Snapshot());
+      next_snapshot_ns = now + 100'000'000;
+    }
   }
   simulator.join();
   rt->Stop();  // the consumers drain what the rx threads received

@@ -83,7 +83,7 @@ TEST(SwliodCommand, RunsUntilSigtermAndStopsCleanly) {
       << "\nimu:\n  device: " << (dir / "absent-tty").string()
       << "\n  configure_on_start: false\nipc:\n  dds_config_file: "
       << (test::SourceDir() / "config" / "cyclonedds-loopback.xml").string()
-      << "\n  domain_id: 121\nlogging:\n  directory: " << (dir / "log").string()
+      << "\n  domain_id: 154\nlogging:\n  directory: " << (dir / "log").string()
       << "\n  status_period_s: 0.5\n";
   const pid_t pid = Spawn({SWLIOD_PATH, "--config", (dir / "swlio.yaml").string()}, dir / "out");
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
