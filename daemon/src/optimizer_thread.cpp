@@ -19,22 +19,26 @@ OptimizerThread::OptimizerThread(const drivers::LidarConfig& lidar,
       }) {}
 
 void OptimizerThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
-  ImuSample sample;
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
     q_.wake->Wait(20'000);  // a LiDAR packet or an IMU sample, whichever comes first
     // IMU first: a sweep is processed once a sample past its end has arrived.
-    while (q_.imu_in->Pop(&sample)) {
-      runner_.AddImu(sample);
-      newest_imu_t_ns_ = sample.t_ns;
-    }
+    DrainImu();
     DrainLidar();
     Publish();
   }
   // Stopping: the rx threads and the propagator have stopped; finish what they queued.
-  while (q_.imu_in->Pop(&sample)) runner_.AddImu(sample);
+  DrainImu();
   DrainLidar();
   Publish();
+}
+
+void OptimizerThread::DrainImu() {
+  ImuSample sample;
+  while (q_.imu_in->Pop(&sample)) {
+    runner_.AddImu(sample);
+    newest_imu_t_ns_ = sample.t_ns;
+  }
 }
 
 void OptimizerThread::DrainLidar() {
@@ -44,6 +48,10 @@ void OptimizerThread::DrainLidar() {
     while (lidar_.Pop(&sweep_)) {
       rx_by_end_.emplace_back(sweep_.scan.t_end_ns, time_.ToHost(sweep_.host_rx_last_ns));
       if (rx_by_end_.size() > EstimatorRunner::kMaxWaiting + 2) rx_by_end_.pop_front();
+      // The IMU that arrived meanwhile first: while a backlog of packets drains (the
+      // estimator fell behind for a while), sweeps must not pile up waiting for samples that
+      // sit in the queue; more than kMaxWaiting would be dropped (a soak at 10x did that).
+      DrainImu();
       runner_.AddScan(std::move(sweep_.scan));
     }
   }

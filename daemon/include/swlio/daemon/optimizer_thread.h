@@ -70,6 +70,7 @@ class OptimizerThread {
  private:
   void OnResult(const Scan& scan, const estimator::WindowResult& result);
   TrackingState Classify(const estimator::OdometryResult& r);
+  void DrainImu();
   void DrainLidar();
   int64_t LastRxOf(int64_t t_end_ns) const;
   void Publish();
