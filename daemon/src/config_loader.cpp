@@ -399,6 +399,7 @@ void Bind(Section s, ipc::IpcConfig& c) {
   s.Get("odometry_topic", c.odometry_topic);
   s.Get("health_topic", c.health_topic);
   s.Get("path_topic", c.path_topic);
+  s.Get("path_max_poses", c.path_max_poses);
   s.Finish();
 }
 

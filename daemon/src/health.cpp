@@ -121,7 +121,7 @@ ipc::DiagnosticStatus QueueStatus(const HealthSnapshot& s) {
   ipc::DiagnosticStatus d;
   d.name = "swlio: queues";
   d.hardware_id = "swlio";
-  uint64_t drops = 0;
+  uint64_t drops = s.publisher.non_finite;
   for (const QueueCounters& q : s.queues) {
     drops += q.dropped;
     d.values.push_back({q.name + " (" + q.producer + "->" + q.consumer + ")",
@@ -130,6 +130,7 @@ ipc::DiagnosticStatus QueueStatus(const HealthSnapshot& s) {
                             std::to_string(q.dropped)});
   }
   d.values.push_back({"dds_write_failures", Count(s.publisher.failures)});
+  d.values.push_back({"non_finite_poses_dropped", Count(s.publisher.non_finite)});
   d.level = drops == 0 ? ipc::DiagnosticLevel::kOk : ipc::DiagnosticLevel::kWarn;
   d.message = drops == 0 ? "no drops" : std::to_string(drops) + " dropped";
   return d;
@@ -194,7 +195,7 @@ std::string HealthReporter::StatusLine(const HealthSnapshot& now) {
 }
 
 uint64_t TotalDrops(const HealthSnapshot& s) {
-  uint64_t drops = s.lidar_rx.truncated + s.optimizer.dropped_waiting;
+  uint64_t drops = s.lidar_rx.truncated + s.optimizer.dropped_waiting + s.publisher.non_finite;
   for (const QueueCounters& q : s.queues) drops += q.dropped;
   return drops;
 }

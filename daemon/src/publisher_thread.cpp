@@ -1,5 +1,7 @@
 #include "swlio/daemon/publisher_thread.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace swlio::daemon {
@@ -9,13 +11,15 @@ PublisherThread::PublisherThread(ipc::Publisher* publisher,
                                  const PublisherQueues& queues,
                                  const TimeScale& time,
                                  HealthFn health,
-                                 int64_t health_period_ns)
+                                 int64_t health_period_ns,
+                                 size_t path_max_poses)
     : publisher_(publisher),
       frames_(std::move(frames)),
       q_(queues),
       time_(time),
       health_(std::move(health)),
-      health_period_ns_(health_period_ns) {
+      health_period_ns_(health_period_ns),
+      path_max_poses_(std::max<size_t>(path_max_poses, 1)) {
   path_.frame_id = frames_.world;
 }
 
@@ -37,12 +41,27 @@ void PublisherThread::Count(bool ok, std::atomic<uint64_t>* counter) {
   (ok ? *counter : failures_).fetch_add(1, std::memory_order_relaxed);
 }
 
+namespace {
+
+bool Finite(const ipc::Pose& p) {
+  bool finite = true;
+  for (const double v : p.position_m) finite = finite && std::isfinite(v);
+  for (const double v : p.orientation_xyzw) finite = finite && std::isfinite(v);
+  return finite;
+}
+
+}  // namespace
+
 void PublisherThread::WritePose(const ImuRatePose& pose) {
   last_gyro_imu_radps_ = pose.gyro_imu_radps;
   ipc::PoseWithCovarianceStamped m;
   m.t_ns = time_.ToHost(pose.state.t_ns);
   m.frame_id = frames_.world;
   m.pose = ToPose(pose.state);
+  if (!Finite(m.pose)) {  // the planner must never receive one
+    non_finite_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
   m.covariance = pose.pose_covariance;
   Count(publisher_ == nullptr || publisher_->PublishPose(m), &poses_);
 }
@@ -54,13 +73,18 @@ void PublisherThread::WriteOdometry(const SweepEstimate& e) {
   }
   ipc::Odometry m = ToOdometryMessage(e.state, last_gyro_imu_radps_, e.covariance, frames_);
   m.t_ns = time_.ToHost(m.t_ns);
+  if (!Finite(m.pose)) {
+    non_finite_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
   Count(publisher_ == nullptr || publisher_->PublishOdometry(m), &odometry_);
   if (e.keyframe) {
     ipc::PoseStamped p;
     p.t_ns = m.t_ns;
     p.frame_id = frames_.world;
     p.pose = m.pose;
-    path_.poses.push_back(p);
+    keyframes_.push_back(p);
+    if (keyframes_.size() > path_max_poses_) keyframes_.pop_front();
     path_.t_ns = p.t_ns;
     path_changed_ = true;
   }
@@ -74,6 +98,7 @@ void PublisherThread::Periodic(int64_t now_ns) {
     Count(publisher_ == nullptr || publisher_->PublishHealth(h), &health_count_);
   }
   if (path_changed_) {
+    path_.poses.assign(keyframes_.begin(), keyframes_.end());
     Count(publisher_ == nullptr || publisher_->PublishPath(path_), &paths_);
     path_changed_ = false;
   }
@@ -87,6 +112,7 @@ PublisherCounters PublisherThread::counters() const {
   c.health = health_count_.load(kRelaxed);
   c.paths = paths_.load(kRelaxed);
   c.failures = failures_.load(kRelaxed);
+  c.non_finite = non_finite_.load(kRelaxed);
   return c;
 }
 

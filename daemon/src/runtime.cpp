@@ -93,7 +93,8 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   Runtime* self = rt.get();
   rt->publisher_thread_ = std::make_unique<PublisherThread>(
       rt->publisher_.get(), FrameIds{}, PublisherQueues{&q.poses, &q.odometry, &q.publisher_wake},
-      time, [self](int64_t) { return self->published_health_.Diagnostics(self->Snapshot()); });
+      time, [self](int64_t) { return self->published_health_.Diagnostics(self->Snapshot()); },
+      1'000'000'000, static_cast<size_t>(config.ipc.path_max_poses));
   return rt;
 }
 

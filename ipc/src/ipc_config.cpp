@@ -28,6 +28,7 @@ ConfigIssues IpcConfig::Validate() const {
   ConfigIssues issues;
   // DDS domain ids map onto UDP ports; 232 is the largest that fits (DDSI-RTPS 2.2 §9.6.1.1).
   CheckInRange<int64_t>(issues, "domain_id", domain_id, 0, 232);
+  CheckInRange<int64_t>(issues, "path_max_poses", path_max_poses, 1, 1'000'000);
   CheckThat(issues, !dds_config_file.empty(), "dds_config_file", "must name a DDS XML file");
   CheckTopic(issues, "pose_topic", pose_topic);
   CheckTopic(issues, "odometry_topic", odometry_topic);

@@ -5,7 +5,9 @@
 /// health at 1 Hz. The only thread that calls into DDS.
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <functional>
 
 #include "swlio/daemon/live_types.h"
@@ -29,6 +31,9 @@ struct PublisherCounters {
   uint64_t health = 0;
   uint64_t paths = 0;
   uint64_t failures = 0;  ///< writes DDS refused
+  /// Poses and odometry not published because a position or orientation was not finite
+  /// (never sent to the planner; a non-zero count is a bug to report).
+  uint64_t non_finite = 0;
 };
 
 class PublisherThread {
@@ -42,9 +47,12 @@ class PublisherThread {
                   const PublisherQueues& queues,
                   const TimeScale& time,
                   HealthFn health,
-                  int64_t health_period_ns = 1'000'000'000);
+                  int64_t health_period_ns = 1'000'000'000,
+                  size_t path_max_poses = 5000);
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   PublisherCounters counters() const;
+  /// The keyframes the path holds (the newest path_max_poses); read after Run returned.
+  const std::deque<ipc::PoseStamped>& keyframes() const { return keyframes_; }
 
  private:
   void WritePose(const ImuRatePose& pose);
@@ -59,10 +67,13 @@ class PublisherThread {
   HealthFn health_;
   int64_t health_period_ns_;
   int64_t next_health_ns_ = 0;
-  ipc::Path path_;
+  size_t path_max_poses_;
+  std::deque<ipc::PoseStamped> keyframes_;
+  ipc::Path path_;  ///< the message, filled from keyframes_ when published
   bool path_changed_ = false;
   Eigen::Vector3d last_gyro_imu_radps_ = Eigen::Vector3d::Zero();
-  std::atomic<uint64_t> poses_{0}, odometry_{0}, health_count_{0}, paths_{0}, failures_{0};
+  std::atomic<uint64_t> poses_{0}, odometry_{0}, health_count_{0}, paths_{0}, failures_{0},
+      non_finite_{0};
 };
 
 }  // namespace swlio::daemon

@@ -21,6 +21,9 @@ struct IpcConfig {
   std::string odometry_topic = "swlio/odometry";  ///< scan-rate odometry with covariance
   std::string health_topic = "diagnostics";       ///< 1 Hz health (ROS 2 /diagnostics)
   std::string path_topic = "swlio/path";          ///< keyframe path
+  /// The keyframe path holds the newest this many keyframes: bounded memory and message size
+  /// on a robot that patrols for days (a soak saw the whole path grow with every lap).
+  int64_t path_max_poses = 5000;
 
   ConfigIssues Validate() const;
 };
