@@ -21,15 +21,19 @@ QUEUE = re.compile(r"(\S+) \((\S+)->(\S+)\)=depth (\d+)/(\d+), high (\d+), dropp
 AGE = re.compile(r"sweep_age_s=([0-9.]+)")
 STAMP = re.compile(r"^health t=([0-9.]+)")
 STATE = re.compile(r"swlio: estimator \S+ \"([^\"]*)\"")
+PACKETS = re.compile(r"packets_hz=([0-9.]+)")
+WAITING = re.compile(r"sweeps_without_imu_dropped=(\d+)")
 
 
 def read_health(path):
-    """Per health message: time (s, host), deepest queue, total drops, sweep age, state."""
+    """Per health message while the LiDAR streams: time (s, host), deepest queue, total queue
+    drops, sweep age, state, sweeps dropped waiting for the IMU."""
     rows = []
     for line in open(path):
         m = STAMP.match(line)
-        if not m:
-            continue
+        packets = PACKETS.search(line)
+        if not m or not packets or float(packets.group(1)) <= 0.0:
+            continue  # before the first packet or after the last: no sweep to age
         queues = QUEUE.findall(line)
         age = AGE.search(line)
         state = STATE.search(line)
@@ -37,7 +41,8 @@ def read_health(path):
                      max((int(q[3]) for q in queues), default=0),
                      sum(int(q[6]) for q in queues),
                      float(age.group(1)) if age else np.nan,
-                     state.group(1) if state else "?"))
+                     state.group(1) if state else "?",
+                     int(WAITING.search(line).group(1)) if WAITING.search(line) else 0))
     return rows
 
 
@@ -80,7 +85,8 @@ def main():
     print(f"daemon CPU: {100 * np.median(cpu):.0f} % of a core (median of 5 s samples)")
     if len(depth):
         print(f"queues: deepest {depth.max()} (median of the per-message maxima "
-              f"{np.median(depth):.0f}); drops at the end {drops[-1]}")
+              f"{np.median(depth):.0f}); queue drops at the end {drops[-1]}; sweeps dropped "
+              f"waiting for the IMU {health[-1][5]}")
         print(f"sweep age (s, host): median {np.nanmedian(sweep_age):.2f}, "
               f"max {np.nanmax(sweep_age):.2f}; states seen: "
               f"{sorted(set(r[4] for r in health))}")
