@@ -1,6 +1,7 @@
 #include "latency_summary.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "swlio/core/time.h"
@@ -11,7 +12,7 @@ namespace {
 /// The q-quantile (nearest rank) of `v`, which it sorts.
 int64_t Quantile(std::vector<int64_t>& v, double q) {
   std::sort(v.begin(), v.end());
-  return v[static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5)];
+  return v[static_cast<size_t>(std::lround(q * static_cast<double>(v.size() - 1)))];
 }
 
 }  // namespace

@@ -12,7 +12,7 @@ namespace {
 using drivers::rs16::kBlocks;
 using drivers::rs16::kFiringPeriodNs;
 
-constexpr int64_t kPacketPeriodNs = 2 * kBlocks * kFiringPeriodNs;  // 24 firings: 1.332 ms
+constexpr int64_t kPacketPeriodNs = kFiringPeriodNs * 2 * kBlocks;  // 24 firings: 1.332 ms
 
 }  // namespace
 
