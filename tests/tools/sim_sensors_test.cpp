@@ -71,6 +71,34 @@ TEST(SimLidar, PacketsDecodeBackToTheRayCastPoints) {
   EXPECT_GT(checked, 50'000u);
 }
 
+/// `SimPacket::t_header_s` is what the header time stands for: an MSOP's first firing, a
+/// DIFOP's whole second; the header holds it on the sensor clock (to the µs it carries).
+TEST(SimLidar, HeaderSimTimeIsTheTimeInTheHeader) {
+  const SimSetup setup = MakeSetupOrDie("short", 3, 3.0);
+  LidarSimulator lidar(setup.world.get(), setup.trajectory.get(), setup.lidar, 3);
+  SimPacket packet;
+  std::vector<SimReturn> truth;
+  size_t msop = 0, difop = 0;
+  while (lidar.Next(&packet, &truth)) {
+    const bool is_difop = packet.dst_port == setup.lidar.difop_port;
+    namespace rs16 = drivers::rs16;
+    int64_t t_header_ns = 0;
+    ASSERT_TRUE(
+        rs16::ParseTime(packet.bytes.data() + (is_difop ? rs16::kDifopTime : rs16::kTimeOffset),
+                        rs16::TimeFormat::kYmd, &t_header_ns));
+    const double t_device_s = setup.lidar.clock.ToDevice(packet.t_header_s);
+    EXPECT_NEAR(static_cast<double>(t_header_ns - SecToNs(t_device_s)) * 1e-9, 0.0, 1.5e-6);
+    if (is_difop) {
+      EXPECT_EQ(packet.t_header_s, static_cast<double>(difop++));
+    } else {
+      EXPECT_NEAR(packet.t_header_s, NsToSec(static_cast<int64_t>(msop++) * kMsopPeriodNs), 1e-12);
+      EXPECT_EQ(SecToNs(packet.t_header_s), truth[0].t_true_ns);
+    }
+  }
+  EXPECT_GT(msop, 2000u);
+  EXPECT_EQ(difop, 3u);  // seconds 0, 1, 2: none at 3.0 s, after the last MSOP
+}
+
 /// The noise-free ray-cast hit lies on the world surface it reports, seen from the LiDAR pose
 /// at the firing's own time (motion during the sweep is simulated).
 TEST(SimLidar, HitsAreSeenFromThePoseAtTheirOwnTime) {

@@ -16,9 +16,7 @@ using drivers::rs16::kLaserSpacingNs;
 constexpr int kFiringsPerPacket = 2 * drivers::rs16::kBlocks;
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 
-double PacketStartS(uint64_t index) {
-  return NsToSec(static_cast<int64_t>(index) * kFiringsPerPacket * kFiringPeriodNs);
-}
+double PacketStartS(uint64_t index) { return NsToSec(static_cast<int64_t>(index) * kMsopPeriodNs); }
 
 }  // namespace
 
@@ -47,7 +45,7 @@ int64_t LidarSimulator::MsopRxNs(uint64_t index) const {
 }
 
 void LidarSimulator::SkipTo(double t_s) {
-  const double period_s = NsToSec(kFiringsPerPacket * kFiringPeriodNs);
+  const double period_s = NsToSec(kMsopPeriodNs);
   msop_index_ = std::max(msop_index_, static_cast<uint64_t>(std::ceil(t_s / period_s)));
   difop_index_ = std::max(difop_index_, static_cast<uint64_t>(std::ceil(t_s)));
 }
@@ -74,6 +72,7 @@ void LidarSimulator::MakeDifop(SimPacket* out) {
   c.vertical_angles_deg = config_.vertical_angles_deg;
   c.t_sensor_ns = SecToNs(config_.clock.ToDevice(t_s));
   drivers::EncodeRs16Difop(c, out->bytes);
+  out->t_header_s = t_s;
   out->dst_port = config_.difop_port;
   out->t_rx_ns = std::max(SecToNs(t_s + config_.latency_s), last_rx_ns_ + 1000);
   last_rx_ns_ = out->t_rx_ns;
@@ -84,6 +83,7 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
   const double t0 = PacketStartS(index);
   drivers::Rs16MsopContent content;
   content.t_sensor_ns = SecToNs(config_.clock.ToDevice(t0));
+  out->t_header_s = t0;
   if (returns != nullptr) returns->clear();
   Eigen::Isometry3d pose_a = LidarPose(t0);
   for (int f = 0; f < kFiringsPerPacket; ++f) {

@@ -36,8 +36,14 @@ struct LidarSimConfig {
   uint16_t difop_port = 7788;
 };
 
+/// One MSOP packet's period: 12 blocks of two firing sequences (1.332 ms).
+constexpr int64_t kMsopPeriodNs = 2 * drivers::rs16::kBlocks * drivers::rs16::kFiringPeriodNs;
+
 struct SimPacket {
   int64_t t_rx_ns = 0;  ///< host receive time
+  /// Simulation time that the header's sensor time stands for (an MSOP's first firing, a
+  /// DIFOP's whole second), before the sensor clock's offset and drift.
+  double t_header_s = 0.0;
   uint16_t dst_port = 0;
   std::array<uint8_t, drivers::rs16::kPacketBytes> bytes{};
 };

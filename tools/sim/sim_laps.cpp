@@ -7,20 +7,12 @@
 #include "swlio/drivers/rs16_protocol.h"
 
 namespace swlio::sim {
-namespace {
-
-using drivers::rs16::kBlocks;
-using drivers::rs16::kFiringPeriodNs;
-
-constexpr int64_t kPacketPeriodNs = kFiringPeriodNs * 2 * kBlocks;  // 24 firings: 1.332 ms
-
-}  // namespace
 
 double LapPeriodS(const SimSetup& setup) {
   if (setup.trajectory->lap_period_s() > 0.0) return setup.trajectory->lap_period_s();
   const auto rotation_ns = static_cast<int64_t>(std::llround(60e9 / setup.lidar.rpm));
   // 1.332 ms and 100 ms (600 rpm): a lap is a multiple of 33.3 s.
-  const int64_t step_ns = std::lcm(kPacketPeriodNs, rotation_ns);
+  const int64_t step_ns = std::lcm(kMsopPeriodNs, rotation_ns);
   const double steps =
       std::ceil(setup.trajectory->duration_s() * 1e9 / static_cast<double>(step_ns));
   return steps * static_cast<double>(step_ns) * 1e-9;
@@ -51,18 +43,8 @@ LidarLaps::LidarLaps(const SimSetup& setup) : setup_(&setup) {
       setup.trajectory->lap_period_s() > 0.0 ? setup.trajectory->lap_period_s() : duration_s;
   laps_ = static_cast<int>(std::lround(duration_s / period_s_));
   LidarSimulator lidar(setup.world.get(), setup.trajectory.get(), setup.lidar, setup.seed);
-  uint64_t msop = 0;
-  uint64_t difop = 0;
-  Cached c;
-  while (lidar.Next(&c.packet)) {
-    const bool is_difop = c.packet.dst_port != setup.lidar.msop_port;
-    // What the header time stands for, as LidarSimulator sets it: a DIFOP a second, an MSOP
-    // its first firing.
-    c.t_sensor_s = is_difop ? static_cast<double>(difop++)
-                            : NsToSec(static_cast<int64_t>(msop++) * kPacketPeriodNs);
-    if (c.t_sensor_s >= period_s_ - 1e-9) break;
-    lap_.push_back(c);
-  }
+  SimPacket packet;
+  while (lidar.Next(&packet) && packet.t_header_s < period_s_ - 1e-9) lap_.push_back(packet);
 }
 
 bool LidarLaps::Next(SimPacket* out) {
@@ -71,13 +53,13 @@ bool LidarLaps::Next(SimPacket* out) {
     ++lap_index_;
   }
   if (lap_index_ >= laps_ || lap_.empty()) return false;
-  const Cached& c = lap_[next_++];
-  *out = c.packet;
+  *out = lap_[next_++];
   const bool is_difop = out->dst_port != setup_->lidar.msop_port;
   if (lap_index_ > 0) {
     const double shift_s = period_s_ * lap_index_;
     out->t_rx_ns += SecToNs(shift_s);
-    const int64_t t_device_ns = SecToNs(setup_->lidar.clock.ToDevice(c.t_sensor_s + shift_s));
+    out->t_header_s += shift_s;
+    const int64_t t_device_ns = SecToNs(setup_->lidar.clock.ToDevice(out->t_header_s));
     namespace rs16 = drivers::rs16;
     rs16::WriteTime(out->bytes.data() + (is_difop ? rs16::kDifopTime : rs16::kTimeOffset),
                     rs16::TimeFormat::kYmd, t_device_ns);

@@ -42,15 +42,10 @@ class LidarLaps {
   size_t packets_per_lap() const { return lap_.size(); }
 
  private:
-  struct Cached {
-    SimPacket packet;
-    double t_sensor_s = 0.0;  ///< simulation time that the header time stands for
-  };
-
   const SimSetup* setup_;
   double period_s_ = 0.0;
   int laps_ = 1;
-  std::vector<Cached> lap_;
+  std::vector<SimPacket> lap_;
   size_t next_ = 0;
   int lap_index_ = 0;
   uint64_t msop_sent_ = 0;
