@@ -417,6 +417,7 @@ void Bind(Section s, LoggingConfig& c) {
 void Bind(Section s, RealtimeConfig& c) {
   s.Get("enabled", c.enabled);
   s.Get("lock_memory", c.lock_memory);
+  s.Get("max_sweep_lag_s", c.max_sweep_lag_s);
   s.ForEachChild("threads", [&](Section item) {
     ThreadSchedConfig& t = c.threads.emplace_back();
     item.Get("name", t.name);

@@ -43,6 +43,7 @@ ConfigIssues RealtimeConfig::Validate() const {
     CheckInRange<int64_t>(issues, key + ".cpu", t.cpu, -1, 1023);
     CheckInRange<int64_t>(issues, key + ".nice", t.nice, -20, 19);
   }
+  CheckInRange(issues, "max_sweep_lag_s", max_sweep_lag_s, 0.0, 60.0);
   return issues;
 }
 

@@ -110,6 +110,7 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
       {"solve_ms_max", Num(s.optimizer.max_update_ms, "%.2f")},
       {"pose_rate_hz", Num(r.poses_hz, "%.1f")},
       {"sweeps_without_imu_dropped", Count(s.optimizer.dropped_waiting)},
+      {"sweeps_skipped_behind", Count(s.optimizer.skipped_behind)},
       {"reinitializations", Count(s.optimizer.reinitializations)},
       {"imu_only_s", Num(s.optimizer.imu_only_s, "%.2f")},
       {"sweep_age_s", SweepAge(s)},
@@ -183,13 +184,14 @@ std::string HealthReporter::StatusLine(const HealthSnapshot& now) {
   std::snprintf(line, sizeof line,
                 "status %s | lidar %.0f pkt/s %.1f sweeps/s, missing %llu | imu %.0f Hz, "
                 "checksum errors %llu, gaps %llu | pose %.0f Hz | update %.1f ms (max %.1f) | "
-                "drops %llu | reinit %llu",
+                "drops %llu | skipped behind %llu | reinit %llu",
                 ToString(now.optimizer.tracking), r.lidar_packets_hz, r.sweeps_hz,
                 static_cast<unsigned long long>(now.optimizer.lidar.missing_packets), r.imu_hz,
                 static_cast<unsigned long long>(now.imu_rx.checksum_errors),
                 static_cast<unsigned long long>(now.imu_rx.missing_packets), r.poses_hz,
                 now.optimizer.last_update_ms, now.optimizer.max_update_ms,
                 static_cast<unsigned long long>(TotalDrops(now)),
+                static_cast<unsigned long long>(now.optimizer.skipped_behind),
                 static_cast<unsigned long long>(now.optimizer.reinitializations));
   return line;
 }

@@ -10,13 +10,15 @@ namespace swlio::daemon {
 OptimizerThread::OptimizerThread(const drivers::LidarConfig& lidar,
                                  const EstimatorSetup& setup,
                                  const OptimizerQueues& queues,
-                                 const TimeScale& time)
+                                 const TimeScale& time,
+                                 int64_t max_sweep_lag_ns)
     : q_(queues),
       time_(time),
       lidar_(lidar),
-      runner_(setup, &ThreadCpuNowNs, [this](const Scan& scan, const estimator::WindowResult& r) {
-        OnResult(scan, r);
-      }) {}
+      runner_(setup,
+              &ThreadCpuNowNs,
+              [this](const Scan& scan, const estimator::WindowResult& r) { OnResult(scan, r); }),
+      shedding_(max_sweep_lag_ns) {}
 
 void OptimizerThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
   while (!stop.load(std::memory_order_relaxed)) {
@@ -46,6 +48,7 @@ void OptimizerThread::DrainLidar() {
   while (q_.lidar_in->Pop(&packet)) {
     lidar_.Add(std::span(packet.bytes).first(packet.size), time_.ToDaemon(packet.t_rx_ns));
     while (lidar_.Pop(&sweep_)) {
+      if (!shedding_.Take(time_.ToDaemon(MonotonicNowNs()) - sweep_.host_rx_last_ns)) continue;
       rx_by_end_.emplace_back(sweep_.scan.t_end_ns, time_.ToHost(sweep_.host_rx_last_ns));
       if (rx_by_end_.size() > EstimatorRunner::kMaxWaiting + 2) rx_by_end_.pop_front();
       // The IMU that arrived meanwhile first: while a backlog of packets drains (the
@@ -115,6 +118,7 @@ void OptimizerThread::Publish() {
   snapshot_.lidar_clock = lidar_.clock();
   snapshot_.processed = processed_;
   snapshot_.dropped_waiting = runner_.dropped_waiting();
+  snapshot_.skipped_behind = shedding_.skipped();
   snapshot_.tracking = tracking_;
   const int64_t imu_only_ns = newest_imu_t_ns_ - last_sweep_t_ns_;
   const bool carried =

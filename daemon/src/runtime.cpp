@@ -6,6 +6,7 @@
 
 #include <utility>
 
+#include "swlio/core/time.h"
 #include "swlio/daemon/thread_setup.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
@@ -89,7 +90,8 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   const EstimatorSetup setup = MakeEstimatorSetup(config, T_imu_lidar, ModeFromConfig(config));
   rt->optimizer_ = std::make_unique<OptimizerThread>(
       config.lidar, setup,
-      OptimizerQueues{&q.lidar, &q.imu, &q.states, &q.odometry, &q.optimizer_wake}, time);
+      OptimizerQueues{&q.lidar, &q.imu, &q.states, &q.odometry, &q.optimizer_wake}, time,
+      SecToNs(config.realtime.max_sweep_lag_s));
   Runtime* self = rt.get();
   rt->publisher_thread_ = std::make_unique<PublisherThread>(
       rt->publisher_.get(), FrameIds{}, PublisherQueues{&q.poses, &q.odometry, &q.publisher_wake},

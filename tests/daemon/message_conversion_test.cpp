@@ -92,6 +92,7 @@ TEST(HealthReporter, SaysWhyTheEstimatorIsLostWhileItReinitializes) {
   s.optimizer.tracking = TrackingState::kLost;
   s.optimizer.recovering = true;
   s.optimizer.reinitializations = 2;
+  s.optimizer.skipped_behind = 7;
   s.optimizer.last_divergence = "speed out of bounds";
   HealthReporter r;
   const ipc::DiagnosticArray d = r.Diagnostics(s);
@@ -102,6 +103,11 @@ TEST(HealthReporter, SaysWhyTheEstimatorIsLostWhileItReinitializes) {
     counted |= kv.key == "reinitializations" && kv.value == "2";
   EXPECT_TRUE(counted);
   EXPECT_NE(r.StatusLine(s).find("reinit 2"), std::string::npos);
+  EXPECT_NE(r.StatusLine(s).find("skipped behind 7"), std::string::npos);
+  bool skipped = false;
+  for (const auto& kv : d.status[2].values)
+    skipped |= kv.key == "sweeps_skipped_behind" && kv.value == "7";
+  EXPECT_TRUE(skipped);
 }
 
 TEST(HealthReporter, SaysHowLongTheImuAloneHasCarriedTheState) {

@@ -43,6 +43,17 @@ TEST(RealtimeConfig, LoadsThreadsAndReportsBadEntriesWithTheirLine) {
   EXPECT_THAT(report, HasSubstr("t.yaml:4"));
 }
 
+TEST(RealtimeConfig, MaxSweepLagDefaultsOnAndIsRangeChecked) {
+  EXPECT_EQ(RealtimeConfig{}.max_sweep_lag_s, 0.5);
+  const LoadedConfig off = LoadConfigText("config_version: 1\nrealtime:\n  max_sweep_lag_s: 0\n",
+                                          "t.yaml", "/etc/swlio");
+  ASSERT_TRUE(off.ok()) << off.ErrorReport();
+  EXPECT_EQ(off.config.realtime.max_sweep_lag_s, 0.0);
+  const LoadedConfig bad = LoadConfigText("config_version: 1\nrealtime:\n  max_sweep_lag_s: -1\n",
+                                          "t.yaml", "/etc/swlio");
+  EXPECT_THAT(bad.ErrorReport(), HasSubstr("realtime.max_sweep_lag_s"));
+}
+
 TEST(ThreadSetup, PinsTheThreadAndReportsWhatItCannotApply) {
   RealtimeConfig config;
   config.enabled = true;

@@ -43,12 +43,16 @@ struct ThreadSchedConfig {
   int64_t nice = 0;
 };
 
-/// Real-time options (YAML `realtime`); all off by default. They need the capabilities the
-/// systemd drop-in swliod-realtime.conf grants (CAP_SYS_NICE, CAP_IPC_LOCK); a refusal is
-/// logged and the daemon runs on without it.
+/// Real-time options (YAML `realtime`). Scheduling and memory locking are off by default; they
+/// need the capabilities the systemd drop-in swliod-realtime.conf grants (CAP_SYS_NICE,
+/// CAP_IPC_LOCK); a refusal is logged and the daemon runs on without it.
 struct RealtimeConfig {
   bool enabled = false;      ///< apply `threads`' priorities and CPU pinning (nice: always)
   bool lock_memory = false;  ///< mlockall(MCL_CURRENT | MCL_FUTURE) once the threads run
+  /// When the estimator runs this far behind the LiDAR (a sweep's last packet arrived longer
+  /// ago, sensor time), it skips every other sweep until it has caught up (sweep_shedding.h);
+  /// 0 never skips, and the packet queue overflows instead.
+  double max_sweep_lag_s = 0.5;
   std::vector<ThreadSchedConfig> threads;
   ConfigIssues Validate() const;
 };

@@ -20,6 +20,7 @@
 #include "swlio/daemon/lidar_stage.h"
 #include "swlio/daemon/live_types.h"
 #include "swlio/daemon/spsc_queue.h"
+#include "swlio/daemon/sweep_shedding.h"
 #include "swlio/daemon/time_scale.h"
 #include "swlio/daemon/watchdog.h"
 
@@ -38,6 +39,7 @@ struct OptimizerCounters {
   drivers::ClockModelStats lidar_clock;
   uint64_t processed = 0;  ///< sweeps the estimator took
   uint64_t dropped_waiting = 0;
+  uint64_t skipped_behind = 0;  ///< sweeps skipped while the estimator ran behind (SweepShedding)
   TrackingState tracking = TrackingState::kInitializing;
   int degenerate_directions = 0;
   double last_update_ms = 0.0;
@@ -60,10 +62,12 @@ class OptimizerThread {
   static constexpr int kLostAfterSweeps = 10;
   static constexpr int64_t kImuOnlyDegradedNs = 300'000'000;  ///< three sweeps at 10 Hz
 
+  /// `max_sweep_lag_ns` (daemon time): SweepShedding's limit; 0 never skips a sweep.
   OptimizerThread(const drivers::LidarConfig& lidar,
                   const EstimatorSetup& setup,
                   const OptimizerQueues& queues,
-                  const TimeScale& time = {});
+                  const TimeScale& time = {},
+                  int64_t max_sweep_lag_ns = 0);
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   OptimizerCounters counters() const;
 
@@ -79,6 +83,7 @@ class OptimizerThread {
   TimeScale time_;
   LidarStage lidar_;
   EstimatorRunner runner_;
+  SweepShedding shedding_;
   HostSweep sweep_;
   /// (sweep end, host receive time of its last packet) of the sweeps the runner holds.
   std::deque<std::pair<int64_t, int64_t>> rx_by_end_;
