@@ -23,11 +23,21 @@ STAMP = re.compile(r"^health t=([0-9.]+)")
 STATE = re.compile(r"swlio: estimator \S+ \"([^\"]*)\"")
 PACKETS = re.compile(r"packets_hz=([0-9.]+)")
 WAITING = re.compile(r"sweeps_without_imu_dropped=(\d+)")
+SKIPPED = re.compile(r"sweeps_skipped_behind=(\d+)")
+SOLVE = re.compile(r"solve_ms=([0-9.]+)")
+REINIT = re.compile(r"reinitializations=(\d+)")
+MAP_POINTS = re.compile(r"local_map_points=(\d+)")
+
+
+def count(regex, line):
+    m = regex.search(line)
+    return int(m.group(1)) if m else 0
 
 
 def read_health(path):
     """Per health message while the LiDAR streams: time (s, host), deepest queue, total queue
-    drops, sweep age, state, sweeps dropped waiting for the IMU."""
+    drops, sweep age, state, sweeps dropped waiting for the IMU, sweeps skipped while behind,
+    the last update's time (ms), re-initializations, local map points (nan when not reported)."""
     rows = []
     for line in open(path):
         m = STAMP.match(line)
@@ -42,7 +52,11 @@ def read_health(path):
                      sum(int(q[6]) for q in queues),
                      float(age.group(1)) if age else np.nan,
                      state.group(1) if state else "?",
-                     int(WAITING.search(line).group(1)) if WAITING.search(line) else 0))
+                     count(WAITING, line), count(SKIPPED, line),
+                     float(SOLVE.search(line).group(1)) if SOLVE.search(line) else np.nan,
+                     count(REINIT, line),
+                     float(MAP_POINTS.search(line).group(1)) if MAP_POINTS.search(line)
+                     else np.nan))
     return rows
 
 
@@ -74,6 +88,8 @@ def main():
     depth = np.array([r[1] for r in health])
     drops = np.array([r[2] for r in health])
     sweep_age = np.array([r[3] for r in health])
+    skipped = np.array([r[6] for r in health])
+    map_points = np.array([r[9] for r in health])
 
     print(f"simulated driving: {t_h[-1]:.2f} h in {rss['t_s'][-1] / 60:.1f} min at {a.speed:g}x")
     after_lap = rss_mb[t_h >= lap_h]
@@ -86,10 +102,20 @@ def main():
     if len(depth):
         print(f"queues: deepest {depth.max()} (median of the per-message maxima "
               f"{np.median(depth):.0f}); queue drops at the end {drops[-1]}; sweeps dropped "
-              f"waiting for the IMU {health[-1][5]}")
+              f"waiting for the IMU {health[-1][5]}; sweeps skipped while behind "
+              f"{health[-1][6]}; re-initializations {health[-1][8]}")
+        states = sorted(set(re.sub(r"[0-9.]+ s$", "N s", r[4]) for r in health))
         print(f"sweep age (s, host): median {np.nanmedian(sweep_age):.2f}, "
-              f"max {np.nanmax(sweep_age):.2f}; states seen: "
-              f"{sorted(set(r[4] for r in health))}")
+              f"max {np.nanmax(sweep_age):.2f}; states seen: {states}")
+        solve = np.array([r[7] for r in health])
+        lap = np.floor(h_t_h / lap_h).astype(int)
+        per_lap = [np.nanmean(solve[lap == k]) for k in range(lap.max() + 1) if (lap == k).any()]
+        print("update time (ms, the health's last sweep, mean per lap): "
+              + " ".join(f"{v:.1f}" for v in per_lap))
+        if np.isfinite(map_points).any():
+            per_lap = [np.nanmax(map_points[lap == k]) for k in range(lap.max() + 1)
+                       if (lap == k).any()]
+            print("local map points (most per lap): " + " ".join(f"{v:.0f}" for v in per_lap))
     for name, rows in (("pose", pose), ("odometry", odo)):
         if len(rows) < 2:
             continue
@@ -104,6 +130,12 @@ def main():
     ax[0].plot(t_h, rss_mb, label="RSS")
     ax[0].plot(t_h, rss["hwm_kb"] / 1024.0, "--", label="peak RSS")
     ax[0].set_ylabel("swliod memory (MB)")
+    if np.isfinite(map_points).any():
+        twin = ax[0].twinx()
+        twin.plot(h_t_h, map_points / 1e3, color="tab:green", lw=0.8, label="local map points")
+        twin.set_ylabel("local map (thousand points)")
+        twin.set_ylim(bottom=0)
+        twin.legend(loc="lower right", fontsize=8)
     ax[1].plot(pose["t_s"] * a.speed / 3600.0, pose["age_p50_ms"], label="pose age p50")
     ax[1].plot(pose["t_s"] * a.speed / 3600.0, pose["age_p99_ms"], label="pose age p99")
     ax[1].plot(odo["t_s"] * a.speed / 3600.0, odo["age_p50_ms"], label="odometry age p50")
@@ -111,6 +143,7 @@ def main():
     ax[1].set_yscale("log")
     ax[2].plot(h_t_h, depth, label="deepest queue (items)")
     ax[2].plot(h_t_h, drops, label="drops (total)")
+    ax[2].plot(h_t_h, skipped, label="sweeps skipped while behind (total)")
     ax[2].set_ylabel("queues")
     ax[3].plot(h_t_h, sweep_age, label="sweep age (s, host)")
     ax[3].plot(t_h[1:], cpu, label="daemon CPU (cores)")

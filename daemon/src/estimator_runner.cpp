@@ -75,4 +75,9 @@ void EstimatorRunner::Process(const Scan& scan) {
   if (sink_) sink_(scan, result);
 }
 
+size_t EstimatorRunner::map_points() const {
+  if (window_) return window_->map_points();
+  return odometry_->plane_map().size() + odometry_->edge_map().size();
+}
+
 }  // namespace swlio::daemon

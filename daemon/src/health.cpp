@@ -111,6 +111,7 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
       {"pose_rate_hz", Num(r.poses_hz, "%.1f")},
       {"sweeps_without_imu_dropped", Count(s.optimizer.dropped_waiting)},
       {"sweeps_skipped_behind", Count(s.optimizer.skipped_behind)},
+      {"local_map_points", Count(s.optimizer.map_points)},
       {"reinitializations", Count(s.optimizer.reinitializations)},
       {"imu_only_s", Num(s.optimizer.imu_only_s, "%.2f")},
       {"sweep_age_s", SweepAge(s)},

@@ -119,6 +119,7 @@ void OptimizerThread::Publish() {
   snapshot_.processed = processed_;
   snapshot_.dropped_waiting = runner_.dropped_waiting();
   snapshot_.skipped_behind = shedding_.skipped();
+  snapshot_.map_points = runner_.map_points();
   snapshot_.tracking = tracking_;
   const int64_t imu_only_ns = newest_imu_t_ns_ - last_sweep_t_ns_;
   const bool carried =

@@ -23,7 +23,13 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   ASSERT_TRUE(r.sim_ok) << r.error;
   const HealthSnapshot& s = r.final;
   EXPECT_TRUE(r.ready) << "READY condition: sensors stream and the estimator has a state";
-  EXPECT_GE(s.optimizer.processed, 90u);
+  // Under a sanitizer the estimator may run behind and skip sweeps (SweepShedding); in the
+  // Release build it keeps up.
+  EXPECT_GE(s.optimizer.processed + s.optimizer.skipped_behind, 90u);
+  if (!kSanitized) {
+    EXPECT_EQ(s.optimizer.skipped_behind, 0u);
+  }
+  EXPECT_GT(s.optimizer.map_points, 1000u) << "the local maps hold the keyframes' features";
   EXPECT_NE(s.optimizer.tracking, TrackingState::kLost);
   EXPECT_NE(s.optimizer.tracking, TrackingState::kInitializing);
   EXPECT_GE(r.poses.size(), 1000u) << "IMU-rate poses received over DDS";

@@ -61,6 +61,8 @@ class EstimatorRunner {
   /// Sweeps dropped because more than `kMaxWaiting` waited (the IMU stopped).
   size_t dropped_waiting() const { return dropped_waiting_; }
   EstimatorMode mode() const { return mode_; }
+  /// Points in the estimator's local maps (planes and edges), in either mode.
+  size_t map_points() const;
   /// The window (tightly coupled mode), else nullptr.
   const estimator::WindowEstimator* window() const { return window_.get(); }
 

@@ -91,6 +91,8 @@ class WindowEstimator {
 
   bool initialized() const { return initialized_; }
   size_t window_frames() const { return frames_.size(); }
+  /// Points in the local maps (planes and edges): bounded by their radius and voxel capacity.
+  size_t map_points() const { return plane_map_.size() + edge_map_.size(); }
   /// The extrinsic in use: the configured one, or its online estimate (`estimate_extrinsic`).
   Eigen::Isometry3d T_imu_lidar() const { return PoseFromParameters(extrinsic_.data()); }
   /// The online extrinsic calibration (calibrate_extrinsic_s): its result once applied, and
