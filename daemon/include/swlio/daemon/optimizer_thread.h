@@ -39,7 +39,7 @@ struct OptimizerCounters {
   drivers::ClockModelStats lidar_clock;
   uint64_t processed = 0;  ///< sweeps the estimator took
   uint64_t dropped_waiting = 0;
-  uint64_t map_points = 0;  ///< points in the estimator's local maps (bounded: radius, voxels)
+  uint64_t map_points = 0;      ///< points in the estimator's local maps (bounded: radius, voxels)
   uint64_t skipped_behind = 0;  ///< sweeps skipped while the estimator ran behind (SweepShedding)
   TrackingState tracking = TrackingState::kInitializing;
   int degenerate_directions = 0;
