@@ -37,7 +37,8 @@ struct LidarSimConfig {
 };
 
 /// One MSOP packet's period: 12 blocks of two firing sequences (1.332 ms).
-constexpr int64_t kMsopPeriodNs = 2 * drivers::rs16::kBlocks * drivers::rs16::kFiringPeriodNs;
+constexpr int64_t kMsopPeriodNs =
+    int64_t{2} * drivers::rs16::kBlocks * drivers::rs16::kFiringPeriodNs;
 
 struct SimPacket {
   int64_t t_rx_ns = 0;  ///< host receive time
