@@ -375,7 +375,35 @@ void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   s.Finish();
 }
 
-void Bind(Section s, estimator::EstimatorConfig& c, estimator::WindowEstimatorConfig& window) {
+/// The matchers' own settings (coarse, fine) are not keys.
+void Bind(Section s, estimator::LoopClosureConfig& c) {
+  s.Get("enabled", c.enabled);
+  s.Get("keyframe_distance_m", c.keyframe_distance_m);
+  s.Get("keyframe_angle_rad", c.keyframe_angle_rad);
+  s.Get("search_radius_m", c.search_radius_m);
+  s.Get("min_separation_s", c.min_separation_s);
+  s.Get("attempt_every_nodes", c.attempt_every_nodes);
+  s.Get("submap_half_width", c.submap_half_width);
+  s.Get("inlier_distance_m", c.inlier_distance_m);
+  s.Get("min_fitness", c.min_fitness);
+  s.Get("min_inliers", c.min_inliers);
+  s.Get("min_hessian_eigenvalue", c.min_hessian_eigenvalue);
+  s.Get("max_correction_m", c.max_correction_m);
+  s.Get("max_correction_rad", c.max_correction_rad);
+  s.Get("odometry_sigma_m", c.odometry_sigma_m);
+  s.Get("odometry_sigma_rad", c.odometry_sigma_rad);
+  s.Get("loop_sigma_m", c.loop_sigma_m);
+  s.Get("loop_sigma_rad", c.loop_sigma_rad);
+  s.Get("max_loop_chi2", c.max_loop_chi2);
+  s.Get("loop_kernel", c.loop_kernel);
+  s.Get("max_iterations", c.max_iterations);
+  s.Finish();
+}
+
+void Bind(Section s,
+          estimator::EstimatorConfig& c,
+          estimator::WindowEstimatorConfig& window,
+          estimator::LoopClosureConfig& loop_closure) {
   s.Get("mode", c.mode);
   Bind(s.Child("imu_noise"), c.imu_noise);
   Bind(s.Child("extrinsic_imu_lidar"), c.extrinsic_imu_lidar);
@@ -388,6 +416,7 @@ void Bind(Section s, estimator::EstimatorConfig& c, estimator::WindowEstimatorCo
   s.Get("local_map_radius_m", c.local_map_radius_m);
   s.Get("num_threads", c.num_threads);
   Bind(s.Child("window"), window);
+  Bind(s.Child("loop_closure"), loop_closure);
   s.Finish();
 }
 
@@ -441,7 +470,7 @@ void BindRoot(Section root, DaemonConfig& c, Context& ctx) {
   Bind(root.Child("lidar"), c.lidar);
   Bind(root.Child("imu"), c.imu);
   Bind(root.Child("can"), c.can);
-  Bind(root.Child("estimator"), c.estimator, c.window);
+  Bind(root.Child("estimator"), c.estimator, c.window, c.loop_closure);
   Bind(root.Child("ipc"), c.ipc);
   Bind(root.Child("logging"), c.logging);
   Bind(root.Child("realtime"), c.realtime);

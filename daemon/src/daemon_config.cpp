@@ -61,6 +61,7 @@ ConfigIssues DaemonConfig::Validate() const {
     if (issue.key.rfind("odometry.", 0) != 0) window_issues.push_back(std::move(issue));
   }
   AppendWithPrefix(issues, "estimator.window", window_issues);
+  AppendWithPrefix(issues, "estimator.loop_closure", loop_closure.Validate());
   AppendWithPrefix(issues, "ipc", ipc.Validate());
   AppendWithPrefix(issues, "logging", logging.Validate());
   AppendWithPrefix(issues, "realtime", realtime.Validate());

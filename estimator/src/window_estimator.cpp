@@ -354,7 +354,12 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   }
   const Eigen::Isometry3d T_world_lidar = PoseFromParameters(newest.pose.data()) * T_imu_lidar();
   result.keyframe = IsKeyframe(T_world_lidar);
-  if (result.keyframe) InsertFeatures(newest);
+  if (result.keyframe) {
+    InsertFeatures(newest);
+    out.keyframe = std::make_shared<const KeyframeCloud>(
+        KeyframeCloud{newest.t_ns, PoseFromParameters(newest.pose.data()), T_imu_lidar(),
+                      newest.planes_lidar, newest.edges_lidar});
+  }
   result.state = StateOf(newest);
   result.match.T_world_lidar = T_world_lidar;
   result.match.iterations = out.solver_iterations;

@@ -207,7 +207,12 @@ TEST(RuntimeFaults, NonFiniteImuValuesAreDropped) {
   ASSERT_TRUE(r.sim_ok) << r.error;
   r.ShowPublished(kImu);
   EXPECT_GE(r.stats.faults.imu_nonfinite, 15u);
-  EXPECT_EQ(r.final.propagator.invalid, r.stats.faults.imu_nonfinite);
+  // Every damaged frame that arrived is dropped and counted. On a loaded machine the pty can
+  // lose bytes (the simulator falls behind; the reader then counts missing frames), and with
+  // them damaged frames, which only lowers the count (a CI run: 30 of 31 counted, 93 missing).
+  EXPECT_LE(r.final.propagator.invalid, r.stats.faults.imu_nonfinite);
+  EXPECT_GE(r.final.propagator.invalid + r.final.imu_rx.missing_packets,
+            r.stats.faults.imu_nonfinite);
   EXPECT_TRUE(AllPosesFinite(r));
   EXPECT_GE(r.poses.size(), 1000u);
   EXPECT_TRUE(Carried(r.final.optimizer.tracking)) << ToString(r.final.optimizer.tracking);

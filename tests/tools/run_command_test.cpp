@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,12 @@ size_t CountLines(const fs::path& path, std::string* first) {
     ++n;
   }
   return n;
+}
+
+/// The number after the first `key` in `out` (NaN if none).
+double NumberAfterKey(const std::string& out, const std::string& key) {
+  const size_t at = out.find(key);
+  return at == std::string::npos ? std::nan("") : std::stod(out.substr(at + key.size()));
 }
 
 /// 25 s of `short`: about 3 s standing (initialization), then ~25 m along the south road;
@@ -231,6 +238,56 @@ TEST_F(RunOnShortDrive, ConfigWindowSectionAppliesAndFlagsOverride) {
   EXPECT_NE(out.find("bad.yaml:4:5: estimator.window.lidar_sigma_m: must be > 0, got -1"),
             std::string::npos)
       << out;
+}
+
+// --loop-closure on: on 25 s along one road no place is seen twice, so no loop is tried and
+// the published and final-graph trajectories are the plain odometry's; the summary counts the
+// nodes. The switch in the configuration does the same; lidar-only mode refuses it.
+TEST_F(RunOnShortDrive, LoopClosureWritesItsOutputsAndLeavesAStraightDriveAlone) {
+  const fs::path dir = *out_ / "loops";
+  fs::create_directories(dir);
+  const std::string run = tool_.string() + " " + dir_->string() + " --out ";
+  int code = 0;
+  std::string out = test::RunCommand(run + (dir / "plain.tum").string() + " 2>/dev/null", &code);
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_EQ(out.find("\"loops\""), std::string::npos) << "off by default";
+  out = test::RunCommand(run + (dir / "online.tum").string() +
+                             " --loop-closure on --out-optimized " + (dir / "opt.tum").string() +
+                             " --loops " + (dir / "l.csv").string() + " 2>/dev/null",
+                         &code);
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("\"attempts\": 0, \"accepted\": 0"), std::string::npos) << out;
+  const double nodes = NumberAfterKey(out, "\"nodes\": ");
+  EXPECT_GE(nodes, 15.0) << out;  // ~25 m at one node per metre, after the standing start
+  const auto slurp = [](const fs::path& p) {
+    std::ifstream f(p);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  };
+  const std::string plain = slurp(dir / "plain.tum");
+  EXPECT_GT(plain.size(), 1000u);
+  EXPECT_EQ(slurp(dir / "online.tum"), plain);
+  const std::string optimized = slurp(dir / "opt.tum");
+  EXPECT_EQ(optimized.substr(optimized.find('\n')), plain.substr(plain.find('\n')))
+      << "the same poses (the header line differs)";
+  std::string header;
+  EXPECT_EQ(CountLines(dir / "l.csv", &header), 1u);
+  EXPECT_EQ(header.rfind("candidate_t_ns,node_t_ns,distance_m,verdict,", 0), 0u) << header;
+
+  std::ofstream(dir / "on.yaml") << "config_version: 1\nestimator:\n  loop_closure:\n"
+                                    "    enabled: true\n";
+  out = test::RunCommand(
+      run + (dir / "c.tum").string() + " --config " + (dir / "on.yaml").string() + " 2>/dev/null",
+      &code);
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("\"loops\""), std::string::npos) << out;
+  out = test::RunCommand(run + (dir / "c.tum").string() + " --config " +
+                             (dir / "on.yaml").string() + " --loop-closure off 2>/dev/null",
+                         &code);
+  EXPECT_EQ(out.find("\"loops\""), std::string::npos) << out;
+  out = test::RunCommand(
+      run + (dir / "c.tum").string() + " --mode lidar-only --loop-closure on 2>&1", &code);
+  EXPECT_NE(code, 0);
+  EXPECT_NE(out.find("--loop-closure on needs --mode tightly-coupled"), std::string::npos) << out;
 }
 
 /// The number after `key` in `out`'s last line that has it (NaN if none).

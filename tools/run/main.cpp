@@ -8,11 +8,13 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "loop_closure_run.h"
 #include "swlio/core/lie.h"
 #include "swlio/daemon/config_loader.h"
 #include "swlio/daemon/estimator_runner.h"
@@ -35,6 +37,7 @@ const swlio::estimator::WindowEstimatorConfig& WindowDefaults() {
 }
 
 struct Options {
+  std::string loop_closure = "off", out_optimized, loops;
   std::string dir, out, timings, diagnostics, covariance, config, mode = "tightly-coupled";
   size_t window_size = WindowDefaults().window_size;
   int iterations = WindowDefaults().max_iterations;
@@ -123,6 +126,7 @@ void WriteCovariance(std::ostream& out,
 struct Summary {
   size_t scans = 0, tracked = 0, failed = 0, skipped = 0, reinitializations = 0;
   double total_ms = 0.0, planes = 0.0, edges = 0.0, inliers = 0.0, iterations = 0.0;
+  std::string extra;  ///< more JSON members (loop closure), or empty
 
   void Add(const OdometryResult& r) {
     ++scans;
@@ -141,9 +145,9 @@ struct Summary {
         "{\"scans\": %zu, \"tracked\": %zu, \"match_failed\": %zu, \"skipped\": %zu, "
         "\"mean_scan_ms\": %.2f, "
         "\"mean_planes\": %.0f, \"mean_edges\": %.0f, \"mean_inliers\": %.0f, "
-        "\"mean_iterations\": %.2f, \"reinitializations\": %zu}\n",
+        "\"mean_iterations\": %.2f, \"reinitializations\": %zu%s%s}\n",
         scans, tracked, failed, skipped, total_ms / n, planes / n, edges / n, inliers / n,
-        iterations / n, reinitializations);
+        iterations / n, reinitializations, extra.empty() ? "" : ", ", extra.c_str());
   }
 };
 
@@ -284,6 +288,19 @@ int Run(const Options& opt) {
   setup.odometry = config;
   setup.window = window_config;
   Summary summary;
+  std::unique_ptr<swlio::tools::LoopClosureRun> loops;
+  // --loop-closure wins over the configuration's estimator.loop_closure.enabled.
+  const bool loop_closure = opt.given.count("--loop-closure") > 0
+                                ? opt.loop_closure == "on"
+                                : daemon_config.loop_closure.enabled;
+  if (loop_closure) {
+    if (!tightly_coupled) {
+      std::cerr << "swlio-run: --loop-closure on needs --mode tightly-coupled\n";
+      return 1;
+    }
+    loops = std::make_unique<swlio::tools::LoopClosureRun>(daemon_config.loop_closure,
+                                                           &swlio::daemon::ThreadCpuNowNs);
+  }
   auto process = [&](const swlio::Scan& scan, const swlio::estimator::WindowResult& w) {
     const OdometryResult& r = w.odometry;
     if (covariance && w.covariance.valid) WriteCovariance(covariance, r.state, w.covariance);
@@ -296,7 +313,7 @@ int Run(const Options& opt) {
     if (timings) WriteTimings(timings, r, scan.t_end_ns);
     if (diagnostics) WriteDiagnostics(diagnostics, r, scan.t_end_ns);
     if (r.status == OdometryStatus::kTracking || r.status == OdometryStatus::kMatchFailed) {
-      swlio::daemon::WriteTumLine(tum, r.state);
+      swlio::daemon::WriteTumLine(tum, loops ? loops->OnSweep(r.state, w.keyframe.get()) : r.state);
     }
   };
   swlio::daemon::EstimatorRunner runner(setup, &swlio::daemon::ThreadCpuNowNs, process);
@@ -321,6 +338,17 @@ int Run(const Options& opt) {
   if (runner.waiting() > 0)
     std::cerr << "swlio-run: " << runner.waiting()
               << " last sweep(s) without IMU coverage not processed\n";
+  if (loops) {
+    summary.extra = loops->SummaryJson();
+    if (!opt.out_optimized.empty() && !loops->WriteOptimized(opt.out_optimized)) {
+      std::cerr << "swlio-run: cannot write " << opt.out_optimized << "\n";
+      return 1;
+    }
+    if (!opt.loops.empty() && !loops->WriteLoops(opt.loops)) {
+      std::cerr << "swlio-run: cannot write " << opt.loops << "\n";
+      return 1;
+    }
+  }
   summary.Print();
   if (tightly_coupled && window_config.calibrate_extrinsic_s > 0.0) {
     PrintCalibration(*runner.window(), T_imu_lidar_given);
@@ -384,7 +412,21 @@ int Main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--estimate-extrinsic", opt.estimate_extrinsic,
                "refine T_imu_lidar online (tightly-coupled; weak prior on the configured value)");
-  app.add_option("--out", opt.out, "trajectory (TUM, IMU frame)")->required();
+  app.add_option("--out", opt.out,
+                 "trajectory (TUM, IMU frame; with loop closure each sweep with the correction "
+                 "known at its time, as published)")
+      ->required();
+  app.add_option(
+         "--loop-closure", opt.loop_closure,
+         "loop closure and pose graph (tightly-coupled; estimator.loop_closure in --config)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  app.add_option("--out-optimized", opt.out_optimized,
+                 "with loop closure: every sweep corrected by the final pose graph (TUM)");
+  app.add_option("--loops", opt.loops,
+                 "with loop closure: every verified loop candidate (CSV: times of both nodes, "
+                 "verdict, fitness, inliers, Hessian's smallest eigenvalue, correction, relative "
+                 "pose)");
   app.add_option("--timings", opt.timings,
                  "per-scan stage timings CSV (t_ns,points,frontend_ms,match_ms,optimize_ms,"
                  "total_ms; thread CPU time, 0 for a stage that did not run)");
@@ -401,7 +443,7 @@ int Main(int argc, char** argv) {
   for (const char* flag :
        {"--window-size", "--iterations", "--reassociations", "--lidar-sigma", "--bias-prior-acc",
         "--estimate-extrinsic", "--degenerate-eigenvalue", "--calibrate-extrinsic",
-        "--lidar-floor-m", "--lidar-floor-tilt", "--lidar-floor-yaw"}) {
+        "--lidar-floor-m", "--lidar-floor-tilt", "--lidar-floor-yaw", "--loop-closure"}) {
     if (app.count(flag) > 0) opt.given.insert(flag);
   }
   return Run(opt);

@@ -12,6 +12,7 @@
 #include "swlio/drivers/imu_config.h"
 #include "swlio/drivers/lidar_config.h"
 #include "swlio/estimator/estimator_config.h"
+#include "swlio/estimator/loop_closure_config.h"
 #include "swlio/estimator/window_estimator_config.h"
 #include "swlio/ipc/ipc_config.h"
 
@@ -70,6 +71,8 @@ struct DaemonConfig {
   /// `bootstrap.odometry` are not read from the file: the user builds them from `estimator` and
   /// the extrinsic (swlio-run does), so they are not validated here either.
   estimator::WindowEstimatorConfig window;
+  /// Loop closure and the pose graph (YAML `estimator.loop_closure`).
+  estimator::LoopClosureConfig loop_closure;
   ipc::IpcConfig ipc;
   LoggingConfig logging;
   RealtimeConfig realtime;

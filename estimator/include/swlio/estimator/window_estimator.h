@@ -46,6 +46,7 @@
 #include "swlio/estimator/dynamic_bootstrap.h"
 #include "swlio/estimator/extrinsic_calibration_run.h"
 #include "swlio/estimator/imu_factor.h"
+#include "swlio/estimator/keyframe_cloud.h"
 #include "swlio/estimator/lidar_odometry.h"
 #include "swlio/estimator/marginalization.h"
 #include "swlio/estimator/pose_manifold.h"
@@ -77,6 +78,9 @@ struct WindowResult {
   /// re-initialized; the result is kInitializing and the state is not to be used.
   DivergenceReason diverged = DivergenceReason::kNone;
   size_t reinitializations = 0;  ///< so far, including this sweep's
+  /// This sweep became a keyframe of the local map: its features and pose (for loop closure
+  /// and map saving); null otherwise.
+  std::shared_ptr<const KeyframeCloud> keyframe;
 };
 
 class WindowEstimator {

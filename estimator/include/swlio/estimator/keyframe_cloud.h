@@ -1,0 +1,21 @@
+#pragma once
+/// @file
+/// A keyframe as the odometry hands it to loop closure and map saving: its IMU pose in the
+/// odometry's world frame, the extrinsic, and its de-skewed planar and edge features in its
+/// own LiDAR frame (after the front end's voxel filter).
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+namespace swlio::estimator {
+
+struct KeyframeCloud {
+  int64_t t_ns = 0;  ///< sweep end
+  Eigen::Isometry3d T_world_imu = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d T_imu_lidar = Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Vector3d> planes_lidar;
+  std::vector<Eigen::Vector3d> edges_lidar;
+};
+
+}  // namespace swlio::estimator

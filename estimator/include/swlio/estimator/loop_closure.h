@@ -1,0 +1,88 @@
+#pragma once
+/// @file
+/// Loop closure (issue 8; the paper's global correction, §2): keyframes of the odometry become
+/// nodes of a pose graph (pose_graph.h) joined by odometry edges; for the newest node, the
+/// nearest node at least `min_separation_s` older within `search_radius_m` (in the corrected
+/// frame, so a loop is found after drift) is verified by registration (loop_verifier.h); an
+/// accepted loop adds a loop edge and the graph is optimized.
+///
+/// Frames: the odometry's world ("odom", continuous, what the window estimator works in) and
+/// the corrected "map". `T_map_odom()` is the correction at the newest node: the pose output is
+/// T_map_odom · T_odom_imu, and `CorrectedPose` re-expresses any earlier odometry pose with the
+/// correction of the node it follows (for the optimized trajectory after a run).
+/// Pure library (no threads, no clock): the daemon runs it in its own thread.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "swlio/estimator/keyframe_cloud.h"
+#include "swlio/estimator/loop_closure_config.h"
+#include "swlio/estimator/loop_verifier.h"
+#include "swlio/estimator/pose_graph.h"
+
+namespace swlio::estimator {
+
+/// One verification: which nodes, and what it found.
+struct LoopAttempt {
+  size_t candidate = 0;     ///< older node
+  size_t node = 0;          ///< newest node
+  double distance_m = 0.0;  ///< between their corrected positions before the check
+  LoopCheck check;
+};
+
+struct LoopClosureUpdate {
+  bool node_added = false;
+  bool attempted = false;
+  LoopAttempt attempt;     ///< valid when attempted
+  bool optimized = false;  ///< a loop was accepted and the graph re-optimized
+  PoseGraphSummary summary;
+};
+
+struct LoopClosureStats {
+  size_t nodes = 0;
+  size_t attempts = 0;
+  size_t accepted = 0;
+  size_t rejected = 0;
+};
+
+class LoopClosure {
+ public:
+  explicit LoopClosure(const LoopClosureConfig& config);
+
+  /// Offers an odometry keyframe (time order); it becomes a node when far enough from the
+  /// last one, and then a loop is looked for.
+  LoopClosureUpdate AddKeyframe(const KeyframeCloud& keyframe);
+
+  /// The correction at the newest node (identity before the first loop).
+  Eigen::Isometry3d T_map_odom() const;
+  /// `T_odom_imu` at `t_ns` in the map frame, with the correction of the last node at or
+  /// before `t_ns` (the first node's before it).
+  Eigen::Isometry3d CorrectedPose(int64_t t_ns, const Eigen::Isometry3d& T_odom_imu) const;
+
+  const LoopClosureStats& stats() const { return stats_; }
+  const std::vector<LoopAttempt>& attempts() const { return attempts_; }
+  size_t nodes() const { return nodes_.size(); }
+  /// Node i's pose in the map frame (optimized) and in the odometry frame (as received).
+  Eigen::Isometry3d T_map_imu(size_t i) const { return graph_.pose(i); }
+  const KeyframeCloud& node(size_t i) const { return nodes_[i]; }
+
+ private:
+  bool IsNewNode(const KeyframeCloud& keyframe) const;
+  /// The nearest old-enough node within the search radius of the newest; false when none.
+  bool FindCandidate(size_t newest, size_t* candidate, double* distance_m) const;
+  LoopSubmap BuildSubmap(size_t candidate, int64_t newest_t_ns) const;
+  LoopAttempt Verify(size_t candidate, size_t newest, double distance_m) const;
+
+  LoopClosureConfig config_;
+  PoseGraph graph_;
+  std::vector<KeyframeCloud> nodes_;  ///< poses in the odometry frame
+  std::vector<LoopAttempt> attempts_;
+  LoopClosureStats stats_;
+  size_t since_attempt_ = 0;
+  /// The correction of the last optimization, and the nodes that existed then.
+  Eigen::Isometry3d T_map_odom_ = Eigen::Isometry3d::Identity();
+  size_t optimized_nodes_ = 0;
+};
+
+}  // namespace swlio::estimator

@@ -1,0 +1,92 @@
+#include "loop_closure_run.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <fstream>
+
+#include "swlio/daemon/tum_output.h"
+
+namespace swlio::tools {
+namespace {
+
+/// {median, p99, max} of `v` (zeros when empty).
+std::array<double, 3> Spread(std::vector<double> v) {
+  if (v.empty()) return {0.0, 0.0, 0.0};
+  std::sort(v.begin(), v.end());
+  const auto at = [&](double q) {
+    return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())))];
+  };
+  return {at(0.5), at(0.99), v.back()};
+}
+
+}  // namespace
+
+LoopClosureRun::LoopClosureRun(const estimator::LoopClosureConfig& config,
+                               estimator::NowNsFn now_ns)
+    : closure_(config), now_ns_(now_ns) {}
+
+State LoopClosureRun::OnSweep(const State& odom, const estimator::KeyframeCloud* keyframe) {
+  sweeps_.push_back(odom);
+  if (keyframe != nullptr) {
+    const int64_t t0 = now_ns_ != nullptr ? now_ns_() : 0;
+    const estimator::LoopClosureUpdate u = closure_.AddKeyframe(*keyframe);
+    const double ms = now_ns_ != nullptr ? static_cast<double>(now_ns_() - t0) * 1e-6 : 0.0;
+    if (u.attempted) update_ms_.push_back(ms);
+    if (u.optimized) graph_ms_.push_back(ms);
+  }
+  State out = odom;
+  out.T_world_imu = closure_.T_map_odom() * odom.T_world_imu;
+  out.vel_world = closure_.T_map_odom().linear() * odom.vel_world;
+  return out;
+}
+
+bool LoopClosureRun::WriteOptimized(const std::string& path) const {
+  std::ofstream out(path);
+  if (!out) return false;
+  out << "# timestamp tx ty tz qx qy qz qw  (IMU frame, host time, sweep end; final pose graph)\n";
+  for (State s : sweeps_) {
+    s.T_world_imu = closure_.CorrectedPose(s.t_ns, s.T_world_imu);
+    daemon::WriteTumLine(out, s);
+  }
+  return static_cast<bool>(out);
+}
+
+bool LoopClosureRun::WriteLoops(const std::string& path) const {
+  std::ofstream out(path);
+  if (!out) return false;
+  out << "candidate_t_ns,node_t_ns,distance_m,verdict,fitness,inliers,min_eigenvalue,"
+         "correction_m,correction_rad,x,y,z,qx,qy,qz,qw\n";
+  for (const estimator::LoopAttempt& a : closure_.attempts()) {
+    const Eigen::Isometry3d T =
+        a.check.T_candidate_lidar * closure_.node(a.node).T_imu_lidar.inverse();
+    const Eigen::Quaterniond q(T.rotation());
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "%lld,%lld,%.3f,%s,%.3f,%zu,%.2f,%.4f,%.5f,%.4f,%.4f,%.4f,%.6f,%.6f,%.6f,%.6f\n",
+                  static_cast<long long>(closure_.node(a.candidate).t_ns),
+                  static_cast<long long>(closure_.node(a.node).t_ns), a.distance_m,
+                  estimator::ToString(a.check.verdict), a.check.fitness, a.check.inliers,
+                  a.check.min_eigenvalue, a.check.correction_m, a.check.correction_rad,
+                  T.translation().x(), T.translation().y(), T.translation().z(), q.x(), q.y(),
+                  q.z(), q.w());
+    out << line;
+  }
+  return static_cast<bool>(out);
+}
+
+std::string LoopClosureRun::SummaryJson() const {
+  const estimator::LoopClosureStats& s = closure_.stats();
+  const auto verify = Spread(update_ms_);
+  const auto graph = Spread(graph_ms_);
+  char json[512];
+  std::snprintf(json, sizeof json,
+                "\"loops\": {\"nodes\": %zu, \"attempts\": %zu, \"accepted\": %zu, "
+                "\"rejected\": %zu, \"attempt_ms\": [%.2f, %.2f, %.2f], "
+                "\"accepted_ms\": [%.2f, %.2f, %.2f]}",
+                s.nodes, s.attempts, s.accepted, s.rejected, verify[0], verify[1], verify[2],
+                graph[0], graph[1], graph[2]);
+  return json;
+}
+
+}  // namespace swlio::tools

@@ -1,0 +1,43 @@
+#pragma once
+/// @file
+/// swlio-run's loop closure (`--loop-closure on`): every tracked sweep's pose goes through
+/// LoopClosure (estimator/loop_closure.h), keyframes become graph nodes, and the trajectory is
+/// written twice: as it would have been published (each sweep with the correction known at
+/// its time: `--out`) and after the run with the final graph (`--out-optimized`). The loop
+/// attempts can be written as CSV (`--loops`). Timing: thread CPU time of each AddKeyframe.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "swlio/core/types.h"
+#include "swlio/estimator/loop_closure.h"
+#include "swlio/estimator/stage_timer.h"
+
+namespace swlio::tools {
+
+class LoopClosureRun {
+ public:
+  LoopClosureRun(const estimator::LoopClosureConfig& config, estimator::NowNsFn now_ns);
+
+  /// A tracked sweep's state (odometry frame) and its keyframe (null unless one); returns the
+  /// state in the map frame with the correction known now.
+  State OnSweep(const State& odom, const estimator::KeyframeCloud* keyframe);
+
+  /// Every sweep passed to OnSweep, corrected with the final graph (TUM).
+  bool WriteOptimized(const std::string& path) const;
+  /// One row per verified candidate.
+  bool WriteLoops(const std::string& path) const;
+  /// `"loops": {...}` for the summary JSON: counts and the update times (ms).
+  std::string SummaryJson() const;
+
+ private:
+  estimator::LoopClosure closure_;
+  estimator::NowNsFn now_ns_;
+  std::vector<State> sweeps_;      ///< odometry frame
+  std::vector<double> update_ms_;  ///< AddKeyframe calls that verified a candidate
+  std::vector<double> graph_ms_;   ///< of those, the ones that optimized
+};
+
+}  // namespace swlio::tools
