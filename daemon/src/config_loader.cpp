@@ -397,6 +397,8 @@ void Bind(Section s, estimator::LoopClosureConfig& c) {
   s.Get("max_loop_chi2", c.max_loop_chi2);
   s.Get("loop_kernel", c.loop_kernel);
   s.Get("max_iterations", c.max_iterations);
+  s.Get("output_max_rate_mps", c.output_max_rate_mps);
+  s.Get("output_max_rate_radps", c.output_max_rate_radps);
   s.Finish();
 }
 

@@ -1,6 +1,7 @@
 #include "swlio/daemon/health.h"
 
 #include <cstdio>
+#include <numbers>
 
 namespace swlio::daemon {
 namespace {
@@ -78,6 +79,27 @@ ipc::DiagnosticStatus CanStatus(const HealthSnapshot& s, const HealthRates& r) {
               {"unknown_id", Count(s.can_rx.unknown_id)},
               {"bad_frames", Count(s.can_rx.bad_frames)},
               {"read_errors", Count(s.can_rx.read_errors)}};
+  return d;
+}
+
+ipc::DiagnosticStatus LoopClosureStatus(const HealthSnapshot& s) {
+  const LoopClosureCounters& c = s.loop_closure;
+  ipc::DiagnosticStatus d;
+  d.name = "swlio: loop closure";
+  d.hardware_id = "swlio";
+  d.level = ipc::DiagnosticLevel::kOk;
+  d.message =
+      std::to_string(c.accepted) + " loops closed over " + std::to_string(c.nodes) + " graph nodes";
+  d.values = {{"keyframes", Count(c.keyframes)},
+              {"nodes", Count(c.nodes)},
+              {"attempts", Count(c.attempts)},
+              {"accepted", Count(c.accepted)},
+              {"rejected", Count(c.rejected)},
+              {"loops_switched_off", Count(c.loops_switched_off)},
+              {"attempt_ms", Num(c.last_attempt_ms, "%.1f")},
+              {"attempt_ms_max", Num(c.max_attempt_ms, "%.1f")},
+              {"correction_m", Num(c.correction_m, "%.3f")},
+              {"correction_deg", Num(c.correction_rad * 180.0 / std::numbers::pi, "%.3f")}};
   return d;
 }
 
@@ -176,6 +198,7 @@ ipc::DiagnosticArray HealthReporter::Diagnostics(const HealthSnapshot& now) {
   a.t_ns = now.t_ns;
   a.status = {LidarStatus(now, r), ImuStatus(now, r), EstimatorStatus(now, r), QueueStatus(now)};
   if (now.can_enabled) a.status.push_back(CanStatus(now, r));
+  if (now.loop_closure.enabled) a.status.push_back(LoopClosureStatus(now));
   return a;
 }
 

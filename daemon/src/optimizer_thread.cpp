@@ -109,6 +109,9 @@ void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& 
   e.reset = result.diverged != estimator::DivergenceReason::kNone;
   q_.states_out->Push(e);
   q_.odometry_out->Push(e);
+  if (q_.keyframes_out != nullptr && result.keyframe != nullptr) {
+    q_.keyframes_out->Push(KeyframePtr(result.keyframe));
+  }
   Publish();  // per sweep: a backlog drained in one go still shows each state in the health
 }
 

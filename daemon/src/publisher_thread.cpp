@@ -12,14 +12,16 @@ PublisherThread::PublisherThread(ipc::Publisher* publisher,
                                  const TimeScale& time,
                                  HealthFn health,
                                  int64_t health_period_ns,
-                                 size_t path_max_poses)
+                                 size_t path_max_poses,
+                                 const estimator::CorrectionSlewConfig& slew)
     : publisher_(publisher),
       frames_(std::move(frames)),
       q_(queues),
       time_(time),
       health_(std::move(health)),
       health_period_ns_(health_period_ns),
-      path_max_poses_(std::max<size_t>(path_max_poses, 1)) {
+      path_max_poses_(std::max<size_t>(path_max_poses, 1)),
+      slew_(slew) {
   path_.frame_id = frames_.world;
 }
 
@@ -29,12 +31,28 @@ void PublisherThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle&
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
     q_.wake->Wait(20'000);  // a pose or an odometry, whichever comes first
+    TakeCorrections();
     while (q_.poses_in->Pop(&pose)) WritePose(pose);
     while (q_.odometry_in->Pop(&estimate)) WriteOdometry(estimate);
     Periodic(MonotonicNowNs());
   }
-  while (q_.poses_in->Pop(&pose)) WritePose(pose);  // stopping: what the others queued last
+  TakeCorrections();  // stopping: what the others queued last
+  while (q_.poses_in->Pop(&pose)) WritePose(pose);
   while (q_.odometry_in->Pop(&estimate)) WriteOdometry(estimate);
+}
+
+void PublisherThread::TakeCorrections() {
+  if (q_.corrections_in == nullptr) return;
+  MapCorrection c;
+  while (q_.corrections_in->Pop(&c)) slew_.SetTarget(c.T_map_odom);
+}
+
+State PublisherThread::Corrected(State s) {
+  const Eigen::Isometry3d& C = slew_.Step(s.t_ns, s.T_world_imu);
+  if (C.matrix() == Eigen::Matrix4d::Identity()) return s;  // no correction yet: exact
+  s.T_world_imu = C * s.T_world_imu;
+  s.vel_world = C.linear() * s.vel_world;
+  return s;
 }
 
 void PublisherThread::Count(bool ok, std::atomic<uint64_t>* counter) {
@@ -57,7 +75,7 @@ void PublisherThread::WritePose(const ImuRatePose& pose) {
   ipc::PoseWithCovarianceStamped m;
   m.t_ns = time_.ToHost(pose.state.t_ns);
   m.frame_id = frames_.world;
-  m.pose = ToPose(pose.state);
+  m.pose = ToPose(Corrected(pose.state));
   if (!Finite(m.pose)) {  // the planner must never receive one
     non_finite_.fetch_add(1, std::memory_order_relaxed);
     return;
@@ -71,7 +89,8 @@ void PublisherThread::WriteOdometry(const SweepEstimate& e) {
       e.status == estimator::OdometryStatus::kSkipped) {
     return;
   }
-  ipc::Odometry m = ToOdometryMessage(e.state, last_gyro_imu_radps_, e.covariance, frames_);
+  ipc::Odometry m =
+      ToOdometryMessage(Corrected(e.state), last_gyro_imu_radps_, e.covariance, frames_);
   m.t_ns = time_.ToHost(m.t_ns);
   if (!Finite(m.pose)) {
     non_finite_.fetch_add(1, std::memory_order_relaxed);

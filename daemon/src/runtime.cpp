@@ -22,6 +22,9 @@ struct Runtime::Queues {
   SpscQueue<SweepEstimate> states{"states", "optimizer", "propagator", 64};
   SpscQueue<SweepEstimate> odometry{"odometry", "optimizer", "publisher", 64};
   SpscQueue<ImuRatePose> poses{"poses", "propagator", "publisher", 1024};
+  // ~50 s of keyframes at 5/s: a loop solve of tens of ms never drops one.
+  SpscQueue<KeyframePtr> keyframes{"keyframes", "optimizer", "loop_closure", 256};
+  SpscQueue<MapCorrection> corrections{"corrections", "loop_closure", "publisher", 16};
   Doorbell optimizer_wake;  // rung by lidar and imu
   Doorbell publisher_wake;  // rung by poses and odometry
 
@@ -33,8 +36,8 @@ struct Runtime::Queues {
   }
 
   std::vector<QueueCounters> Counters() const {
-    return {lidar.Counters(),  imu_raw.Counters(),  imu.Counters(),
-            states.Counters(), odometry.Counters(), poses.Counters()};
+    return {lidar.Counters(),    imu_raw.Counters(), imu.Counters(),       states.Counters(),
+            odometry.Counters(), poses.Counters(),   keyframes.Counters(), corrections.Counters()};
   }
 };
 
@@ -88,15 +91,27 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   rt->propagator_ = std::make_unique<PropagatorThread>(
       config.imu.baud, propagator, PropagatorQueues{&q.imu_raw, &q.states, &q.imu, &q.poses}, time);
   const EstimatorSetup setup = MakeEstimatorSetup(config, T_imu_lidar, ModeFromConfig(config));
+  // Loop closure needs the window's keyframes (tightly coupled mode).
+  const bool loops = config.loop_closure.enabled && setup.mode == EstimatorMode::kTightlyCoupled;
+  if (config.loop_closure.enabled && !loops)
+    spdlog::warn("loop closure: needs estimator.mode tightly-coupled; off");
   rt->optimizer_ = std::make_unique<OptimizerThread>(
       config.lidar, setup,
-      OptimizerQueues{&q.lidar, &q.imu, &q.states, &q.odometry, &q.optimizer_wake}, time,
-      SecToNs(config.realtime.max_sweep_lag_s));
+      OptimizerQueues{&q.lidar, &q.imu, &q.states, &q.odometry, &q.optimizer_wake,
+                      loops ? &q.keyframes : nullptr},
+      time, SecToNs(config.realtime.max_sweep_lag_s));
+  if (loops) {
+    rt->loop_closure_ = std::make_unique<LoopClosureThread>(
+        config.loop_closure, LoopClosureQueues{&q.keyframes, &q.corrections});
+  }
   Runtime* self = rt.get();
   rt->publisher_thread_ = std::make_unique<PublisherThread>(
-      rt->publisher_.get(), FrameIds{}, PublisherQueues{&q.poses, &q.odometry, &q.publisher_wake},
+      rt->publisher_.get(), FrameIds{},
+      PublisherQueues{&q.poses, &q.odometry, &q.publisher_wake, loops ? &q.corrections : nullptr},
       time, [self](int64_t) { return self->published_health_.Diagnostics(self->Snapshot()); },
-      1'000'000'000, static_cast<size_t>(config.ipc.path_max_poses));
+      1'000'000'000, static_cast<size_t>(config.ipc.path_max_poses),
+      estimator::CorrectionSlewConfig{config.loop_closure.output_max_rate_mps,
+                                      config.loop_closure.output_max_rate_radps});
   return rt;
 }
 
@@ -125,6 +140,10 @@ void Runtime::Start() {
         [this](const Watchdog::Handle& b) { propagator_->Run(stop_propagator_, b); });
   Spawn(&optimizer_threads_, "optimizer",
         [this](const Watchdog::Handle& b) { optimizer_->Run(stop_optimizer_, b); });
+  if (loop_closure_) {
+    Spawn(&loop_threads_, "loop_closure",
+          [this](const Watchdog::Handle& b) { loop_closure_->Run(stop_loop_, b); });
+  }
   Spawn(out, "publisher",
         [this](const Watchdog::Handle& b) { publisher_thread_->Run(stop_out_, b); });
   if (recorder_) {
@@ -135,7 +154,8 @@ void Runtime::Start() {
 void Runtime::Stop() {
   for (auto [flag, group] :
        {std::pair{&stop_rx_, &rx_threads_}, std::pair{&stop_propagator_, &propagator_threads_},
-        std::pair{&stop_optimizer_, &optimizer_threads_}, std::pair{&stop_out_, &out_threads_}}) {
+        std::pair{&stop_optimizer_, &optimizer_threads_}, std::pair{&stop_loop_, &loop_threads_},
+        std::pair{&stop_out_, &out_threads_}}) {
     flag->store(true);
     for (std::thread& t : *group) {
       if (t.joinable()) t.join();
@@ -160,6 +180,7 @@ HealthSnapshot Runtime::Snapshot() const {
   s.propagator = propagator_->counters();
   s.optimizer = optimizer_->counters();
   s.publisher = publisher_thread_->counters();
+  if (loop_closure_) s.loop_closure = loop_closure_->counters();
   s.queues = queues_->Counters();
   if (recorder_) {
     for (const QueueCounters& c : recorder_->QueueCountersList()) s.queues.push_back(c);

@@ -26,6 +26,8 @@ ConfigIssues LoopClosureConfig::Validate() const {
   CheckInRange(issues, "max_loop_chi2", max_loop_chi2, 0.0, 1e6);
   CheckInRange(issues, "loop_kernel", loop_kernel, 0.0, 1e3);
   CheckInRange(issues, "max_iterations", max_iterations, 1, 1000);
+  CheckPositive(issues, "output_max_rate_mps", output_max_rate_mps);
+  CheckPositive(issues, "output_max_rate_radps", output_max_rate_radps);
   return issues;
 }
 

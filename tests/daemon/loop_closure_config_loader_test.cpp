@@ -37,6 +37,8 @@ void ExpectSame(const LoopClosureConfig& a, const LoopClosureConfig& b) {
   EXPECT_EQ(a.max_loop_chi2, b.max_loop_chi2);
   EXPECT_EQ(a.loop_kernel, b.loop_kernel);
   EXPECT_EQ(a.max_iterations, b.max_iterations);
+  EXPECT_EQ(a.output_max_rate_mps, b.output_max_rate_mps);
+  EXPECT_EQ(a.output_max_rate_radps, b.output_max_rate_radps);
 }
 
 // The shipped file states every default, so editing one there is editing the right thing.

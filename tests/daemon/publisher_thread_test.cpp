@@ -1,10 +1,12 @@
-// The publisher thread's keyframe path: bounded to the newest path_max_poses keyframes, in
-// order (without a bound it grew with every lap of a soak).
+// The publisher thread: the keyframe path bounded to the newest path_max_poses keyframes, in
+// order (without a bound it grew with every lap of a soak); non-finite states never published;
+// map corrections followed at a bounded rate.
 
 #include "swlio/daemon/publisher_thread.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <limits>
 
@@ -56,6 +58,57 @@ TEST(PublisherThread, NonFiniteStatesAreNeverPublishedButCounted) {
   EXPECT_EQ(c.poses, 1u);
   EXPECT_EQ(c.odometry, 0u);
   EXPECT_EQ(c.non_finite, 2u);
+}
+
+// A map correction of 1 m from the loop-closure thread reaches the output at 0.2 m/s: the
+// published keyframe path (poses as published) walks over to the corrected place in 5 s.
+TEST(PublisherThread, AMapCorrectionIsFollowedAtTheConfiguredRate) {
+  SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 16);
+  SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 128);
+  SpscQueue<MapCorrection> corrections("corrections", "test", "publisher", 4);
+  Doorbell bell;
+  PublisherThread publisher(nullptr, FrameIds{},
+                            PublisherQueues{&poses, &odometry, &bell, &corrections}, {}, nullptr,
+                            1'000'000'000, 100, {.max_rate_mps = 0.2, .max_rate_radps = 0.05});
+  MapCorrection c;
+  c.T_map_odom.translation() = Eigen::Vector3d(1.0, 0.0, 0.0);
+  ASSERT_TRUE(corrections.Push(c));
+  for (int i = 0; i < 80; ++i) {  // 8 s at 10 Hz, standing at x = 50 m
+    SweepEstimate e;
+    e.status = estimator::OdometryStatus::kTracking;
+    e.state.t_ns = (i + 1) * 100'000'000LL;
+    e.state.T_world_imu.translation() = Eigen::Vector3d(50.0, 0.0, 0.0);
+    e.keyframe = true;
+    ASSERT_TRUE(odometry.Push(e));
+  }
+  const std::atomic<bool> stop{true};
+  publisher.Run(stop, Watchdog::Handle{});
+  const auto& path = publisher.keyframes();
+  ASSERT_EQ(path.size(), 80u);
+  for (size_t k = 0; k < path.size(); ++k) {
+    const double want = 50.0 + std::min(1.0, 0.02 * static_cast<double>(k));
+    EXPECT_NEAR(path[k].pose.position_m[0], want, 1e-9) << k;
+  }
+}
+
+// Without loop closure (no corrections queue) the poses go out exactly as estimated.
+TEST(PublisherThread, WithoutCorrectionsPosesAreUntouched) {
+  SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 4);
+  SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 4);
+  Doorbell bell;
+  PublisherThread publisher(nullptr, FrameIds{}, PublisherQueues{&poses, &odometry, &bell}, {},
+                            nullptr, 1'000'000'000, 10);
+  SweepEstimate e;
+  e.status = estimator::OdometryStatus::kTracking;
+  e.state.t_ns = 100'000'000;
+  e.state.T_world_imu.translation() = Eigen::Vector3d(0.1 + 0.2, 1.0 / 3.0, -7.0);
+  e.keyframe = true;
+  ASSERT_TRUE(odometry.Push(e));
+  const std::atomic<bool> stop{true};
+  publisher.Run(stop, Watchdog::Handle{});
+  ASSERT_EQ(publisher.keyframes().size(), 1u);
+  EXPECT_EQ(publisher.keyframes().front().pose.position_m[0], 0.1 + 0.2);
+  EXPECT_EQ(publisher.keyframes().front().pose.position_m[1], 1.0 / 3.0);
 }
 
 }  // namespace

@@ -19,9 +19,21 @@ using test::kSanitized;
 TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   test::LiveDrive drive;
   drive.record_dir = ::swlio::test::MakeTempDir("runtime") / "recording";
+  // With loop closure: its thread takes the window's keyframes (no place is seen twice on this
+  // drive, so no loop) and the health reports it.
+  drive.adjust_config = [](DaemonConfig* c) { c->loop_closure.enabled = true; };
   const test::LiveDriveResult r = test::RunLiveDrive(drive);
   ASSERT_TRUE(r.sim_ok) << r.error;
   const HealthSnapshot& s = r.final;
+  EXPECT_TRUE(s.loop_closure.enabled);
+  EXPECT_GE(s.loop_closure.keyframes, 20u);  // ~9 m at the window's 0.2 m keyframe spacing
+  EXPECT_GE(s.loop_closure.nodes, 5u);
+  EXPECT_EQ(s.loop_closure.accepted, 0u);
+  bool loop_status = false;
+  for (const auto& h : r.published_health)
+    for (const auto& st : h.msg.status)
+      loop_status = loop_status || st.name == "swlio: loop closure";
+  EXPECT_TRUE(loop_status) << "the health over DDS has the loop-closure status";
   EXPECT_TRUE(r.ready) << "READY condition: sensors stream and the estimator has a state";
   // Under a sanitizer the estimator may run behind and skip sweeps (SweepShedding); in the
   // Release build it keeps up.

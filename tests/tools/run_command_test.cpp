@@ -240,13 +240,14 @@ TEST_F(RunOnShortDrive, ConfigWindowSectionAppliesAndFlagsOverride) {
       << out;
 }
 
-// --loop-closure on: on 25 s along one road no place is seen twice, so no loop is tried and
+// --loop-closure on: along one road no place is seen twice, so no loop is tried and
 // the published and final-graph trajectories are the plain odometry's; the summary counts the
 // nodes. The switch in the configuration does the same; lidar-only mode refuses it.
 TEST_F(RunOnShortDrive, LoopClosureWritesItsOutputsAndLeavesAStraightDriveAlone) {
   const fs::path dir = *out_ / "loops";
   fs::create_directories(dir);
-  const std::string run = tool_.string() + " " + dir_->string() + " --out ";
+  // The first 12 s (3 s standing, then ~9 m): enough for nodes, short under the sanitizers.
+  const std::string run = tool_.string() + " " + dir_->string() + " --end-s 12 --out ";
   int code = 0;
   std::string out = test::RunCommand(run + (dir / "plain.tum").string() + " 2>/dev/null", &code);
   ASSERT_EQ(code, 0) << out;
@@ -258,13 +259,13 @@ TEST_F(RunOnShortDrive, LoopClosureWritesItsOutputsAndLeavesAStraightDriveAlone)
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("\"attempts\": 0, \"accepted\": 0"), std::string::npos) << out;
   const double nodes = NumberAfterKey(out, "\"nodes\": ");
-  EXPECT_GE(nodes, 15.0) << out;  // ~25 m at one node per metre, after the standing start
+  EXPECT_GE(nodes, 5.0) << out;  // ~9 m at one node per metre
   const auto slurp = [](const fs::path& p) {
     std::ifstream f(p);
     return std::string(std::istreambuf_iterator<char>(f), {});
   };
   const std::string plain = slurp(dir / "plain.tum");
-  EXPECT_GT(plain.size(), 1000u);
+  EXPECT_GT(plain.size(), 5000u);
   EXPECT_EQ(slurp(dir / "online.tum"), plain);
   const std::string optimized = slurp(dir / "opt.tum");
   EXPECT_EQ(optimized.substr(optimized.find('\n')), plain.substr(plain.find('\n')))

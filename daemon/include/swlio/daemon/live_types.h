@@ -1,12 +1,17 @@
 #pragma once
 /// @file
 /// What the daemon's threads hand each other through their SPSC queues. Fixed-size values
-/// only, so a full queue never allocates and a queue slot is reused as is.
+/// only, so a full queue never allocates and a queue slot is reused as is — except the
+/// keyframes for loop closure (a shared pointer: the optimizer allocates one per keyframe,
+/// about five a second, off the rx threads).
 
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <memory>
 
 #include "swlio/core/types.h"
+#include "swlio/estimator/keyframe_cloud.h"
 #include "swlio/estimator/lidar_odometry.h"
 #include "swlio/estimator/state_covariance.h"
 #include "swlio/ipc/messages.h"
@@ -39,6 +44,16 @@ struct SweepEstimate {
   /// The estimator re-initialized (its state diverged): the IMU-rate output must stop
   /// propagating the old state until the next estimate.
   bool reset = false;
+};
+
+/// A keyframe of the window (pose, features), from the optimizer to the loop-closure thread.
+using KeyframePtr = std::shared_ptr<const estimator::KeyframeCloud>;
+
+/// A new map correction from the loop-closure thread to the publisher, which follows it at a
+/// bounded rate (estimator/correction_slew.h).
+struct MapCorrection {
+  int64_t t_ns = 0;  ///< sweep end of the keyframe whose loop produced it (daemon time)
+  Eigen::Isometry3d T_map_odom = Eigen::Isometry3d::Identity();
 };
 
 /// One IMU-rate output, from the propagator to the publisher.

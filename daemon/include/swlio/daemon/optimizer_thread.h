@@ -32,6 +32,7 @@ struct OptimizerQueues {
   SpscQueue<SweepEstimate>* states_out = nullptr;    ///< optimizer → propagator
   SpscQueue<SweepEstimate>* odometry_out = nullptr;  ///< optimizer → publisher
   Doorbell* wake = nullptr;                          ///< rung by lidar_in and imu_in
+  SpscQueue<KeyframePtr>* keyframes_out = nullptr;   ///< optimizer → loop_closure (optional)
 };
 
 struct OptimizerCounters {

@@ -3,6 +3,12 @@
 /// The publisher thread: writes the IMU-rate pose as soon as the propagator hands it over,
 /// the odometry of every sweep, the keyframe path (latched; on change, at most 1 Hz) and the
 /// health at 1 Hz. The only thread that calls into DDS.
+///
+/// With loop closure, every pose and odometry is published in the map frame: the estimator's
+/// (odometry-frame) pose times the map correction, which follows the loop-closure thread's
+/// corrections at a bounded rate (CorrectionSlew), so the planner never sees a jump larger
+/// than the configured rates allow (the covariance is left in the odometry frame's axes: the
+/// correction's rotation is a fraction of a degree). Keyframes join the path as published.
 
 #include <atomic>
 #include <cstddef>
@@ -15,14 +21,16 @@
 #include "swlio/daemon/spsc_queue.h"
 #include "swlio/daemon/time_scale.h"
 #include "swlio/daemon/watchdog.h"
+#include "swlio/estimator/correction_slew.h"
 #include "swlio/ipc/publisher.h"
 
 namespace swlio::daemon {
 
 struct PublisherQueues {
-  SpscQueue<ImuRatePose>* poses_in = nullptr;       ///< propagator → publisher
-  SpscQueue<SweepEstimate>* odometry_in = nullptr;  ///< optimizer → publisher
-  Doorbell* wake = nullptr;                         ///< rung by poses_in and odometry_in
+  SpscQueue<ImuRatePose>* poses_in = nullptr;          ///< propagator → publisher
+  SpscQueue<SweepEstimate>* odometry_in = nullptr;     ///< optimizer → publisher
+  Doorbell* wake = nullptr;                            ///< rung by poses_in and odometry_in
+  SpscQueue<MapCorrection>* corrections_in = nullptr;  ///< loop_closure → publisher (optional)
 };
 
 struct PublisherCounters {
@@ -48,13 +56,17 @@ class PublisherThread {
                   const TimeScale& time,
                   HealthFn health,
                   int64_t health_period_ns = 1'000'000'000,
-                  size_t path_max_poses = 5000);
+                  size_t path_max_poses = 5000,
+                  const estimator::CorrectionSlewConfig& slew = {});
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   PublisherCounters counters() const;
   /// The keyframes the path holds (the newest path_max_poses); read after Run returned.
   const std::deque<ipc::PoseStamped>& keyframes() const { return keyframes_; }
 
  private:
+  void TakeCorrections();
+  /// `s` moved into the map frame by the current correction (stepped to `s.t_ns`).
+  State Corrected(State s);
   void WritePose(const ImuRatePose& pose);
   void WriteOdometry(const SweepEstimate& e);
   void Periodic(int64_t now_ns);
@@ -68,6 +80,7 @@ class PublisherThread {
   int64_t health_period_ns_;
   int64_t next_health_ns_ = 0;
   size_t path_max_poses_;
+  estimator::CorrectionSlew slew_;
   std::deque<ipc::PoseStamped> keyframes_;
   ipc::Path path_;  ///< the message, filled from keyframes_ when published
   bool path_changed_ = false;

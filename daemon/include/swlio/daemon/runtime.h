@@ -94,6 +94,7 @@ class Runtime {
   int can_socket_ = -1;            ///< the CAN_RAW socket Runtime opened (closed on destruction)
   std::unique_ptr<PropagatorThread> propagator_;
   std::unique_ptr<OptimizerThread> optimizer_;
+  std::unique_ptr<LoopClosureThread> loop_closure_;  ///< only with estimator.loop_closure
   std::unique_ptr<PublisherThread> publisher_thread_;
   std::unique_ptr<Recorder> recorder_;
   HealthReporter published_health_;          ///< used by the publisher thread only
@@ -101,10 +102,12 @@ class Runtime {
   std::atomic<bool> stop_rx_{false};
   std::atomic<bool> stop_propagator_{false};
   std::atomic<bool> stop_optimizer_{false};
+  std::atomic<bool> stop_loop_{false};
   std::atomic<bool> stop_out_{false};  ///< publisher, recorder
   std::vector<std::thread> rx_threads_;
   std::vector<std::thread> propagator_threads_;
   std::vector<std::thread> optimizer_threads_;
+  std::vector<std::thread> loop_threads_;
   std::vector<std::thread> out_threads_;
 };
 

@@ -57,6 +57,9 @@ struct LoopClosureConfig {
   /// Cauchy scale on loop residuals (0: none, the default; see pose_graph.h).
   double loop_kernel = 0.0;
   int max_iterations = 20;
+  /// The daemon's output follows a new correction at most this fast (correction_slew.h).
+  double output_max_rate_mps = 0.2;
+  double output_max_rate_radps = 0.05;
 
   ConfigIssues Validate() const;
 };

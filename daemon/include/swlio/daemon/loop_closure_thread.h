@@ -1,0 +1,57 @@
+#pragma once
+/// @file
+/// The loop-closure thread (design.md; issue 8): takes the optimizer's keyframes, runs
+/// LoopClosure (estimator/loop_closure.h: graph nodes, candidate verification, pose-graph
+/// solves) and hands every new map correction to the publisher, which follows it at a bounded
+/// rate. It never blocks the optimizer or the IMU-rate output: they share only queues, and a
+/// keyframe that finds the queue full is dropped and counted (the graph then has a longer
+/// odometry edge, nothing worse).
+
+#include <atomic>
+#include <cstdint>
+
+#include "swlio/daemon/live_types.h"
+#include "swlio/daemon/spsc_queue.h"
+#include "swlio/daemon/watchdog.h"
+#include "swlio/estimator/loop_closure.h"
+
+namespace swlio::daemon {
+
+struct LoopClosureQueues {
+  SpscQueue<KeyframePtr>* keyframes_in = nullptr;       ///< optimizer → loop_closure
+  SpscQueue<MapCorrection>* corrections_out = nullptr;  ///< loop_closure → publisher
+};
+
+struct LoopClosureCounters {
+  bool enabled = false;
+  uint64_t keyframes = 0;  ///< taken from the optimizer
+  uint64_t nodes = 0;
+  uint64_t attempts = 0;
+  uint64_t accepted = 0;
+  uint64_t rejected = 0;
+  uint64_t loops_switched_off = 0;  ///< by the pose graph's consistency check
+  double last_attempt_ms = 0.0;     ///< wall time of the last verification (+ graph solve)
+  double max_attempt_ms = 0.0;
+  /// The current correction's size (|translation| and rotation angle of T_map_odom).
+  double correction_m = 0.0;
+  double correction_rad = 0.0;
+};
+
+class LoopClosureThread {
+ public:
+  LoopClosureThread(const estimator::LoopClosureConfig& config, const LoopClosureQueues& queues);
+  void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
+  /// Relaxed copies (any thread).
+  LoopClosureCounters counters() const;
+
+ private:
+  void Handle(const estimator::KeyframeCloud& keyframe);
+
+  estimator::LoopClosure closure_;
+  LoopClosureQueues q_;
+  std::atomic<uint64_t> keyframes_{0}, nodes_{0}, attempts_{0}, accepted_{0}, rejected_{0},
+      switched_off_{0};
+  std::atomic<double> last_ms_{0.0}, max_ms_{0.0}, correction_m_{0.0}, correction_rad_{0.0};
+};
+
+}  // namespace swlio::daemon
