@@ -3,14 +3,17 @@
 the simulator's manifest.yaml, the ports and pty it streams to, DDS on the loopback-only XML,
 logs into WORK/log; everything else the defaults of config/swlio.yaml's keys.
 
-Usage: scripts/sim_daemon_config.py WORK ROOT MSOP_PORT DIFOP_PORT [STATUS_PERIOD_S]
-  reads WORK/sim/manifest.yaml, writes WORK/swlio.yaml (the pty is WORK/imu.pty).
+Usage: scripts/sim_daemon_config.py WORK ROOT MSOP_PORT DIFOP_PORT [STATUS_PERIOD_S] [--loop-closure]
+  reads WORK/sim/manifest.yaml, writes WORK/swlio.yaml (the pty is WORK/imu.pty);
+  --loop-closure sets estimator.loop_closure.enabled.
 Used by scripts/demo and scripts/soak."""
 import re
 import sys
 
-work, root, msop, difop = sys.argv[1:5]
-status_period_s = sys.argv[5] if len(sys.argv) > 5 else "5.0"
+args = [a for a in sys.argv[1:] if a != "--loop-closure"]
+loop_closure = "true" if "--loop-closure" in sys.argv[1:] else "false"
+work, root, msop, difop = args[0:4]
+status_period_s = args[4] if len(args) > 4 else "5.0"
 m = open(f"{work}/sim/manifest.yaml").read()
 t = re.search(r"extrinsic_T_imu_lidar:.*?translation_m: \[([^\]]*)\]", m, re.S).group(1)
 r = re.search(r"rotation_rpy_deg: \[([^\]]*)\]", m).group(1)
@@ -27,6 +30,8 @@ estimator:
   extrinsic_imu_lidar:
     translation_m: [{t}]
     rotation_rpy_deg: [{r}]
+  loop_closure:
+    enabled: {loop_closure}
 ipc:
   dds_config_file: {root}/config/cyclonedds-loopback.xml
 logging:
