@@ -43,7 +43,9 @@ void LoopClosureThread::Handle(const estimator::KeyframeCloud& keyframe) {
   const Eigen::Isometry3d C = closure_.T_map_odom();
   correction_m_.store(C.translation().norm(), kRelaxed);
   correction_rad_.store(Eigen::AngleAxisd(C.rotation()).angle(), kRelaxed);
-  q_.corrections_out->Push(MapCorrection{keyframe.t_ns, C});
+  q_.corrections_out->Push(
+      MapCorrection{keyframe.t_ns, C,
+                    std::make_shared<const std::vector<estimator::MapNode>>(closure_.MapPath())});
   spdlog::info(
       "loop closure: node {} matches node {} ({:.2f} m apart, fitness {:.2f}); graph of {} "
       "nodes solved in {:.1f} ms, correction now {:.2f} m / {:.2f} deg",

@@ -44,7 +44,26 @@ void PublisherThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle&
 void PublisherThread::TakeCorrections() {
   if (q_.corrections_in == nullptr) return;
   MapCorrection c;
-  while (q_.corrections_in->Pop(&c)) slew_.SetTarget(c.T_map_odom);
+  while (q_.corrections_in->Pop(&c)) {
+    slew_.SetTarget(c.T_map_odom);
+    if (c.path != nullptr) ReplacePath(*c.path);
+  }
+}
+
+void PublisherThread::ReplacePath(const std::vector<estimator::MapNode>& nodes) {
+  keyframes_.clear();
+  const size_t first = nodes.size() > path_max_poses_ ? nodes.size() - path_max_poses_ : 0;
+  for (size_t i = first; i < nodes.size(); ++i) {
+    State s;
+    s.t_ns = nodes[i].t_ns;
+    s.T_world_imu = nodes[i].T_map_imu;
+    ipc::PoseStamped p;
+    p.t_ns = time_.ToHost(s.t_ns);
+    p.frame_id = frames_.world;
+    p.pose = ToPose(s);
+    keyframes_.push_back(std::move(p));
+  }
+  path_changed_ = true;
 }
 
 State PublisherThread::Corrected(State s) {

@@ -82,6 +82,14 @@ Eigen::Isometry3d LoopClosure::CorrectedPose(int64_t t_ns,
   return graph_.pose(k) * nodes_[k].T_world_imu.inverse() * T_odom_imu;
 }
 
+std::vector<MapNode> LoopClosure::MapPath() const {
+  std::vector<MapNode> out;
+  out.reserve(nodes_.size());
+  for (size_t i = 0; i < nodes_.size(); ++i)
+    out.push_back({nodes_[i].t_ns, CorrectedPose(nodes_[i].t_ns, nodes_[i].T_world_imu)});
+  return out;
+}
+
 bool LoopClosure::FindCandidate(size_t newest, size_t* candidate, double* distance_m) const {
   const Eigen::Vector3d p = graph_.pose(newest).translation();
   const auto min_gap_ns = static_cast<int64_t>(config_.min_separation_s * 1e9);

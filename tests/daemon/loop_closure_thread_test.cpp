@@ -51,6 +51,16 @@ TEST(LoopClosureThread, ClosesTheLoopOfADriftedDriveAndHandsOverTheCorrection) {
   ASSERT_GE(n, 1u);
   const Eigen::Vector3d corrected = (last.T_map_odom * odom).translation();
   EXPECT_LT((corrected - truth.back().translation()).norm(), 0.1);
+  // The corrected path: one pose per graph node (at that loop), each near its truth.
+  ASSERT_NE(last.path, nullptr);
+  EXPECT_GT(last.path->size(), 100u);
+  EXPECT_LE(last.path->size(), c.nodes);
+  double worst_m = 0.0;
+  for (const estimator::MapNode& n : *last.path) {
+    const Eigen::Vector3d p = truth[static_cast<size_t>(n.t_ns / 500'000'000)].translation();
+    worst_m = std::max(worst_m, (n.T_map_imu.translation() - p).norm());
+  }
+  EXPECT_LT(worst_m, 0.25);  // as in LoopClosure.ClosesADriftedLoopOntoTheTruth
   EXPECT_GT((odom.translation() - truth.back().translation()).norm(), 1.0);
 }
 

@@ -91,6 +91,44 @@ TEST(PublisherThread, AMapCorrectionIsFollowedAtTheConfiguredRate) {
   }
 }
 
+// After a loop the keyframe path becomes the graph's corrected nodes (the newest
+// path_max_poses of them); keyframes after it are appended as published.
+TEST(PublisherThread, ALoopReplacesTheKeyframePathByTheCorrectedNodes) {
+  SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 4);
+  SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 16);
+  SpscQueue<MapCorrection> corrections("corrections", "test", "publisher", 4);
+  Doorbell bell;
+  PublisherThread publisher(nullptr, FrameIds{},
+                            PublisherQueues{&poses, &odometry, &bell, &corrections}, {}, nullptr,
+                            1'000'000'000, 4);
+  auto nodes = std::make_shared<std::vector<estimator::MapNode>>();
+  for (int i = 0; i < 6; ++i) {
+    estimator::MapNode n;
+    n.t_ns = (i + 1) * 1'000'000'000LL;
+    n.T_map_imu.translation() = Eigen::Vector3d(i, 0.5, 0.0);
+    nodes->push_back(n);
+  }
+  MapCorrection c;  // identity correction: the output itself is not moved
+  c.path = nodes;
+  ASSERT_TRUE(corrections.Push(c));
+  SweepEstimate e;
+  e.status = estimator::OdometryStatus::kTracking;
+  e.state.t_ns = 7'000'000'000;
+  e.state.T_world_imu.translation() = Eigen::Vector3d(6.0, 0.0, 0.0);
+  e.keyframe = true;
+  ASSERT_TRUE(odometry.Push(e));
+  const std::atomic<bool> stop{true};
+  publisher.Run(stop, Watchdog::Handle{});
+  const auto& path = publisher.keyframes();
+  ASSERT_EQ(path.size(), 4u);  // nodes 3, 4, 5 (of the newest 4), then the new keyframe
+  EXPECT_DOUBLE_EQ(path[0].pose.position_m[0], 3.0);
+  EXPECT_DOUBLE_EQ(path[0].pose.position_m[1], 0.5);
+  EXPECT_EQ(path[0].t_ns, 4'000'000'000);
+  EXPECT_DOUBLE_EQ(path[2].pose.position_m[0], 5.0);
+  EXPECT_DOUBLE_EQ(path[3].pose.position_m[0], 6.0);
+  EXPECT_DOUBLE_EQ(path[3].pose.position_m[1], 0.0);
+}
+
 // Without loop closure (no corrections queue) the poses go out exactly as estimated.
 TEST(PublisherThread, WithoutCorrectionsPosesAreUntouched) {
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 4);

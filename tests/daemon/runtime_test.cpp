@@ -26,8 +26,14 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   ASSERT_TRUE(r.sim_ok) << r.error;
   const HealthSnapshot& s = r.final;
   EXPECT_TRUE(s.loop_closure.enabled);
-  EXPECT_GE(s.loop_closure.keyframes, 20u);  // ~9 m at the window's 0.2 m keyframe spacing
-  EXPECT_GE(s.loop_closure.nodes, 5u);
+  // ~9 m driven: ~45 keyframes at the window's 0.2 m spacing, ~8 nodes at 1 m, in Release; under
+  // ASan (0.5x, sweeps skipped while behind) a CI run saw 16 and 4.
+  EXPECT_GE(s.loop_closure.keyframes, 10u);
+  EXPECT_GE(s.loop_closure.nodes, 3u);
+  if (!kSanitized) {
+    EXPECT_GE(s.loop_closure.keyframes, 30u);
+    EXPECT_GE(s.loop_closure.nodes, 6u);
+  }
   EXPECT_EQ(s.loop_closure.accepted, 0u);
   bool loop_status = false;
   for (const auto& h : r.published_health)

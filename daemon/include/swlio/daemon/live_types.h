@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "swlio/core/types.h"
 #include "swlio/estimator/keyframe_cloud.h"
@@ -54,6 +55,9 @@ using KeyframePtr = std::shared_ptr<const estimator::KeyframeCloud>;
 struct MapCorrection {
   int64_t t_ns = 0;  ///< sweep end of the keyframe whose loop produced it (daemon time)
   Eigen::Isometry3d T_map_odom = Eigen::Isometry3d::Identity();
+  /// The graph's nodes at their corrected poses (daemon time): the published keyframe path
+  /// is replaced by it. Allocated by the loop-closure thread once per accepted loop.
+  std::shared_ptr<const std::vector<estimator::MapNode>> path;
 };
 
 /// One IMU-rate output, from the propagator to the publisher.

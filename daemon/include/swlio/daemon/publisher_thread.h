@@ -8,13 +8,16 @@
 /// (odometry-frame) pose times the map correction, which follows the loop-closure thread's
 /// corrections at a bounded rate (CorrectionSlew), so the planner never sees a jump larger
 /// than the configured rates allow (the covariance is left in the odometry frame's axes: the
-/// correction's rotation is a fraction of a degree). Keyframes join the path as published.
+/// correction's rotation is a fraction of a degree). Keyframes join the path as published;
+/// after each loop the path is replaced by the pose graph's nodes (one per metre) at their
+/// corrected poses, so the planner sees the whole corrected trajectory.
 
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <vector>
 
 #include "swlio/daemon/live_types.h"
 #include "swlio/daemon/message_conversion.h"
@@ -65,6 +68,9 @@ class PublisherThread {
 
  private:
   void TakeCorrections();
+  /// The keyframe path becomes the graph's nodes at their corrected poses (newest
+  /// path_max_poses); later keyframes are appended as published.
+  void ReplacePath(const std::vector<estimator::MapNode>& nodes);
   /// `s` moved into the map frame by the current correction (stepped to `s.t_ns`).
   State Corrected(State s);
   void WritePose(const ImuRatePose& pose);

@@ -2,7 +2,7 @@
 /// @file
 /// A keyframe as the odometry hands it to loop closure and map saving: its IMU pose in the
 /// odometry's world frame, the extrinsic, and its de-skewed planar and edge features in its
-/// own LiDAR frame (after the front end's voxel filter).
+/// own LiDAR frame (after the front end's voxel filter); and a graph node's corrected pose.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -16,6 +16,12 @@ struct KeyframeCloud {
   Eigen::Isometry3d T_imu_lidar = Eigen::Isometry3d::Identity();
   std::vector<Eigen::Vector3d> planes_lidar;
   std::vector<Eigen::Vector3d> edges_lidar;
+};
+
+/// A pose-graph node in the corrected map frame (loop_closure.h): the corrected keyframe path.
+struct MapNode {
+  int64_t t_ns = 0;
+  Eigen::Isometry3d T_map_imu = Eigen::Isometry3d::Identity();
 };
 
 }  // namespace swlio::estimator

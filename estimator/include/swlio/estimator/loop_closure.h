@@ -66,6 +66,8 @@ class LoopClosure {
   /// Node i's pose in the map frame (optimized) and in the odometry frame (as received).
   Eigen::Isometry3d T_map_imu(size_t i) const { return graph_.pose(i); }
   const KeyframeCloud& node(size_t i) const { return nodes_[i]; }
+  /// Every node at its current map pose, oldest first.
+  std::vector<MapNode> MapPath() const;
 
  private:
   bool IsNewNode(const KeyframeCloud& keyframe) const;
