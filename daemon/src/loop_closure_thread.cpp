@@ -41,8 +41,10 @@ void LoopClosureThread::Handle(const estimator::KeyframeCloud& keyframe) {
   if (!u.optimized) return;
   switched_off_.fetch_add(u.summary.loops_switched_off, kRelaxed);
   const Eigen::Isometry3d C = closure_.T_map_odom();
-  correction_m_.store(C.translation().norm(), kRelaxed);
-  correction_rad_.store(Eigen::AngleAxisd(C.rotation()).angle(), kRelaxed);
+  const double correction_m = C.translation().norm();
+  const double correction_rad = Eigen::AngleAxisd(C.rotation()).angle();
+  correction_m_.store(correction_m, kRelaxed);
+  correction_rad_.store(correction_rad, kRelaxed);
   q_.corrections_out->Push(
       MapCorrection{keyframe.t_ns, C,
                     std::make_shared<const std::vector<estimator::MapNode>>(closure_.MapPath())});
@@ -50,8 +52,7 @@ void LoopClosureThread::Handle(const estimator::KeyframeCloud& keyframe) {
       "loop closure: node {} matches node {} ({:.2f} m apart, fitness {:.2f}); graph of {} "
       "nodes solved in {:.1f} ms, correction now {:.2f} m / {:.2f} deg",
       u.attempt.node, u.attempt.candidate, u.attempt.distance_m, u.attempt.check.fitness, st.nodes,
-      ms, C.translation().norm(),
-      Eigen::AngleAxisd(C.rotation()).angle() * 180.0 / std::numbers::pi);
+      ms, correction_m, correction_rad * 180.0 / std::numbers::pi);
 }
 
 LoopClosureCounters LoopClosureThread::counters() const {
