@@ -13,6 +13,11 @@ void CorrectionSlew::SetTarget(const Eigen::Isometry3d& T_map_odom) {
   settled_ = current_.isApprox(target_, 1e-12);
 }
 
+void CorrectionSlew::JumpTo(const Eigen::Isometry3d& T_map_odom) {
+  current_ = target_ = T_map_odom;
+  settled_ = true;
+}
+
 const Eigen::Isometry3d& CorrectionSlew::Step(int64_t t_ns, const Eigen::Isometry3d& T_odom_imu) {
   const double dt_s =
       have_time_ && t_ns > last_t_ns_ ? static_cast<double>(t_ns - last_t_ns_) * 1e-9 : 0.0;

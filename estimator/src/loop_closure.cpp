@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "swlio/estimator/keyframe_descriptor.h"  // KeyframeDescriptor
+
 namespace swlio::estimator {
 namespace {
 
@@ -18,7 +20,9 @@ std::vector<Eigen::Vector3d> Transformed(const Eigen::Isometry3d& T,
 }  // namespace
 
 LoopClosure::LoopClosure(const LoopClosureConfig& config)
-    : config_(config), graph_(config.loop_kernel, config.max_loop_chi2) {}
+    : config_(config),
+      graph_(config.loop_kernel, config.max_loop_chi2),
+      descriptors_(config.descriptor) {}
 
 bool LoopClosure::IsNewNode(const KeyframeCloud& keyframe) const {
   if (nodes_.empty()) return true;
@@ -37,17 +41,22 @@ LoopClosureUpdate LoopClosure::AddKeyframe(const KeyframeCloud& keyframe) {
         newest - 1, newest, nodes_.back().T_world_imu.inverse() * keyframe.T_world_imu,
         DiagonalSqrtInformation(config_.odometry_sigma_m, config_.odometry_sigma_rad));
   }
+  path_m_.push_back(nodes_.empty() ? 0.0
+                                   : path_m_.back() + (keyframe.T_world_imu.translation() -
+                                                       nodes_.back().T_world_imu.translation())
+                                                          .norm());
   nodes_.push_back(keyframe);
+  descriptors_.Add(KeyframeDescriptor(config_.descriptor, keyframe));
   update.node_added = true;
   stats_.nodes = nodes_.size();
   if (++since_attempt_ < static_cast<size_t>(config_.attempt_every_nodes)) return update;
 
-  size_t candidate = 0;
-  double distance_m = 0.0;
-  if (!FindCandidate(newest, &candidate, &distance_m)) return update;
+  Eigen::Isometry3d guess;
+  if (!ChooseCandidate(newest, &update.attempt, &guess)) return update;
+  const size_t candidate = update.attempt.candidate;
   since_attempt_ = 0;
   update.attempted = true;
-  update.attempt = Verify(candidate, newest, distance_m);
+  update.attempt.check = Verify(update.attempt, guess);
   attempts_.push_back(update.attempt);
   ++stats_.attempts;
   if (update.attempt.check.verdict != LoopVerdict::kAccepted) {
@@ -90,6 +99,61 @@ std::vector<MapNode> LoopClosure::MapPath() const {
   return out;
 }
 
+SavedMap LoopClosure::ToSavedMap() const {
+  SavedMap map;
+  map.descriptor_rings = config_.descriptor.rings;
+  map.descriptor_sectors = config_.descriptor.sectors;
+  map.descriptor_max_range_m = config_.descriptor.max_range_m;
+  map.descriptor_min_range_m = config_.descriptor.min_range_m;
+  map.descriptor_height_offset_m = config_.descriptor.height_offset_m;
+  map.nodes.reserve(nodes_.size());
+  for (size_t i = 0; i < nodes_.size(); ++i) {
+    const KeyframeCloud& n = nodes_[i];
+    map.nodes.push_back({n.t_ns, CorrectedPose(n.t_ns, n.T_world_imu), n.T_imu_lidar,
+                         n.planes_lidar, n.edges_lidar, descriptors_.at(i).cells});
+  }
+  return map;
+}
+
+bool LoopClosure::ChooseCandidate(size_t newest, LoopAttempt* attempt, Eigen::Isometry3d* guess) {
+  size_t by_radius = 0, by_descriptor = 0;
+  double distance_m = 0.0;
+  const bool radius = FindCandidate(newest, &by_radius, &distance_m);
+  const bool descriptor =
+      config_.descriptor_candidates && FindDescriptorCandidate(newest, &by_descriptor);
+  // The descriptor's candidate counts as the same place when it lies in the radius
+  // candidate's submap.
+  const auto h = static_cast<size_t>(config_.submap_half_width);
+  const bool same =
+      radius && descriptor && by_descriptor + h >= by_radius && by_descriptor <= by_radius + h;
+  if (!radius && !descriptor) return false;
+  const bool use_descriptor = descriptor && (!radius || (!same && descriptor_turn_));
+  if (radius && descriptor && !same) descriptor_turn_ = !descriptor_turn_;
+  attempt->node = newest;
+  attempt->by_descriptor = use_descriptor;
+  attempt->candidate = use_descriptor ? by_descriptor : by_radius;
+  attempt->distance_m =
+      (graph_.pose(attempt->candidate).translation() - graph_.pose(newest).translation()).norm();
+  *guess =
+      graph_.pose(attempt->candidate).inverse() * graph_.pose(newest) * nodes_[newest].T_imu_lidar;
+  return true;
+}
+
+bool LoopClosure::FindDescriptorCandidate(size_t newest, size_t* candidate) const {
+  const auto min_gap_ns = static_cast<int64_t>(config_.min_separation_s * 1e9);
+  const int64_t t_ns = nodes_[newest].t_ns;
+  const Eigen::Vector3d p = graph_.pose(newest).translation();
+  const auto matches = descriptors_.Query(descriptors_.at(newest), 1, [&](size_t k) {
+    const double reach_m =
+        config_.search_radius_m + config_.max_drift_ratio * (path_m_[newest] - path_m_[k]);
+    return k < newest && t_ns - nodes_[k].t_ns >= min_gap_ns &&
+           (graph_.pose(k).translation() - p).norm() <= reach_m;
+  });
+  if (matches.empty()) return false;
+  *candidate = matches.front().first;
+  return true;
+}
+
 bool LoopClosure::FindCandidate(size_t newest, size_t* candidate, double* distance_m) const {
   const Eigen::Vector3d p = graph_.pose(newest).translation();
   const auto min_gap_ns = static_cast<int64_t>(config_.min_separation_s * 1e9);
@@ -123,17 +187,10 @@ LoopSubmap LoopClosure::BuildSubmap(size_t candidate, int64_t newest_t_ns) const
   return submap;
 }
 
-LoopAttempt LoopClosure::Verify(size_t candidate, size_t newest, double distance_m) const {
-  LoopAttempt a;
-  a.candidate = candidate;
-  a.node = newest;
-  a.distance_m = distance_m;
-  const KeyframeCloud& kf = nodes_[newest];
-  const Eigen::Isometry3d guess =
-      graph_.pose(candidate).inverse() * graph_.pose(newest) * kf.T_imu_lidar;
-  a.check =
-      VerifyLoop(config_, kf.planes_lidar, kf.edges_lidar, BuildSubmap(candidate, kf.t_ns), guess);
-  return a;
+LoopCheck LoopClosure::Verify(const LoopAttempt& attempt, const Eigen::Isometry3d& guess) const {
+  const KeyframeCloud& kf = nodes_[attempt.node];
+  return VerifyLoop(config_, kf.planes_lidar, kf.edges_lidar,
+                    BuildSubmap(attempt.candidate, kf.t_ns), guess);
 }
 
 }  // namespace swlio::estimator

@@ -8,6 +8,8 @@ ConfigIssues LoopClosureConfig::Validate() const {
   CheckPositive(issues, "keyframe_angle_rad", keyframe_angle_rad);
   CheckPositive(issues, "search_radius_m", search_radius_m);
   CheckInRange(issues, "min_separation_s", min_separation_s, 1.0, 3600.0);
+  AppendWithPrefix(issues, "descriptor", descriptor.Validate());
+  CheckInRange(issues, "max_drift_ratio", max_drift_ratio, 0.0, 1.0);
   CheckInRange(issues, "attempt_every_nodes", attempt_every_nodes, 1, 1000);
   CheckInRange(issues, "submap_half_width", submap_half_width, 0, 100);
   AppendWithPrefix(issues, "submap", submap.Validate());

@@ -75,6 +75,56 @@ inline Scene BoxYard(unsigned seed) {
   return s;
 }
 
+/// Two look-alike bays (issue 8): the boxes of x ∈ [0, 20] repeat in x ∈ [20, 40] (as a
+/// substation repeats its bays), and different boxes stand beyond both short sides, so places
+/// 20 m apart along the long sides look alike and the corners tell them apart.
+inline Scene TwinBayYard(unsigned seed) {
+  Scene s;
+  AddGround(-15.0, 55.0, -15.0, 40.0, &s);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> ux(-12.0, 52.0), uy(-12.0, 37.0), size(1.0, 3.0),
+      height(1.5, 4.0);
+  int twins = 0, others = 0;
+  while (twins < 12 || others < 12) {
+    const Vec3 c(ux(rng), uy(rng), 0.0);
+    const bool in_bay = c.x() > 3.0 && c.x() < 17.0;
+    const bool outside = (c.x() > -12.0 && c.x() < -3.0) || (c.x() > 43.0 && c.x() < 52.0);
+    const bool on_road = std::abs(c.y()) < 3.0 || std::abs(c.y() - 25.0) < 3.0;
+    if (on_road || (!in_bay && !outside) || (in_bay && twins >= 12) || (outside && others >= 12))
+      continue;
+    const Vec3 half(size(rng) / 2, size(rng) / 2, 0.0);
+    const Vec3 top(0.0, 0.0, height(rng));
+    for (const double shift : in_bay ? std::vector<double>{0.0, 20.0} : std::vector<double>{0.0}) {
+      const Vec3 o(shift, 0.0, 0.0);
+      AddBox(c - half + o, c + half + o + top, 0.35, &s.planes, &s.edges);
+    }
+    ++(in_bay ? twins : others);
+  }
+  return s;
+}
+
+/// Boxes that repeat every 20 m along x over the whole yard (one tile, four times): every
+/// place on the long sides has a look-alike 20 m away that no view within range tells apart.
+inline Scene PeriodicYard(unsigned seed) {
+  Scene s;
+  AddGround(-15.0, 55.0, -15.0, 40.0, &s);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> ux(3.0, 17.0), uy(-12.0, 37.0), size(1.0, 3.0),
+      height(1.5, 4.0);
+  for (int placed = 0; placed < 12;) {
+    const Vec3 c(ux(rng), uy(rng), 0.0);
+    if (std::abs(c.y()) < 3.0 || std::abs(c.y() - 25.0) < 3.0) continue;
+    const Vec3 half(size(rng) / 2, size(rng) / 2, 0.0);
+    const Vec3 top(0.0, 0.0, height(rng));
+    for (const double shift : {-20.0, 0.0, 20.0, 40.0}) {
+      const Vec3 o(shift, 0.0, 0.0);
+      AddBox(c - half + o, c + half + o + top, 0.35, &s.planes, &s.edges);
+    }
+    ++placed;
+  }
+  return s;
+}
+
 /// Two parallel walls 6 m apart along x, on ground: nothing fixes x.
 inline Scene Corridor() {
   Scene s;

@@ -242,16 +242,20 @@ TEST_F(RunOnShortDrive, ConfigWindowSectionAppliesAndFlagsOverride) {
 
 // --loop-closure on: along one road no place is seen twice, so no loop is tried and
 // the published and final-graph trajectories are the plain odometry's; the summary counts the
-// nodes. The switch in the configuration does the same; lidar-only mode refuses it.
+// nodes. The switch in the configuration does the same (on by default); lidar-only mode
+// refuses it. Then the graph saved as a map, and the same stretch localized in it.
 TEST_F(RunOnShortDrive, LoopClosureWritesItsOutputsAndLeavesAStraightDriveAlone) {
   const fs::path dir = *out_ / "loops";
   fs::create_directories(dir);
   // The first 12 s (3 s standing, then ~9 m): enough for nodes, short under the sanitizers.
   const std::string run = tool_.string() + " " + dir_->string() + " --end-s 12 --out ";
   int code = 0;
-  std::string out = test::RunCommand(run + (dir / "plain.tum").string() + " 2>/dev/null", &code);
+  std::string out = test::RunCommand(
+      run + (dir / "plain.tum").string() + " --loop-closure off 2>/dev/null", &code);
   ASSERT_EQ(code, 0) << out;
-  EXPECT_EQ(out.find("\"loops\""), std::string::npos) << "off by default";
+  EXPECT_EQ(out.find("\"loops\""), std::string::npos) << out;
+  out = test::RunCommand(run + (dir / "default.tum").string() + " 2>/dev/null", &code);
+  EXPECT_NE(out.find("\"loops\""), std::string::npos) << "on by default: " << out;
   out = test::RunCommand(run + (dir / "online.tum").string() +
                              " --loop-closure on --out-optimized " + (dir / "opt.tum").string() +
                              " --loops " + (dir / "l.csv").string() + " 2>/dev/null",
@@ -289,6 +293,30 @@ TEST_F(RunOnShortDrive, LoopClosureWritesItsOutputsAndLeavesAStraightDriveAlone)
       run + (dir / "c.tum").string() + " --mode lidar-only --loop-closure on 2>&1", &code);
   EXPECT_NE(code, 0);
   EXPECT_NE(out.find("--loop-closure on needs --mode tightly-coupled"), std::string::npos) << out;
+
+  const std::string map = (dir / "map.swlmap").string();
+  out = test::RunCommand(run + (dir / "m.tum").string() + " --save-map " + map + " --map-pcd " +
+                             (dir / "map.pcd").string() + " 2>/dev/null",
+                         &code);
+  ASSERT_EQ(code, 0) << out;
+  std::ifstream pcd(dir / "map.pcd");
+  std::string first_line;
+  std::getline(pcd, first_line);
+  EXPECT_EQ(first_line.rfind("# .PCD v0.7", 0), 0u) << first_line;
+  out = test::RunCommand(
+      run + (dir / "loc.tum").string() + " --map " + map + " --localize 2>/dev/null", &code);
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("\"state\": \"tracking\""), std::string::npos) << out;
+  const double after_s = NumberAfterKey(out, "\"localized_after_s\": ");
+  EXPECT_GE(after_s, 0.0) << out;
+  EXPECT_LT(after_s, 5.0) << out;
+  EXPECT_GT(CountLines(dir / "loc.tum", &header), 10u);
+  std::ofstream(dir / "bad.swlmap") << "SWLIOMAP but not a map";
+  out = test::RunCommand(run + (dir / "bad.tum").string() + " --map " +
+                             (dir / "bad.swlmap").string() + " --localize 2>&1",
+                         &code);
+  EXPECT_NE(code, 0);
+  EXPECT_NE(out.find("map file"), std::string::npos) << out;
 }
 
 /// The number after `key` in `out`'s last line that has it (NaN if none).

@@ -5,22 +5,10 @@
 #include <cstdio>
 #include <fstream>
 
+#include "spread.h"
 #include "swlio/daemon/tum_output.h"
 
 namespace swlio::tools {
-namespace {
-
-/// {median, p99, max} of `v` (zeros when empty).
-std::array<double, 3> Spread(std::vector<double> v) {
-  if (v.empty()) return {0.0, 0.0, 0.0};
-  std::sort(v.begin(), v.end());
-  const auto at = [&](double q) {
-    return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())))];
-  };
-  return {at(0.5), at(0.99), v.back()};
-}
-
-}  // namespace
 
 LoopClosureRun::LoopClosureRun(const estimator::LoopClosureConfig& config,
                                estimator::NowNsFn now_ns)
@@ -56,23 +44,40 @@ bool LoopClosureRun::WriteLoops(const std::string& path) const {
   std::ofstream out(path);
   if (!out) return false;
   out << "candidate_t_ns,node_t_ns,distance_m,verdict,fitness,inliers,min_eigenvalue,"
-         "correction_m,correction_rad,x,y,z,qx,qy,qz,qw\n";
+         "correction_m,correction_rad,x,y,z,qx,qy,qz,qw,source\n";
   for (const estimator::LoopAttempt& a : closure_.attempts()) {
     const Eigen::Isometry3d T =
         a.check.T_candidate_lidar * closure_.node(a.node).T_imu_lidar.inverse();
     const Eigen::Quaterniond q(T.rotation());
     char line[512];
-    std::snprintf(line, sizeof line,
-                  "%lld,%lld,%.3f,%s,%.3f,%zu,%.2f,%.4f,%.5f,%.4f,%.4f,%.4f,%.6f,%.6f,%.6f,%.6f\n",
-                  static_cast<long long>(closure_.node(a.candidate).t_ns),
-                  static_cast<long long>(closure_.node(a.node).t_ns), a.distance_m,
-                  estimator::ToString(a.check.verdict), a.check.fitness, a.check.inliers,
-                  a.check.min_eigenvalue, a.check.correction_m, a.check.correction_rad,
-                  T.translation().x(), T.translation().y(), T.translation().z(), q.x(), q.y(),
-                  q.z(), q.w());
+    std::snprintf(
+        line, sizeof line,
+        "%lld,%lld,%.3f,%s,%.3f,%zu,%.2f,%.4f,%.5f,%.4f,%.4f,%.4f,%.6f,%.6f,%.6f,%.6f,%s\n",
+        static_cast<long long>(closure_.node(a.candidate).t_ns),
+        static_cast<long long>(closure_.node(a.node).t_ns), a.distance_m,
+        estimator::ToString(a.check.verdict), a.check.fitness, a.check.inliers,
+        a.check.min_eigenvalue, a.check.correction_m, a.check.correction_rad, T.translation().x(),
+        T.translation().y(), T.translation().z(), q.x(), q.y(), q.z(), q.w(),
+        a.by_descriptor ? "descriptor" : "radius");
     out << line;
   }
   return static_cast<bool>(out);
+}
+
+size_t LoopClosureRun::ByDescriptor() const {
+  size_t n = 0;
+  for (const estimator::LoopAttempt& a : closure_.attempts()) {
+    n += a.by_descriptor && a.check.verdict == estimator::LoopVerdict::kAccepted ? 1 : 0;
+  }
+  return n;
+}
+
+bool LoopClosureRun::SaveMap(const std::string& path,
+                             const std::string& pcd_path,
+                             std::string* error) const {
+  const estimator::SavedMap map = closure_.ToSavedMap();
+  if (!estimator::SaveMapFile(path, map, error)) return false;
+  return pcd_path.empty() || estimator::SaveMergedPcd(pcd_path, map, kPcdVoxelM, error);
 }
 
 std::string LoopClosureRun::SummaryJson() const {
@@ -82,10 +87,10 @@ std::string LoopClosureRun::SummaryJson() const {
   char json[512];
   std::snprintf(json, sizeof json,
                 "\"loops\": {\"nodes\": %zu, \"attempts\": %zu, \"accepted\": %zu, "
-                "\"rejected\": %zu, \"attempt_ms\": [%.2f, %.2f, %.2f], "
+                "\"rejected\": %zu, \"by_descriptor\": %zu, \"attempt_ms\": [%.2f, %.2f, %.2f], "
                 "\"accepted_ms\": [%.2f, %.2f, %.2f]}",
-                s.nodes, s.attempts, s.accepted, s.rejected, verify[0], verify[1], verify[2],
-                graph[0], graph[1], graph[2]);
+                s.nodes, s.attempts, s.accepted, s.rejected, ByDescriptor(), verify[0], verify[1],
+                verify[2], graph[0], graph[1], graph[2]);
   return json;
 }
 

@@ -13,6 +13,7 @@
 
 #include "swlio/core/types.h"
 #include "swlio/estimator/loop_closure.h"
+#include "swlio/estimator/map_pcd.h"
 #include "swlio/estimator/stage_timer.h"
 
 namespace swlio::tools {
@@ -31,8 +32,17 @@ class LoopClosureRun {
   bool WriteLoops(const std::string& path) const;
   /// `"loops": {...}` for the summary JSON: counts and the update times (ms).
   std::string SummaryJson() const;
+  /// The final graph as a saved map (saved_map.h) at `path`, and its merged cloud as PCD at
+  /// `pcd_path` unless empty; false with *error.
+  bool SaveMap(const std::string& path, const std::string& pcd_path, std::string* error) const;
+
+  /// Voxel of the merged cloud for viewers.
+  static constexpr double kPcdVoxelM = 0.1;
 
  private:
+  /// Accepted loops found by the place descriptor.
+  size_t ByDescriptor() const;
+
   estimator::LoopClosure closure_;
   estimator::NowNsFn now_ns_;
   std::vector<State> sweeps_;      ///< odometry frame

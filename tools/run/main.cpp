@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "localization_run.h"
 #include "loop_closure_run.h"
 #include "swlio/core/lie.h"
 #include "swlio/daemon/config_loader.h"
@@ -38,6 +39,8 @@ const swlio::estimator::WindowEstimatorConfig& WindowDefaults() {
 
 struct Options {
   std::string loop_closure = "off", out_optimized, loops;
+  std::string save_map, map_pcd, map;  ///< map files (loop closure writes, --localize reads)
+  bool localize = false;
   std::string dir, out, timings, diagnostics, covariance, config, mode = "tightly-coupled";
   size_t window_size = WindowDefaults().window_size;
   int iterations = WindowDefaults().max_iterations;
@@ -289,17 +292,35 @@ int Run(const Options& opt) {
   setup.window = window_config;
   Summary summary;
   std::unique_ptr<swlio::tools::LoopClosureRun> loops;
-  // --loop-closure wins over the configuration's estimator.loop_closure.enabled.
-  const bool loop_closure = opt.given.count("--loop-closure") > 0
-                                ? opt.loop_closure == "on"
-                                : daemon_config.loop_closure.enabled;
-  if (loop_closure) {
-    if (!tightly_coupled) {
-      std::cerr << "swlio-run: --loop-closure on needs --mode tightly-coupled\n";
+  // --loop-closure wins over the configuration's estimator.loop_closure.enabled (on by
+  // default, and then off in lidar-only mode, which makes no keyframes for it).
+  const bool asked = opt.given.count("--loop-closure") > 0;
+  if ((asked && opt.loop_closure == "on") && !tightly_coupled) {
+    std::cerr << "swlio-run: --loop-closure on needs --mode tightly-coupled\n";
+    return 1;
+  }
+  if (opt.localize && !tightly_coupled) {
+    std::cerr << "swlio-run: --localize needs --mode tightly-coupled\n";
+    return 1;
+  }
+  const bool loop_closure =
+      asked ? opt.loop_closure == "on" : daemon_config.loop_closure.enabled && tightly_coupled;
+  std::unique_ptr<swlio::tools::LocalizationRun> localization;
+  if (opt.localize) {
+    swlio::estimator::LocalizationConfig lc;
+    lc.registration = daemon_config.loop_closure;
+    localization =
+        swlio::tools::LocalizationRun::Open(opt.map, lc, &swlio::daemon::ThreadCpuNowNs, &error);
+    if (!localization) {
+      std::cerr << "swlio-run: " << error << "\n";
       return 1;
     }
+  } else if (loop_closure) {
     loops = std::make_unique<swlio::tools::LoopClosureRun>(daemon_config.loop_closure,
                                                            &swlio::daemon::ThreadCpuNowNs);
+  } else if (!opt.save_map.empty()) {
+    std::cerr << "swlio-run: --save-map needs loop closure (its graph is the map)\n";
+    return 1;
   }
   auto process = [&](const swlio::Scan& scan, const swlio::estimator::WindowResult& w) {
     const OdometryResult& r = w.odometry;
@@ -312,9 +333,13 @@ int Run(const Options& opt) {
     }
     if (timings) WriteTimings(timings, r, scan.t_end_ns);
     if (diagnostics) WriteDiagnostics(diagnostics, r, scan.t_end_ns);
-    if (r.status == OdometryStatus::kTracking || r.status == OdometryStatus::kMatchFailed) {
-      swlio::daemon::WriteTumLine(tum, loops ? loops->OnSweep(r.state, w.keyframe.get()) : r.state);
+    if (r.status != OdometryStatus::kTracking && r.status != OdometryStatus::kMatchFailed) return;
+    if (localization) {
+      if (swlio::State s; localization->OnSweep(r.state, w.keyframe.get(), &s))
+        swlio::daemon::WriteTumLine(tum, s);
+      return;
     }
+    swlio::daemon::WriteTumLine(tum, loops ? loops->OnSweep(r.state, w.keyframe.get()) : r.state);
   };
   swlio::daemon::EstimatorRunner runner(setup, &swlio::daemon::ThreadCpuNowNs, process);
   swlio::daemon::RecordingEvent e;
@@ -324,7 +349,10 @@ int Run(const Options& opt) {
   while (reader->Next(&e)) {
     const bool imu = e.kind == swlio::daemon::RecordingEvent::Kind::kImu;
     const int64_t t_ns = imu ? e.imu.t_ns : e.scan.t_start_ns;
-    if (start_ns < 0) start_ns = t_ns + static_cast<int64_t>(opt.start_s * 1e9);
+    if (start_ns < 0) {
+      start_ns = t_ns + static_cast<int64_t>(opt.start_s * 1e9);
+      if (localization) localization->SetStart(t_ns);
+    }
     if (t_ns < start_ns) continue;
     if (opt.end_s > 0.0 && t_ns >= start_ns + static_cast<int64_t>((opt.end_s - opt.start_s) * 1e9))
       break;
@@ -348,7 +376,12 @@ int Run(const Options& opt) {
       std::cerr << "swlio-run: cannot write " << opt.loops << "\n";
       return 1;
     }
+    if (!opt.save_map.empty() && !loops->SaveMap(opt.save_map, opt.map_pcd, &error)) {
+      std::cerr << "swlio-run: " << error << "\n";
+      return 1;
+    }
   }
+  if (localization) summary.extra = localization->SummaryJson();
   summary.Print();
   if (tightly_coupled && window_config.calibrate_extrinsic_s > 0.0) {
     PrintCalibration(*runner.window(), T_imu_lidar_given);
@@ -427,6 +460,17 @@ int Main(int argc, char** argv) {
                  "with loop closure: every verified loop candidate (CSV: times of both nodes, "
                  "verdict, fitness, inliers, Hessian's smallest eigenvalue, correction, relative "
                  "pose)");
+  app.add_option("--save-map", opt.save_map,
+                 "with loop closure: save the final graph as a map (docs/map-format.md), for "
+                 "--localize");
+  app.add_option("--map-pcd", opt.map_pcd,
+                 "with --save-map: also the merged cloud of the map as PCD, for viewers");
+  app.add_option("--map", opt.map, "a saved map (--save-map) to localize in");
+  app.add_flag("--localize", opt.localize,
+               "localize in --map: global relocalization from place descriptors, then tracking "
+               "against the fixed map; --out gets the sweeps from the first localized one on, "
+               "in the map's frame")
+      ->needs("--map");
   app.add_option("--timings", opt.timings,
                  "per-scan stage timings CSV (t_ns,points,frontend_ms,match_ms,optimize_ms,"
                  "total_ms; thread CPU time, 0 for a stage that did not run)");

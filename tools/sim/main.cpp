@@ -119,14 +119,17 @@ int Run(int argc, char** argv) {
       "swlio-sim: simulated substation drives (RS-LiDAR-16 + Xsens MTi) with ground truth"};
   std::string scenario = "short";
   uint64_t seed = 1;
+  uint64_t world_seed = 0;
   std::string out;
   double duration = 0.0;
   int laps = 1;
   bool live = false, list = false;
   std::string dump_dir;
   swlio::sim::LiveOptions live_opts;
-  app.add_option("--scenario", scenario, "short | loop943 | degenerate | aggressive");
+  app.add_option("--scenario", scenario, "short | loop943 | degenerate | aggressive | revisit");
   app.add_option("--seed", seed, "world and noise seed");
+  app.add_option("--world-seed", world_seed,
+                 "draw the substation from this seed instead (a second drive in a mapped world)");
   app.add_option("--out", out, "output folder");
   app.add_option("--duration", duration, "cut the drive after this many seconds");
   app.add_option("--laps", laps,
@@ -152,7 +155,8 @@ int Run(int argc, char** argv) {
     return 0;
   }
   auto setup = swlio::sim::MakeSimSetup(
-      scenario, seed, duration > 0.0 ? std::optional<double>(duration) : std::nullopt);
+      scenario, seed, duration > 0.0 ? std::optional<double>(duration) : std::nullopt,
+      app.count("--world-seed") > 0 ? std::optional<uint64_t>(world_seed) : std::nullopt);
   if (!setup) {
     std::cerr << "swlio-sim: unknown scenario '" << scenario << "' (see --list)\n";
     return 2;

@@ -2,6 +2,8 @@
 
 #include <numbers>
 
+#include "rng.h"
+
 #include "substation.h"
 
 namespace swlio::sim {
@@ -72,13 +74,69 @@ Scenario Aggressive() {
   return s;
 }
 
+/// The substation part of loop943's patrol (ring and middle roads, no yard), as a polyline.
+std::vector<Eigen::Vector2d> PatrolRoads() {
+  return {{60.0, L::kRoadSouth},          {L::kRoadEast, L::kRoadSouth},
+          {L::kRoadEast, L::kRoadMiddle}, {L::kRoadWest, L::kRoadMiddle},
+          {L::kRoadWest, L::kRoadNorth},  {L::kRoadEast, L::kRoadNorth},
+          {L::kRoadEast, L::kRoadSouth},  {L::kRoadWest, L::kRoadSouth}};
+}
+
+/// `length_m` of `roads` from arc length `s0_m`, forwards (`dir` +1) or backwards (−1), as
+/// waypoints: the start point, every corner passed (kept only ≥ 10 m from the start and the
+/// end, so that the turn fits), the end point.
+std::vector<Eigen::Vector2d> Stretch(const std::vector<Eigen::Vector2d>& roads,
+                                     double s0_m,
+                                     int dir,
+                                     double length_m) {
+  std::vector<double> s = {0.0};
+  for (size_t i = 1; i < roads.size(); ++i)
+    s.push_back(s.back() + (roads[i] - roads[i - 1]).norm());
+  const auto at = [&](double a) {
+    size_t i = 1;
+    while (i + 1 < roads.size() && s[i] < a) ++i;
+    const double u = (a - s[i - 1]) / (s[i] - s[i - 1]);
+    return Eigen::Vector2d(roads[i - 1] + u * (roads[i] - roads[i - 1]));
+  };
+  const double s1_m = s0_m + dir * length_m;
+  std::vector<Eigen::Vector2d> out = {at(s0_m)};
+  for (size_t k = 0; k < roads.size(); ++k) {
+    const size_t i = dir > 0 ? k : roads.size() - 1 - k;
+    const double d0 = (s[i] - s0_m) * dir, d1 = (s1_m - s[i]) * dir;
+    if (d0 >= 10.0 && d1 >= 10.0) out.push_back(roads[i]);
+  }
+  out.push_back(at(s1_m));
+  return out;
+}
+
+/// A second patrol of the same substation for relocalization in a saved map (issue 8): it
+/// starts at a place on the substation roads drawn from the seed, heading either way, and
+/// drives 200 m along them.
+Scenario Revisit(uint64_t seed) {
+  Scenario s{"revisit",
+             "200 m along the substation roads from a start drawn from the seed (either "
+             "direction): a second drive for relocalization in a map made on loop943",
+             {}};
+  const std::vector<Eigen::Vector2d> roads = PatrolRoads();
+  double total_m = 0.0;
+  for (size_t i = 1; i < roads.size(); ++i) total_m += (roads[i] - roads[i - 1]).norm();
+  constexpr double kLengthM = 200.0;
+  Rng rng(seed ^ 0x5EED5EEDull);
+  const double s0_m = rng.Uniform(0.0, total_m);
+  int dir = rng.Uniform() < 0.5 ? 1 : -1;
+  if (s0_m + dir * kLengthM > total_m || s0_m + dir * kLengthM < 0.0) dir = -dir;
+  s.route = Base(1.0, 4.0, Stretch(roads, s0_m, dir, kLengthM));
+  return s;
+}
+
 }  // namespace
 
 std::vector<std::string> ScenarioNames() {
-  return {"short", "loop943", "degenerate", "aggressive"};
+  return {"short", "loop943", "degenerate", "aggressive", "revisit"};
 }
 
-std::optional<Scenario> MakeScenario(const std::string& name) {
+std::optional<Scenario> MakeScenario(const std::string& name, uint64_t seed) {
+  if (name == "revisit") return Revisit(seed);
   if (name == "short") return Short();
   if (name == "loop943") return Loop943();
   if (name == "degenerate") return Degenerate();

@@ -17,10 +17,11 @@ struct Scenario {
   RouteSpec route;
 };
 
-/// Names of the built-in scenarios: short, loop943, degenerate, aggressive.
+/// Names of the built-in scenarios: short, loop943, degenerate, aggressive, revisit.
 std::vector<std::string> ScenarioNames();
 
-/// The scenario called `name`, or nothing when there is none.
-std::optional<Scenario> MakeScenario(const std::string& name);
+/// The scenario called `name`, or nothing when there is none. Only `revisit` depends on the
+/// seed (its start place and direction).
+std::optional<Scenario> MakeScenario(const std::string& name, uint64_t seed = 1);
 
 }  // namespace swlio::sim

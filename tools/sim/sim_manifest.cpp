@@ -42,6 +42,7 @@ std::string ManifestYaml(const SimSetup& setup,
     << "scenario: " << setup.scenario.name << "\n"
     << "description: \"" << setup.scenario.description << "\"\n"
     << "seed: " << setup.seed << "\n"
+    << "world_seed: " << setup.world_seed << "\n"
     << "duration_s: " << Num(SimDuration(setup)) << "\n"
     << "path_length_m: " << Num(setup.trajectory->length_m()) << "\n"
     << "# Host time (ns, CLOCK_MONOTONIC-like) of simulation time 0. pcap record times and\n"

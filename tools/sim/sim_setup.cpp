@@ -27,13 +27,15 @@ Eigen::Isometry3d TrueExtrinsic(Rng& rng) {
 
 std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
                                      uint64_t seed,
-                                     std::optional<double> duration_s) {
-  std::optional<Scenario> s = MakeScenario(scenario);
+                                     std::optional<double> duration_s,
+                                     std::optional<uint64_t> world_seed) {
+  std::optional<Scenario> s = MakeScenario(scenario, seed);
   if (!s) return std::nullopt;
   SimSetup setup;
   setup.scenario = *s;
   setup.seed = seed;
-  setup.world = std::make_unique<World>(GenerateSubstation(seed));
+  setup.world_seed = world_seed.value_or(seed);
+  setup.world = std::make_unique<World>(GenerateSubstation(setup.world_seed));
   setup.trajectory = std::make_unique<Trajectory>(s->route, &setup.world->terrain);
   Rng rng(seed ^ 0xC10C4ull);
   // LiDAR header clock: UTC-like (2023-11 plus up to a day), drifting up to ±20 ppm.

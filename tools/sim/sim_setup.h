@@ -19,7 +19,8 @@ namespace swlio::sim {
 
 struct SimSetup {
   Scenario scenario;
-  uint64_t seed = 0;
+  uint64_t seed = 0;             ///< noise, clocks, extrinsic (and revisit's start)
+  uint64_t world_seed = 0;       ///< the substation (the seed unless given apart)
   std::unique_ptr<World> world;  ///< heap: the trajectory points into its terrain
   std::unique_ptr<Trajectory> trajectory;
   ImuSimConfig imu;
@@ -27,11 +28,13 @@ struct SimSetup {
   double gt_rate_hz = 200.0;  ///< ground-truth pose rate
 };
 
-/// Builds the setup; `duration_s` (when given) shortens the route's timeline. Returns nothing
-/// for an unknown scenario.
+/// Builds the setup; `duration_s` (when given) shortens the route's timeline; `world_seed`
+/// (when given) draws the substation from another seed than the drive (a second drive in a
+/// world mapped before). Returns nothing for an unknown scenario.
 std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
                                      uint64_t seed,
-                                     std::optional<double> duration_s = std::nullopt);
+                                     std::optional<double> duration_s = std::nullopt,
+                                     std::optional<uint64_t> world_seed = std::nullopt);
 
 /// Trajectory duration after the optional cut.
 double SimDuration(const SimSetup& setup);

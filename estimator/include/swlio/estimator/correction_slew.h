@@ -26,8 +26,11 @@ class CorrectionSlew {
  public:
   explicit CorrectionSlew(const CorrectionSlewConfig& config = {});
 
-  /// A new correction to follow (loop closure, or a relocalization).
+  /// A new correction to follow (loop closure, or tracking in a saved map).
   void SetTarget(const Eigen::Isometry3d& T_map_odom);
+  /// A correction to take at once: the first pose in a saved map (relocalization), before
+  /// which nothing was published in the map frame.
+  void JumpTo(const Eigen::Isometry3d& T_map_odom);
   /// Steps the correction toward the target for an output at `t_ns` of `T_odom_imu` and
   /// returns the correction to apply to it. Time going backwards (or the first call) does not
   /// move it.

@@ -1,10 +1,14 @@
 #pragma once
 /// @file
 /// Loop closure (issue 8; the paper's global correction, §2): keyframes of the odometry become
-/// nodes of a pose graph (pose_graph.h) joined by odometry edges; for the newest node, the
-/// nearest node at least `min_separation_s` older within `search_radius_m` (in the corrected
-/// frame, so a loop is found after drift) is verified by registration (loop_verifier.h); an
-/// accepted loop adds a loop edge and the graph is optimized.
+/// nodes of a pose graph (pose_graph.h) joined by odometry edges. Candidates for the newest
+/// node, each at least `min_separation_s` older: the nearest node within `search_radius_m` (in
+/// the corrected frame, so a loop is found after moderate drift), and the node with the
+/// nearest place descriptor (scan_context.h) within the drift's reach (loop_closure_config.h).
+/// One is verified by registration (loop_verifier.h) per attempt, from the graph's relative
+/// pose: the radius candidate, or the descriptor's when it points elsewhere (then the two take
+/// turns). An accepted loop adds a loop edge and the graph is
+/// optimized; the χ² check there switches off loops the rest of the graph contradicts.
 ///
 /// Frames: the odometry's world ("odom", continuous, what the window estimator works in) and
 /// the corrected "map". `T_map_odom()` is the correction at the newest node: the pose output is
@@ -20,14 +24,17 @@
 #include "swlio/estimator/loop_closure_config.h"
 #include "swlio/estimator/loop_verifier.h"
 #include "swlio/estimator/pose_graph.h"
+#include "swlio/estimator/saved_map.h"
+#include "swlio/estimator/scan_context.h"
 
 namespace swlio::estimator {
 
 /// One verification: which nodes, and what it found.
 struct LoopAttempt {
-  size_t candidate = 0;     ///< older node
-  size_t node = 0;          ///< newest node
-  double distance_m = 0.0;  ///< between their corrected positions before the check
+  size_t candidate = 0;        ///< older node
+  size_t node = 0;             ///< newest node
+  double distance_m = 0.0;     ///< between their corrected positions before the check
+  bool by_descriptor = false;  ///< found by the place descriptor (else by radius)
   LoopCheck check;
 };
 
@@ -68,17 +75,30 @@ class LoopClosure {
   const KeyframeCloud& node(size_t i) const { return nodes_[i]; }
   /// Every node at its current map pose, oldest first.
   std::vector<MapNode> MapPath() const;
+  /// Node i's place descriptor.
+  const ScanContext& descriptor(size_t i) const { return descriptors_.at(i); }
+  /// The map to save (saved_map.h): every node at its current map pose, with its features
+  /// and descriptor.
+  SavedMap ToSavedMap() const;
 
  private:
   bool IsNewNode(const KeyframeCloud& keyframe) const;
   /// The nearest old-enough node within the search radius of the newest; false when none.
   bool FindCandidate(size_t newest, size_t* candidate, double* distance_m) const;
+  /// The old-enough node within the drift's reach with the nearest descriptor; false when
+  /// none is near enough.
+  bool FindDescriptorCandidate(size_t newest, size_t* candidate) const;
+  /// Which candidate to verify now (false: none).
+  bool ChooseCandidate(size_t newest, LoopAttempt* attempt, Eigen::Isometry3d* guess);
   LoopSubmap BuildSubmap(size_t candidate, int64_t newest_t_ns) const;
-  LoopAttempt Verify(size_t candidate, size_t newest, double distance_m) const;
+  LoopCheck Verify(const LoopAttempt& attempt, const Eigen::Isometry3d& guess) const;
 
   LoopClosureConfig config_;
   PoseGraph graph_;
   std::vector<KeyframeCloud> nodes_;  ///< poses in the odometry frame
+  ScanContextDatabase descriptors_;   ///< one per node
+  std::vector<double> path_m_;        ///< odometry distance driven up to each node
+  bool descriptor_turn_ = false;      ///< the descriptor's candidate goes next when both differ
   std::vector<LoopAttempt> attempts_;
   LoopClosureStats stats_;
   size_t since_attempt_ = 0;

@@ -4,6 +4,7 @@
 /// pull in Ceres.
 
 #include "swlio/core/config_issue.h"
+#include "swlio/estimator/scan_context.h"
 #include "swlio/estimator/scan_matcher.h"
 #include "swlio/estimator/voxel_map.h"
 
@@ -11,7 +12,7 @@ namespace swlio::estimator {
 
 struct LoopClosureConfig {
   /// The daemon's and swlio-run's switch (the library itself does not read it).
-  bool enabled = false;
+  bool enabled = true;
   /// A window keyframe becomes a graph node after this much motion since the last node.
   double keyframe_distance_m = 1.0;
   double keyframe_angle_rad = 0.2;
@@ -19,6 +20,17 @@ struct LoopClosureConfig {
   double search_radius_m = 10.0;
   /// ... and at least this much older (so the recent track is never a loop).
   double min_separation_s = 30.0;
+  /// Candidates also from the place descriptor of every node (scan_context.h): among the
+  /// old-enough nodes the graph puts within search_radius_m + max_drift_ratio × the distance
+  /// driven between the two, the one whose descriptor is nearest (the nearest position is not
+  /// always the best view of the place). It is verified like a radius candidate, from the
+  /// graph's relative pose: a substation repeats its bays every few tens of metres, and a
+  /// look-alike bay further along the road matches a descriptor (and a registration started
+  /// from the descriptor's pose) as well as the true place. Odometry drift is far below 1 %
+  /// (bench/README), so the reach stays short of the next bay on most loops.
+  bool descriptor_candidates = true;
+  ScanContextConfig descriptor;
+  double max_drift_ratio = 0.01;
   /// A detection is tried at most every this many nodes (each try is one registration).
   int attempt_every_nodes = 2;
   /// The submap a candidate is verified against: its node and this many on each side.
