@@ -29,6 +29,22 @@ bool LoadChecked(const std::string& path, swlio::daemon::DaemonConfig* config) {
   return true;
 }
 
+/// --map, --save-map and --localize over the file's `map` section, validated again.
+bool ApplyMapFlags(const std::string& map_path,
+                   const std::string& save_map,
+                   bool localize,
+                   swlio::daemon::DaemonConfig* config) {
+  if (!map_path.empty()) config->map.load_path = map_path;
+  if (!save_map.empty()) config->map.save_path = save_map;
+  if (localize) config->map.localize = true;
+  bool ok = true;
+  for (const swlio::ConfigIssue& issue : config->map.Validate()) {
+    std::cerr << "swliod: map." << issue.key << ": " << issue.reason << "\n";
+    ok = false;
+  }
+  return ok;
+}
+
 int Run(int argc, char** argv) {
   swlio::daemon::BlockStopSignals();  // before any thread exists (spdlog, DDS, ours)
   CLI::App app{"swliod: LiDAR-inertial localization daemon"};
@@ -36,7 +52,8 @@ int Run(int argc, char** argv) {
   double run_for_s = 0.0;
   bool no_dds = false;
   double time_scale = 1.0;
-  std::string record_dir;
+  std::string record_dir, map_path, save_map;
+  bool localize = false;
   auto* check = app.add_option("--check-config", check_config,
                                "Validate a configuration file, print every problem with its "
                                "line, and exit");
@@ -51,6 +68,13 @@ int Run(int argc, char** argv) {
   app.add_option("--record", record_dir,
                  "Record every sensor's raw bytes with host receive times into this folder "
                  "(lidar.pcap, imu.xbus, imu.rx.csv, manifest.yaml; replay with swlio-replay)");
+  app.add_option("--save-map", save_map,
+                 "With loop closure: save the pose graph as a map here when stopping, and its "
+                 "merged cloud as FILE.pcd (overrides map.save_path)");
+  app.add_option("--map", map_path, "A saved map to localize in (overrides map.load_path)");
+  app.add_flag("--localize", localize,
+               "Localize in the saved map: relocalization from place descriptors, then tracking "
+               "against the fixed map; no pose is published until localized (map.localize)");
   CLI11_PARSE(app, argc, argv);
 
   if (!check_config.empty()) {
@@ -68,6 +92,7 @@ int Run(int argc, char** argv) {
   // whose configuration is wrong (systemd/README.md).
   constexpr int kExitConfig = 78;
   if (!LoadChecked(config_path, &config)) return kExitConfig;
+  if (!ApplyMapFlags(map_path, save_map, localize, &config)) return kExitConfig;
   std::string error;
   if (!swlio::daemon::SetupLogging(config.logging, &error)) {
     std::cerr << "swliod: " << error << "\n";

@@ -375,9 +375,23 @@ void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   s.Finish();
 }
 
+void Bind(Section s, estimator::ScanContextConfig& c) {
+  s.Get("rings", c.rings);
+  s.Get("sectors", c.sectors);
+  s.Get("max_range_m", c.max_range_m);
+  s.Get("min_range_m", c.min_range_m);
+  s.Get("height_offset_m", c.height_offset_m);
+  s.Get("candidates", c.candidates);
+  s.Get("max_distance", c.max_distance);
+  s.Finish();
+}
+
 /// The matchers' own settings (coarse, fine) are not keys.
 void Bind(Section s, estimator::LoopClosureConfig& c) {
   s.Get("enabled", c.enabled);
+  s.Get("descriptor_candidates", c.descriptor_candidates);
+  s.Get("max_drift_ratio", c.max_drift_ratio);
+  Bind(s.Child("descriptor"), c.descriptor);
   s.Get("keyframe_distance_m", c.keyframe_distance_m);
   s.Get("keyframe_angle_rad", c.keyframe_angle_rad);
   s.Get("search_radius_m", c.search_radius_m);
@@ -402,10 +416,38 @@ void Bind(Section s, estimator::LoopClosureConfig& c) {
   s.Finish();
 }
 
+/// `registration` is not a key (the daemon uses estimator.loop_closure's).
+void Bind(Section s, estimator::LocalizationConfig& c) {
+  s.Get("relocalize_max_descriptor_distance", c.relocalize_max_descriptor_distance);
+  s.Get("relocalize_candidates", c.relocalize_candidates);
+  s.Get("relocalize_max_correction_m", c.relocalize_max_correction_m);
+  s.Get("relocalize_max_correction_rad", c.relocalize_max_correction_rad);
+  s.Get("confirmations", c.confirmations);
+  s.Get("track_every_m", c.track_every_m);
+  s.Get("track_every_rad", c.track_every_rad);
+  s.Get("relocalize_min_margin", c.relocalize_min_margin);
+  s.Get("distinct_m", c.distinct_m);
+  s.Get("submap_radius_m", c.submap_radius_m);
+  s.Get("submap_max_nodes", c.submap_max_nodes);
+  s.Get("track_min_fitness", c.track_min_fitness);
+  s.Get("track_max_correction_m", c.track_max_correction_m);
+  s.Get("track_max_correction_rad", c.track_max_correction_rad);
+  s.Get("lost_after_failures", c.lost_after_failures);
+  s.Finish();
+}
+
+void Bind(Section s, MapFilesConfig& c) {
+  s.Get("save_path", c.save_path);
+  s.Get("load_path", c.load_path);
+  s.Get("localize", c.localize);
+  s.Finish();
+}
+
 void Bind(Section s,
           estimator::EstimatorConfig& c,
           estimator::WindowEstimatorConfig& window,
-          estimator::LoopClosureConfig& loop_closure) {
+          estimator::LoopClosureConfig& loop_closure,
+          estimator::LocalizationConfig& localization) {
   s.Get("mode", c.mode);
   Bind(s.Child("imu_noise"), c.imu_noise);
   Bind(s.Child("extrinsic_imu_lidar"), c.extrinsic_imu_lidar);
@@ -419,6 +461,7 @@ void Bind(Section s,
   s.Get("num_threads", c.num_threads);
   Bind(s.Child("window"), window);
   Bind(s.Child("loop_closure"), loop_closure);
+  Bind(s.Child("localization"), localization);
   s.Finish();
 }
 
@@ -472,7 +515,8 @@ void BindRoot(Section root, DaemonConfig& c, Context& ctx) {
   Bind(root.Child("lidar"), c.lidar);
   Bind(root.Child("imu"), c.imu);
   Bind(root.Child("can"), c.can);
-  Bind(root.Child("estimator"), c.estimator, c.window, c.loop_closure);
+  Bind(root.Child("estimator"), c.estimator, c.window, c.loop_closure, c.localization);
+  Bind(root.Child("map"), c.map);
   Bind(root.Child("ipc"), c.ipc);
   Bind(root.Child("logging"), c.logging);
   Bind(root.Child("realtime"), c.realtime);
@@ -488,6 +532,8 @@ void ResolvePaths(DaemonConfig& c, const std::filesystem::path& base_dir) {
   };
   resolve(c.logging.directory);
   resolve(c.ipc.dds_config_file);
+  resolve(c.map.save_path);
+  resolve(c.map.load_path);
 }
 
 /// Validate() results carry key names only; add the place of each key in the file.

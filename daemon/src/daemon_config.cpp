@@ -47,6 +47,15 @@ ConfigIssues RealtimeConfig::Validate() const {
   return issues;
 }
 
+ConfigIssues MapFilesConfig::Validate() const {
+  ConfigIssues issues;
+  CheckThat(issues, !localize || !load_path.empty(), "load_path",
+            "localize needs a map to load (map.load_path or --map)");
+  CheckThat(issues, !localize || save_path.empty(), "save_path",
+            "a map is saved from loop closure, which is off while localizing");
+  return issues;
+}
+
 ConfigIssues DaemonConfig::Validate() const {
   ConfigIssues issues;
   CheckThat(issues, config_version == kConfigVersion, "config_version",
@@ -62,6 +71,8 @@ ConfigIssues DaemonConfig::Validate() const {
   }
   AppendWithPrefix(issues, "estimator.window", window_issues);
   AppendWithPrefix(issues, "estimator.loop_closure", loop_closure.Validate());
+  AppendWithPrefix(issues, "estimator.localization", localization.Validate());
+  AppendWithPrefix(issues, "map", map.Validate());
   AppendWithPrefix(issues, "ipc", ipc.Validate());
   AppendWithPrefix(issues, "logging", logging.Validate());
   AppendWithPrefix(issues, "realtime", realtime.Validate());

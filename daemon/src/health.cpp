@@ -103,6 +103,32 @@ ipc::DiagnosticStatus LoopClosureStatus(const HealthSnapshot& s) {
   return d;
 }
 
+/// Warn until the pose is localized in the saved map (nothing is published before), and while
+/// a localization is being confirmed or was lost.
+ipc::DiagnosticStatus LocalizationStatus(const HealthSnapshot& s) {
+  const LocalizationCounters& c = s.localization;
+  ipc::DiagnosticStatus d;
+  d.name = "swlio: localization";
+  d.hardware_id = "swlio";
+  const bool tracking = c.state == estimator::LocalizationState::kTracking;
+  d.level = tracking ? ipc::DiagnosticLevel::kOk : ipc::DiagnosticLevel::kWarn;
+  d.message = tracking               ? "localized in the saved map"
+              : c.localized_t_ns < 0 ? "not localized yet: relocalizing, no pose published"
+                                     : "localization lost: following odometry, relocalizing";
+  d.values = {{"state", estimator::ToString(c.state)},
+              {"map_nodes", Count(c.map_nodes)},
+              {"keyframes", Count(c.keyframes)},
+              {"hypotheses", Count(c.hypotheses)},
+              {"hypotheses_dropped", Count(c.hypotheses_dropped)},
+              {"tracked", Count(c.tracked)},
+              {"track_failures", Count(c.track_failures)},
+              {"lost", Count(c.lost)},
+              {"registration_ms", Num(c.last_ms, "%.1f")},
+              {"registration_ms_max", Num(c.max_ms, "%.1f")},
+              {"held_poses", Count(s.publisher.held)}};
+  return d;
+}
+
 /// How long ago (host seconds) the last processed sweep ended: the estimate's latency plus
 /// any backlog; it grows when the estimator falls behind its input or the LiDAR stops.
 std::string SweepAge(const HealthSnapshot& s) {
@@ -199,6 +225,7 @@ ipc::DiagnosticArray HealthReporter::Diagnostics(const HealthSnapshot& now) {
   a.status = {LidarStatus(now, r), ImuStatus(now, r), EstimatorStatus(now, r), QueueStatus(now)};
   if (now.can_enabled) a.status.push_back(CanStatus(now, r));
   if (now.loop_closure.enabled) a.status.push_back(LoopClosureStatus(now));
+  if (now.localization.enabled) a.status.push_back(LocalizationStatus(now));
   return a;
 }
 

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "swlio/core/time.h"
+#include "swlio/estimator/map_pcd.h"
 
 namespace swlio::daemon {
 
@@ -53,6 +54,17 @@ void LoopClosureThread::Handle(const estimator::KeyframeCloud& keyframe) {
       "nodes solved in {:.1f} ms, correction now {:.2f} m / {:.2f} deg",
       u.attempt.node, u.attempt.candidate, u.attempt.distance_m, u.attempt.check.fitness, st.nodes,
       ms, correction_m, correction_rad * 180.0 / std::numbers::pi);
+}
+
+size_t LoopClosureThread::SaveMap(const std::string& path,
+                                  const std::string& pcd_path,
+                                  std::string* error) const {
+  const estimator::SavedMap map = closure_.ToSavedMap();
+  constexpr double kPcdVoxelM = 0.1;
+  if (estimator::SaveMapFile(path, map, error)) {
+    estimator::SaveMergedPcd(pcd_path, map, kPcdVoxelM, error);
+  }
+  return map.nodes.size();
 }
 
 LoopClosureCounters LoopClosureThread::counters() const {

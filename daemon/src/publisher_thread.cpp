@@ -45,7 +45,12 @@ void PublisherThread::TakeCorrections() {
   if (q_.corrections_in == nullptr) return;
   MapCorrection c;
   while (q_.corrections_in->Pop(&c)) {
-    slew_.SetTarget(c.T_map_odom);
+    if (c.jump) {
+      slew_.JumpTo(c.T_map_odom);
+      holding_ = false;
+    } else {
+      slew_.SetTarget(c.T_map_odom);
+    }
     if (c.path != nullptr) ReplacePath(*c.path);
   }
 }
@@ -91,6 +96,10 @@ bool Finite(const ipc::Pose& p) {
 
 void PublisherThread::WritePose(const ImuRatePose& pose) {
   last_gyro_imu_radps_ = pose.gyro_imu_radps;
+  if (holding_) {
+    held_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
   ipc::PoseWithCovarianceStamped m;
   m.t_ns = time_.ToHost(pose.state.t_ns);
   m.frame_id = frames_.world;
@@ -106,6 +115,10 @@ void PublisherThread::WritePose(const ImuRatePose& pose) {
 void PublisherThread::WriteOdometry(const SweepEstimate& e) {
   if (e.status == estimator::OdometryStatus::kInitializing ||
       e.status == estimator::OdometryStatus::kSkipped) {
+    return;
+  }
+  if (holding_) {
+    held_.fetch_add(1, std::memory_order_relaxed);
     return;
   }
   ipc::Odometry m =
@@ -151,6 +164,7 @@ PublisherCounters PublisherThread::counters() const {
   c.paths = paths_.load(kRelaxed);
   c.failures = failures_.load(kRelaxed);
   c.non_finite = non_finite_.load(kRelaxed);
+  c.held = held_.load(kRelaxed);
   return c;
 }
 

@@ -8,6 +8,7 @@
 
 #include "swlio/core/time.h"
 #include "swlio/daemon/thread_setup.h"
+#include "swlio/estimator/saved_map.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
 
@@ -91,28 +92,71 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   rt->propagator_ = std::make_unique<PropagatorThread>(
       config.imu.baud, propagator, PropagatorQueues{&q.imu_raw, &q.states, &q.imu, &q.poses}, time);
   const EstimatorSetup setup = MakeEstimatorSetup(config, T_imu_lidar, ModeFromConfig(config));
-  // Loop closure needs the window's keyframes (tightly coupled mode).
-  const bool loops = config.loop_closure.enabled && setup.mode == EstimatorMode::kTightlyCoupled;
-  if (config.loop_closure.enabled && !loops)
+  // Loop closure and localization need the window's keyframes (tightly coupled mode);
+  // localizing in a saved map replaces loop closure.
+  const bool tight = setup.mode == EstimatorMode::kTightlyCoupled;
+  if (config.map.localize && !tight) {
+    *error = "map.localize needs estimator.mode tightly-coupled";
+    return nullptr;
+  }
+  const bool localize = config.map.localize;
+  const bool loops = config.loop_closure.enabled && tight && !localize;
+  if (config.loop_closure.enabled && !tight)
     spdlog::warn("loop closure: needs estimator.mode tightly-coupled; off");
+  if (config.loop_closure.enabled && localize)
+    spdlog::info("loop closure: off while localizing in a saved map");
+  const bool keyframes = loops || localize;
   rt->optimizer_ = std::make_unique<OptimizerThread>(
       config.lidar, setup,
       OptimizerQueues{&q.lidar, &q.imu, &q.states, &q.odometry, &q.optimizer_wake,
-                      loops ? &q.keyframes : nullptr},
+                      keyframes ? &q.keyframes : nullptr},
       time, SecToNs(config.realtime.max_sweep_lag_s));
   if (loops) {
     rt->loop_closure_ = std::make_unique<LoopClosureThread>(
         config.loop_closure, LoopClosureQueues{&q.keyframes, &q.corrections});
   }
+  if (localize && !rt->LoadLocalization(error)) return nullptr;
   Runtime* self = rt.get();
   rt->publisher_thread_ = std::make_unique<PublisherThread>(
       rt->publisher_.get(), FrameIds{},
-      PublisherQueues{&q.poses, &q.odometry, &q.publisher_wake, loops ? &q.corrections : nullptr},
+      PublisherQueues{&q.poses, &q.odometry, &q.publisher_wake,
+                      keyframes ? &q.corrections : nullptr},
       time, [self](int64_t) { return self->published_health_.Diagnostics(self->Snapshot()); },
       1'000'000'000, static_cast<size_t>(config.ipc.path_max_poses),
       estimator::CorrectionSlewConfig{config.loop_closure.output_max_rate_mps,
                                       config.loop_closure.output_max_rate_radps});
+  if (localize) rt->publisher_thread_->HoldUntilLocalized();
   return rt;
+}
+
+bool Runtime::LoadLocalization(std::string* error) {
+  std::optional<estimator::SavedMap> map = estimator::LoadMapFile(config_.map.load_path, error);
+  if (!map) return false;
+  if (map->nodes.empty()) {
+    *error = "map file " + config_.map.load_path + ": no nodes to localize in";
+    return false;
+  }
+  spdlog::info("localization: map {} with {} nodes; relocalizing", config_.map.load_path,
+               map->nodes.size());
+  estimator::LocalizationConfig c = config_.localization;
+  c.registration = config_.loop_closure;
+  localization_ = std::make_unique<LocalizationThread>(
+      std::move(*map), c, LoopClosureQueues{&queues_->keyframes, &queues_->corrections});
+  return true;
+}
+
+void Runtime::SaveMap() {
+  if (!loop_closure_ || config_.map.save_path.empty() || map_saved_) return;
+  map_saved_ = true;
+  std::string error;
+  const size_t nodes =
+      loop_closure_->SaveMap(config_.map.save_path, config_.map.save_path + ".pcd", &error);
+  if (!error.empty()) {
+    spdlog::error("map: not saved: {}", error);
+  } else {
+    spdlog::info("map: {} nodes saved to {} (merged cloud: {}.pcd)", nodes, config_.map.save_path,
+                 config_.map.save_path);
+  }
 }
 
 void Runtime::Spawn(std::vector<std::thread>* group,
@@ -144,6 +188,10 @@ void Runtime::Start() {
     Spawn(&loop_threads_, "loop_closure",
           [this](const Watchdog::Handle& b) { loop_closure_->Run(stop_loop_, b); });
   }
+  if (localization_) {
+    Spawn(&loop_threads_, "localization",
+          [this](const Watchdog::Handle& b) { localization_->Run(stop_loop_, b); });
+  }
   Spawn(out, "publisher",
         [this](const Watchdog::Handle& b) { publisher_thread_->Run(stop_out_, b); });
   if (recorder_) {
@@ -161,6 +209,7 @@ void Runtime::Stop() {
       if (t.joinable()) t.join();
     }
     group->clear();
+    if (group == &loop_threads_) SaveMap();  // the graph is complete and nobody writes it
   }
 }
 
@@ -181,6 +230,7 @@ HealthSnapshot Runtime::Snapshot() const {
   s.optimizer = optimizer_->counters();
   s.publisher = publisher_thread_->counters();
   if (loop_closure_) s.loop_closure = loop_closure_->counters();
+  if (localization_) s.localization = localization_->counters();
   s.queues = queues_->Counters();
   if (recorder_) {
     for (const QueueCounters& c : recorder_->QueueCountersList()) s.queues.push_back(c);

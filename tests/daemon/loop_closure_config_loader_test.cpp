@@ -52,7 +52,7 @@ TEST(LoopClosureConfigLoader, ValuesAreStored) {
   const LoadedConfig loaded = Load(R"(config_version: 1
 estimator:
   loop_closure:
-    enabled: true
+    enabled: false
     search_radius_m: 15.0
     min_separation_s: 60
     min_inliers: 250
@@ -60,7 +60,7 @@ estimator:
 )");
   ASSERT_TRUE(loaded.ok()) << loaded.ErrorReport();
   const LoopClosureConfig& c = loaded.config.loop_closure;
-  EXPECT_TRUE(c.enabled);
+  EXPECT_FALSE(c.enabled);  // on by default
   EXPECT_EQ(c.search_radius_m, 15.0);
   EXPECT_EQ(c.min_separation_s, 60.0);
   EXPECT_EQ(c.min_inliers, 250);

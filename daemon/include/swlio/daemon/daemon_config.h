@@ -12,6 +12,7 @@
 #include "swlio/drivers/imu_config.h"
 #include "swlio/drivers/lidar_config.h"
 #include "swlio/estimator/estimator_config.h"
+#include "swlio/estimator/localization_config.h"
 #include "swlio/estimator/loop_closure_config.h"
 #include "swlio/estimator/window_estimator_config.h"
 #include "swlio/ipc/ipc_config.h"
@@ -58,6 +59,21 @@ struct RealtimeConfig {
   ConfigIssues Validate() const;
 };
 
+/// Saved maps (YAML `map`; docs/map-format.md). The command line's --save-map, --map and
+/// --localize set the same fields.
+struct MapFilesConfig {
+  /// With loop closure: the pose graph is saved here when the daemon stops (empty: not saved),
+  /// with its merged cloud beside it (same path + ".pcd").
+  std::string save_path;
+  /// A saved map to localize in (needs `localize`).
+  std::string load_path;
+  /// Localize in `load_path` instead of building a map: relocalization from place descriptors,
+  /// then tracking against the fixed map (estimator.localization); loop closure is off then.
+  bool localize = false;
+
+  ConfigIssues Validate() const;
+};
+
 /// Version of the configuration schema this build reads (`config_version` in the file).
 inline constexpr int64_t kConfigVersion = 1;
 
@@ -73,6 +89,10 @@ struct DaemonConfig {
   estimator::WindowEstimatorConfig window;
   /// Loop closure and the pose graph (YAML `estimator.loop_closure`).
   estimator::LoopClosureConfig loop_closure;
+  /// Localization in a saved map (YAML `estimator.localization`). Its `registration` is not
+  /// read from the file: the daemon takes estimator.loop_closure's verification settings.
+  estimator::LocalizationConfig localization;
+  MapFilesConfig map;
   ipc::IpcConfig ipc;
   LoggingConfig logging;
   RealtimeConfig realtime;

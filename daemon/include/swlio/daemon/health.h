@@ -11,6 +11,7 @@
 #include "swlio/daemon/can_rx.h"
 #include "swlio/daemon/imu_rx.h"
 #include "swlio/daemon/lidar_rx.h"
+#include "swlio/daemon/localization_thread.h"
 #include "swlio/daemon/loop_closure_thread.h"
 #include "swlio/daemon/optimizer_thread.h"
 #include "swlio/daemon/propagator_thread.h"
@@ -29,7 +30,8 @@ struct HealthSnapshot {
   PropagatorCounters propagator;
   OptimizerCounters optimizer;
   PublisherCounters publisher;
-  LoopClosureCounters loop_closure;  ///< `enabled` false when loop closure is off
+  LoopClosureCounters loop_closure;   ///< `enabled` false when loop closure is off
+  LocalizationCounters localization;  ///< `enabled` false unless localizing in a saved map
   std::vector<QueueCounters> queues;
 };
 

@@ -58,6 +58,9 @@ struct MapCorrection {
   /// The graph's nodes at their corrected poses (daemon time): the published keyframe path
   /// is replaced by it. Allocated by the loop-closure thread once per accepted loop.
   std::shared_ptr<const std::vector<estimator::MapNode>> path;
+  /// Take the correction at once instead of following it: the first pose in a saved map
+  /// (nothing was published before it).
+  bool jump = false;
 };
 
 /// One IMU-rate output, from the propagator to the publisher.

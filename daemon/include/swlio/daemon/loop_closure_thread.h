@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <string>
 
 #include "swlio/daemon/live_types.h"
 #include "swlio/daemon/spsc_queue.h"
@@ -43,6 +44,9 @@ class LoopClosureThread {
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   /// Relaxed copies (any thread).
   LoopClosureCounters counters() const;
+  /// The graph as a saved map at `path`, its merged cloud at `pcd_path` (saved_map.h,
+  /// map_pcd.h); call only after Run returned. Returns the node count; *error set on failure.
+  size_t SaveMap(const std::string& path, const std::string& pcd_path, std::string* error) const;
 
  private:
   void Handle(const estimator::KeyframeCloud& keyframe);

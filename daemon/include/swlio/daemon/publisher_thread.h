@@ -45,6 +45,9 @@ struct PublisherCounters {
   /// Poses and odometry not published because a position or orientation was not finite
   /// (never sent to the planner; a non-zero count is a bug to report).
   uint64_t non_finite = 0;
+  /// Poses and odometry not published because the pose was not yet localized in the saved map
+  /// (HoldUntilLocalized): the planner gets map-frame poses only.
+  uint64_t held = 0;
 };
 
 class PublisherThread {
@@ -61,6 +64,9 @@ class PublisherThread {
                   int64_t health_period_ns = 1'000'000'000,
                   size_t path_max_poses = 5000,
                   const estimator::CorrectionSlewConfig& slew = {});
+  /// Localization in a saved map: publish no pose or odometry until the first correction that
+  /// jumps (the relocalization) has arrived. Call before Run.
+  void HoldUntilLocalized() { holding_ = true; }
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   PublisherCounters counters() const;
   /// The keyframes the path holds (the newest path_max_poses); read after Run returned.
@@ -90,9 +96,10 @@ class PublisherThread {
   std::deque<ipc::PoseStamped> keyframes_;
   ipc::Path path_;  ///< the message, filled from keyframes_ when published
   bool path_changed_ = false;
+  bool holding_ = false;
   Eigen::Vector3d last_gyro_imu_radps_ = Eigen::Vector3d::Zero();
   std::atomic<uint64_t> poses_{0}, odometry_{0}, health_count_{0}, paths_{0}, failures_{0},
-      non_finite_{0};
+      non_finite_{0}, held_{0};
 };
 
 }  // namespace swlio::daemon

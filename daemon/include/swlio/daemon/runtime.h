@@ -78,6 +78,10 @@ class Runtime {
  private:
   struct Queues;
   Runtime(const DaemonConfig& config, const RuntimeOptions& options);
+  /// Loads map.load_path and makes the localization thread; false with *error.
+  bool LoadLocalization(std::string* error);
+  /// With loop closure and map.save_path: the graph as a saved map (once, at stop).
+  void SaveMap();
   void Spawn(std::vector<std::thread>* group,
              const char* name,
              std::function<void(const Watchdog::Handle&)> body);
@@ -94,7 +98,8 @@ class Runtime {
   int can_socket_ = -1;            ///< the CAN_RAW socket Runtime opened (closed on destruction)
   std::unique_ptr<PropagatorThread> propagator_;
   std::unique_ptr<OptimizerThread> optimizer_;
-  std::unique_ptr<LoopClosureThread> loop_closure_;  ///< only with estimator.loop_closure
+  std::unique_ptr<LoopClosureThread> loop_closure_;   ///< only with estimator.loop_closure
+  std::unique_ptr<LocalizationThread> localization_;  ///< only with map.localize
   std::unique_ptr<PublisherThread> publisher_thread_;
   std::unique_ptr<Recorder> recorder_;
   HealthReporter published_health_;          ///< used by the publisher thread only
@@ -103,6 +108,7 @@ class Runtime {
   std::atomic<bool> stop_propagator_{false};
   std::atomic<bool> stop_optimizer_{false};
   std::atomic<bool> stop_loop_{false};
+  bool map_saved_ = false;
   std::atomic<bool> stop_out_{false};  ///< publisher, recorder
   std::vector<std::thread> rx_threads_;
   std::vector<std::thread> propagator_threads_;
