@@ -3,15 +3,16 @@
 the simulator's manifest.yaml, the ports and pty it streams to, DDS on the loopback-only XML,
 logs into WORK/log; everything else the defaults of config/swlio.yaml's keys.
 
-Usage: scripts/sim_daemon_config.py WORK ROOT MSOP_PORT DIFOP_PORT [STATUS_PERIOD_S] [--loop-closure]
+Usage: scripts/sim_daemon_config.py WORK ROOT MSOP_PORT DIFOP_PORT [STATUS_PERIOD_S]
+                                    [--loop-closure | --no-loop-closure]
   reads WORK/sim/manifest.yaml, writes WORK/swlio.yaml (the pty is WORK/imu.pty);
-  --loop-closure sets estimator.loop_closure.enabled.
+  estimator.loop_closure.enabled is true (the default) unless --no-loop-closure.
 Used by scripts/demo and scripts/soak."""
 import re
 import sys
 
-args = [a for a in sys.argv[1:] if a != "--loop-closure"]
-loop_closure = "true" if "--loop-closure" in sys.argv[1:] else "false"
+args = [a for a in sys.argv[1:] if a not in ("--loop-closure", "--no-loop-closure")]
+loop_closure = "false" if "--no-loop-closure" in sys.argv[1:] else "true"
 work, root, msop, difop = args[0:4]
 status_period_s = args[4] if len(args) > 4 else "5.0"
 m = open(f"{work}/sim/manifest.yaml").read()

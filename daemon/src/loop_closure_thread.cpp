@@ -60,9 +60,8 @@ size_t LoopClosureThread::SaveMap(const std::string& path,
                                   const std::string& pcd_path,
                                   std::string* error) const {
   const estimator::SavedMap map = closure_.ToSavedMap();
-  constexpr double kPcdVoxelM = 0.1;
   if (estimator::SaveMapFile(path, map, error)) {
-    estimator::SaveMergedPcd(pcd_path, map, kPcdVoxelM, error);
+    estimator::SaveMergedPcd(pcd_path, map, estimator::kMergedCloudVoxelM, error);
   }
   return map.nodes.size();
 }

@@ -77,7 +77,8 @@ bool LoopClosureRun::SaveMap(const std::string& path,
                              std::string* error) const {
   const estimator::SavedMap map = closure_.ToSavedMap();
   if (!estimator::SaveMapFile(path, map, error)) return false;
-  return pcd_path.empty() || estimator::SaveMergedPcd(pcd_path, map, kPcdVoxelM, error);
+  return pcd_path.empty() ||
+         estimator::SaveMergedPcd(pcd_path, map, estimator::kMergedCloudVoxelM, error);
 }
 
 std::string LoopClosureRun::SummaryJson() const {

@@ -36,9 +36,6 @@ class LoopClosureRun {
   /// `pcd_path` unless empty; false with *error.
   bool SaveMap(const std::string& path, const std::string& pcd_path, std::string* error) const;
 
-  /// Voxel of the merged cloud for viewers.
-  static constexpr double kPcdVoxelM = 0.1;
-
  private:
   /// Accepted loops found by the place descriptor.
   size_t ByDescriptor() const;

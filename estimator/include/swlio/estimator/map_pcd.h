@@ -31,6 +31,9 @@ namespace swlio::estimator {
 /// Map-frame points must lie within this distance of the origin on each axis (anything
 /// beyond is a corrupt pose, not a map).
 inline constexpr double kMergedCloudMaxCoordinateM = 1e9;
+/// The voxel swlio-run and swliod write the merged cloud with: fine enough to see equipment,
+/// a few MB for a substation.
+inline constexpr double kMergedCloudVoxelM = 0.1;
 /// The smallest voxel side accepted.
 inline constexpr double kMergedCloudMinVoxelM = 1e-3;
 
