@@ -1,4 +1,4 @@
-// Saved map format (saved_map.h, docs/map-format.md): round trip, the documented layout, and
+// Saved map format (saved_map.h, estimator/map-format.md): round trip, the documented layout, and
 // a clear refusal of every malformation; the merged PCD for viewers (map_pcd.h).
 #include "swlio/estimator/saved_map.h"
 

@@ -1,4 +1,4 @@
-// libFuzzer target for the saved map reader (saved_map.h, docs/map-format.md): the input is
+// libFuzzer target for the saved map reader (saved_map.h, estimator/map-format.md): the input is
 // the bytes of a map file. Whatever they hold, ReadSavedMap must return (no exception, no
 // sanitizer report, no hang, no allocation beyond what the bytes justify) and its answer must
 // be consistent. Any violated invariant is a bug (__builtin_trap).

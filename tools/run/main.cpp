@@ -461,7 +461,7 @@ int Main(int argc, char** argv) {
                  "verdict, fitness, inliers, Hessian's smallest eigenvalue, correction, relative "
                  "pose)");
   app.add_option("--save-map", opt.save_map,
-                 "with loop closure: save the final graph as a map (docs/map-format.md), for "
+                 "with loop closure: save the final graph as a map (estimator/map-format.md), for "
                  "--localize");
   app.add_option("--map-pcd", opt.map_pcd,
                  "with --save-map: also the merged cloud of the map as PCD, for viewers");

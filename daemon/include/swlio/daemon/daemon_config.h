@@ -59,7 +59,7 @@ struct RealtimeConfig {
   ConfigIssues Validate() const;
 };
 
-/// Saved maps (YAML `map`; docs/map-format.md). The command line's --save-map, --map and
+/// Saved maps (YAML `map`; estimator/map-format.md). The command line's --save-map, --map and
 /// --localize set the same fields.
 struct MapFilesConfig {
   /// With loop closure: the pose graph is saved here when the daemon stops (empty: not saved),

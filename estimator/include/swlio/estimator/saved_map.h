@@ -2,7 +2,7 @@
 /// @file
 /// A saved map: the keyframes of a mapping run (optimized pose in the map frame, extrinsic,
 /// de-skewed features in their LiDAR frame, place descriptor) in a versioned binary file, so
-/// that a later run can localize against it. Full description: docs/map-format.md.
+/// that a later run can localize against it. Full description: estimator/map-format.md.
 ///
 /// Format, version 1. Little-endian throughout; integers unsigned unless marked i64; floating
 /// point is IEEE 754 (f64 = binary64, f32 = binary32). Offsets in bytes.
