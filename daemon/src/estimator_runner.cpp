@@ -34,6 +34,10 @@ EstimatorRunner::EstimatorRunner(const EstimatorSetup& setup, estimator::NowNsFn
 
 EstimatorRunner::~EstimatorRunner() = default;
 
+void EstimatorRunner::AddWheel(const WheelOdometry& sample) {
+  if (window_) window_->AddWheel(sample);
+}
+
 void EstimatorRunner::AddImu(const ImuSample& sample) {
   if (odometry_) {
     odometry_->AddImu(sample);

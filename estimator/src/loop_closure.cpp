@@ -22,7 +22,12 @@ std::vector<Eigen::Vector3d> Transformed(const Eigen::Isometry3d& T,
 LoopClosure::LoopClosure(const LoopClosureConfig& config)
     : config_(config),
       graph_(config.loop_kernel, config.max_loop_chi2),
-      descriptors_(config.descriptor) {}
+      descriptors_(config.descriptor) {
+  if (config_.gnss.enabled) {
+    gnss_ = std::make_unique<GnssAssociator>(config_.gnss);
+    graph_.SetGnssRobustness(config_.gnss.kernel, config_.gnss.max_chi2);
+  }
+}
 
 bool LoopClosure::IsNewNode(const KeyframeCloud& keyframe) const {
   if (nodes_.empty()) return true;
@@ -33,6 +38,7 @@ bool LoopClosure::IsNewNode(const KeyframeCloud& keyframe) const {
 
 LoopClosureUpdate LoopClosure::AddKeyframe(const KeyframeCloud& keyframe) {
   LoopClosureUpdate update;
+  if (gnss_) gnss_->AddOdometry(keyframe.t_ns, keyframe.T_world_imu);
   if (!IsNewNode(keyframe) || (!nodes_.empty() && keyframe.t_ns <= nodes_.back().t_ns))
     return update;
   const size_t newest = graph_.AddNode(T_map_odom() * keyframe.T_world_imu);
@@ -49,10 +55,21 @@ LoopClosureUpdate LoopClosure::AddKeyframe(const KeyframeCloud& keyframe) {
   descriptors_.Add(KeyframeDescriptor(config_.descriptor, keyframe));
   update.node_added = true;
   stats_.nodes = nodes_.size();
-  if (++since_attempt_ < static_cast<size_t>(config_.attempt_every_nodes)) return update;
+  if (config_.enabled) DetectLoop(keyframe, &update);
+  if (gnss_ && !update.optimized) {
+    ApplyGnss(&update);
+    if (gnss_since_optimize_ >= config_.gnss.optimize_every_fixes) OptimizeGraph(&update);
+  }
+  return update;
+}
+
+void LoopClosure::DetectLoop(const KeyframeCloud& keyframe, LoopClosureUpdate* out) {
+  LoopClosureUpdate& update = *out;
+  const size_t newest = nodes_.size() - 1;
+  if (++since_attempt_ < static_cast<size_t>(config_.attempt_every_nodes)) return;
 
   Eigen::Isometry3d guess;
-  if (!ChooseCandidate(newest, &update.attempt, &guess)) return update;
+  if (!ChooseCandidate(newest, &update.attempt, &guess)) return;
   const size_t candidate = update.attempt.candidate;
   since_attempt_ = 0;
   update.attempted = true;
@@ -61,23 +78,77 @@ LoopClosureUpdate LoopClosure::AddKeyframe(const KeyframeCloud& keyframe) {
   ++stats_.attempts;
   if (update.attempt.check.verdict != LoopVerdict::kAccepted) {
     ++stats_.rejected;
-    return update;
+    return;
   }
   ++stats_.accepted;
   const Eigen::Isometry3d T_candidate_imu =
       update.attempt.check.T_candidate_lidar * keyframe.T_imu_lidar.inverse();
   graph_.AddLoopEdge(candidate, newest, T_candidate_imu,
                      DiagonalSqrtInformation(config_.loop_sigma_m, config_.loop_sigma_rad));
-  update.summary = graph_.Optimize(config_.max_iterations);
-  update.optimized = update.summary.solved;
-  if (update.optimized) {
+  if (gnss_) ApplyGnss(&update);  // the new edges join this solve
+  OptimizeGraph(&update);
+}
+
+void LoopClosure::OptimizeGraph(LoopClosureUpdate* update) {
+  update->summary = graph_.Optimize(config_.max_iterations);
+  update->optimized = update->summary.solved;
+  if (update->optimized) {
     optimized_nodes_ = nodes_.size();
-    T_map_odom_ = graph_.pose(newest) * keyframe.T_world_imu.inverse();
+    T_map_odom_ = graph_.pose(nodes_.size() - 1) * nodes_.back().T_world_imu.inverse();
+    gnss_since_optimize_ = 0;
   }
-  return update;
+  stats_.gnss_switched_off = graph_.gnss_switched_off();
 }
 
 Eigen::Isometry3d LoopClosure::T_map_odom() const { return T_map_odom_; }
+
+LoopClosureUpdate LoopClosure::AddGnss(const GnssFix& fix) {
+  LoopClosureUpdate update;
+  if (!gnss_) return update;
+  gnss_->AddFix(fix);
+  ApplyGnss(&update);
+  if (gnss_since_optimize_ >= config_.gnss.optimize_every_fixes) OptimizeGraph(&update);
+  return update;
+}
+
+void LoopClosure::ApplyGnss(LoopClosureUpdate* update) {
+  for (const GnssObservation& o : gnss_->Take(nodes_)) gnss_waiting_.push_back(o);
+  stats_.gnss = gnss_->stats();
+  if (!graph_.has_enu_alignment() && !TryAlignGnss()) return;
+  for (const GnssObservation& o : gnss_waiting_) {
+    if (graph_.AddGnssEdge(o.node, o.antenna_imu_m, o.fix_enu_m, o.sigma_h_m, o.sigma_v_m)) {
+      ++update->gnss_edges_added;
+      ++gnss_since_optimize_;
+    }
+  }
+  gnss_waiting_.clear();
+  stats_.gnss_edges = graph_.gnss_edges();
+  stats_.gnss_aligned = true;
+}
+
+bool LoopClosure::TryAlignGnss() {
+  if (gnss_waiting_.size() < 3) return false;
+  std::vector<Eigen::Vector3d> map_m, enu_m;
+  double span_m = 0.0;
+  for (const GnssObservation& o : gnss_waiting_) {
+    map_m.push_back(graph_.pose(o.node) * o.antenna_imu_m);
+    enu_m.push_back(o.fix_enu_m);
+    span_m = std::max(span_m, (enu_m.back() - enu_m.front()).head<2>().norm());
+  }
+  if (span_m < config_.gnss.align_min_distance_m) return false;
+  graph_.SetEnuAlignment(FitEnuAlignment(map_m, enu_m));
+  return true;
+}
+
+std::optional<Eigen::Isometry3d> LoopClosure::T_enu_map() const {
+  if (!graph_.has_enu_alignment()) return std::nullopt;
+  return graph_.T_enu_map();
+}
+
+std::optional<Geodetic> LoopClosure::enu_origin() const {
+  if (!gnss_) return std::nullopt;
+  return gnss_->origin();
+}
 
 Eigen::Isometry3d LoopClosure::CorrectedPose(int64_t t_ns,
                                              const Eigen::Isometry3d& T_odom_imu) const {

@@ -9,6 +9,7 @@ ConfigIssues LoopClosureConfig::Validate() const {
   CheckPositive(issues, "search_radius_m", search_radius_m);
   CheckInRange(issues, "min_separation_s", min_separation_s, 1.0, 3600.0);
   AppendWithPrefix(issues, "descriptor", descriptor.Validate());
+  if (gnss.enabled) AppendWithPrefix(issues, "gnss", gnss.Validate());
   CheckInRange(issues, "max_drift_ratio", max_drift_ratio, 0.0, 1.0);
   CheckInRange(issues, "attempt_every_nodes", attempt_every_nodes, 1, 1000);
   CheckInRange(issues, "submap_half_width", submap_half_width, 0, 100);

@@ -3,6 +3,8 @@
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
+#include <cmath>
+
 namespace swlio::estimator {
 
 PoseGraph::PoseGraph(double loop_kernel, double max_loop_chi2)
@@ -40,6 +42,43 @@ bool PoseGraph::AddEdge(
   return true;
 }
 
+void PoseGraph::SetGnssRobustness(double kernel, double max_chi2) {
+  gnss_loss_ = kernel > 0.0 ? std::make_unique<ceres::HuberLoss>(kernel) : nullptr;
+  max_gnss_chi2_ = max_chi2;
+}
+
+void PoseGraph::SetEnuAlignment(const Eigen::Isometry3d& T_enu_map) {
+  const Eigen::Vector3d x = T_enu_map.linear().col(0);
+  alignment_ = {std::atan2(x.y(), x.x()), T_enu_map.translation().x(), T_enu_map.translation().y(),
+                T_enu_map.translation().z()};
+  has_alignment_ = true;
+}
+
+bool PoseGraph::AddGnssEdge(size_t i,
+                            const Eigen::Vector3d& antenna_imu_m,
+                            const Eigen::Vector3d& fix_enu_m,
+                            double sigma_h_m,
+                            double sigma_v_m) {
+  if (!has_alignment_ || i >= nodes_.size()) return false;
+  auto factor = GnssPositionFactor::Create(antenna_imu_m, fix_enu_m, sigma_h_m, sigma_v_m);
+  if (factor == nullptr) return false;
+  gnss_.push_back(GnssEdge{i, true, std::move(factor)});
+  return true;
+}
+
+size_t PoseGraph::SwitchOffGnssOutliers() {
+  size_t n = 0;
+  if (max_gnss_chi2_ <= 0.0) return n;
+  for (GnssEdge& g : gnss_) {
+    if (g.active && g.factor->Chi2(nodes_[g.i].data(), alignment_.data()) > max_gnss_chi2_) {
+      g.active = false;
+      ++n;
+    }
+  }
+  gnss_switched_off_ += n;
+  return n;
+}
+
 bool PoseGraph::Solve(int max_iterations, PoseGraphSummary* out) {
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -52,6 +91,15 @@ bool PoseGraph::Solve(int max_iterations, PoseGraphSummary* out) {
     if (!e.active) continue;
     problem.AddResidualBlock(e.factor.get(), e.loop ? loop_loss_.get() : nullptr,
                              nodes_[e.i].data(), nodes_[e.j].data());
+  }
+  if (has_alignment_ && !gnss_.empty()) {
+    problem.AddParameterBlock(alignment_.data(), kEnuAlignmentSize);
+    for (GnssEdge& g : gnss_) {
+      if (g.active) {
+        problem.AddResidualBlock(g.factor.get(), gnss_loss_.get(), nodes_[g.i].data(),
+                                 alignment_.data());
+      }
+    }
   }
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
@@ -75,7 +123,7 @@ double PoseGraph::Chi2(const Edge& e) const {
 
 PoseGraphSummary PoseGraph::Optimize(int max_iterations) {
   PoseGraphSummary out;
-  if (nodes_.size() < 2 || edges_.empty()) return out;
+  if (nodes_.size() < 2 || (edges_.empty() && gnss_.empty())) return out;
   out.solved = Solve(max_iterations, &out);
   while (out.solved && max_loop_chi2_ > 0.0) {
     Edge* worst = nullptr;
@@ -91,6 +139,13 @@ PoseGraphSummary PoseGraph::Optimize(int max_iterations) {
     worst->active = false;  // it disagrees with everything else: switch it off and solve again
     ++out.loops_switched_off;
     ++switched_off_;
+    out.solved = Solve(max_iterations, &out);
+  }
+  // GNSS outliers: a few rounds (a jump pulls its neighbours until it is gone).
+  for (int round = 0; round < 3 && out.solved; ++round) {
+    const size_t n = SwitchOffGnssOutliers();
+    if (n == 0) break;
+    out.gnss_switched_off += n;
     out.solved = Solve(max_iterations, &out);
   }
   return out;

@@ -302,6 +302,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     SetInitialPrior(frame.get());
   else
     Preintegrate(*frames_.back(), frame.get());  // without it: LiDAR and prior only
+  out.wheel_factor = config_.wheel.enabled && AttachWheel(frame.get());
   int degenerate = 0;
   const bool have_map = plane_map_.size() > 0;
   if (have_map) {
@@ -376,6 +377,8 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   out.prior_rank = prior_.rank;
   out.marginalization_failures = marginalization_failures_;
   out.gravity_tilt_rad = Eigen::Vector2d(gravity_tilt_[0], gravity_tilt_[1]);
+  out.wheel_factors = wheel_factors_;
+  out.wheel_rejected = wheel_rejected_;
   result.times.optimize_ms += timer.Lap();
   result.times.total_ms =
       result.times.frontend_ms + result.times.match_ms + result.times.optimize_ms;

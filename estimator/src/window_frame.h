@@ -15,6 +15,7 @@
 #include "swlio/estimator/marginalization_prior.h"
 #include "swlio/estimator/pose_manifold.h"
 #include "swlio/estimator/preintegration.h"
+#include "swlio/estimator/wheel_velocity_factor.h"
 #include "swlio/estimator/window_estimator.h"
 
 namespace swlio::estimator {
@@ -32,6 +33,7 @@ struct WindowEstimator::Frame {
   std::unique_ptr<Preintegrator> pre;  ///< previous frame → this one
   std::unique_ptr<ImuFactor> imu;      ///< null for the first frame (or a failed interval)
   std::unique_ptr<GravityTiltImuFactor> imu_tilt;  ///< `imu` in the map frame (estimated tilt)
+  std::unique_ptr<WheelVelocityFactor> wheel;      ///< null without a wheel measurement
 
   void SetImu(std::unique_ptr<ImuFactor> factor) {
     imu = std::move(factor);

@@ -42,6 +42,9 @@ void WindowEstimator::BuildProblem(ceres::Problem& problem) {
       problem.AddResidualBlock(f.lidar_linear.get(), nullptr, LidarBlocks(&f));
     }
     if (k > 0 && f.imu != nullptr) AddImuResidual(problem, *frames_[k - 1], f);
+    if (f.wheel != nullptr) {
+      problem.AddResidualBlock(f.wheel.get(), nullptr, f.pose.data(), f.speed_bias.data());
+    }
   }
   if (prior_.prior != nullptr) {
     problem.AddResidualBlock(prior_.prior.get(), nullptr, prior_.kept_blocks);
@@ -135,6 +138,9 @@ void WindowEstimator::Marginalize() {
   if (f0.lidar_linear != nullptr) {
     const std::vector<double*> blocks = LidarBlocks(&f0);
     m.AddResidualBlock(f0.lidar_linear.get(), nullptr, {blocks.begin(), blocks.end()});
+  }
+  if (f0.wheel != nullptr) {
+    m.AddResidualBlock(f0.wheel.get(), nullptr, {f0.pose.data(), f0.speed_bias.data()});
   }
   if (config_.estimate_gravity_tilt) {
     m.AddParameterBlock(gravity_tilt_.data(), kGravityTiltSize, nullptr, BlockRole::kKeep);

@@ -53,6 +53,8 @@ class EstimatorRunner {
   EstimatorRunner& operator=(const EstimatorRunner&) = delete;
 
   void AddImu(const ImuSample& sample);
+  /// Chassis wheel odometry (tightly coupled mode with `wheel.enabled`; ignored otherwise).
+  void AddWheel(const WheelOdometry& sample);
   /// Takes the sweep (moved from); processed now or once the IMU covers its end.
   void AddScan(Scan&& scan);
 

@@ -14,12 +14,20 @@
 /// the corrected "map". `T_map_odom()` is the correction at the newest node: the pose output is
 /// T_map_odom · T_odom_imu, and `CorrectedPose` re-expresses any earlier odometry pose with the
 /// correction of the node it follows (for the optimized trajectory after a run).
+/// GNSS (optional, `gnss`): fixes become position edges on the nodes (gnss_associator.h);
+/// once they span `align_min_distance_m` the map-to-ENU alignment is fitted and added to the
+/// graph, which is then optimized every `optimize_every_fixes` new edges. The map frame stays
+/// the odometry's at the first node; `T_enu_map()` georeferences it.
 /// Pure library (no threads, no clock): the daemon runs it in its own thread.
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <vector>
 
+#include "swlio/core/types.h"
+#include "swlio/estimator/gnss_associator.h"
 #include "swlio/estimator/keyframe_cloud.h"
 #include "swlio/estimator/loop_closure_config.h"
 #include "swlio/estimator/loop_verifier.h"
@@ -42,7 +50,8 @@ struct LoopClosureUpdate {
   bool node_added = false;
   bool attempted = false;
   LoopAttempt attempt;     ///< valid when attempted
-  bool optimized = false;  ///< a loop was accepted and the graph re-optimized
+  bool optimized = false;  ///< a loop was accepted (or GNSS edges added) and the graph solved
+  size_t gnss_edges_added = 0;
   PoseGraphSummary summary;
 };
 
@@ -51,6 +60,10 @@ struct LoopClosureStats {
   size_t attempts = 0;
   size_t accepted = 0;
   size_t rejected = 0;
+  GnssStats gnss;
+  size_t gnss_edges = 0;
+  size_t gnss_switched_off = 0;
+  bool gnss_aligned = false;
 };
 
 class LoopClosure {
@@ -60,6 +73,12 @@ class LoopClosure {
   /// Offers an odometry keyframe (time order); it becomes a node when far enough from the
   /// last one, and then a loop is looked for.
   LoopClosureUpdate AddKeyframe(const KeyframeCloud& keyframe);
+  /// Offers a GNSS fix (time order; used with `gnss.enabled`).
+  LoopClosureUpdate AddGnss(const GnssFix& fix);
+  /// The map frame in the local ENU frame (GNSS), none before the alignment.
+  std::optional<Eigen::Isometry3d> T_enu_map() const;
+  /// The ENU origin in use (configured, or the first fix), none before.
+  std::optional<Geodetic> enu_origin() const;
 
   /// The correction at the newest node (identity before the first loop).
   Eigen::Isometry3d T_map_odom() const;
@@ -92,6 +111,14 @@ class LoopClosure {
   bool ChooseCandidate(size_t newest, LoopAttempt* attempt, Eigen::Isometry3d* guess);
   LoopSubmap BuildSubmap(size_t candidate, int64_t newest_t_ns) const;
   LoopCheck Verify(const LoopAttempt& attempt, const Eigen::Isometry3d& guess) const;
+  /// Loop detection for the newest node (AddKeyframe's second half).
+  void DetectLoop(const KeyframeCloud& keyframe, LoopClosureUpdate* update);
+  /// Solves the graph and takes its correction at the newest node.
+  void OptimizeGraph(LoopClosureUpdate* update);
+  /// New GNSS observations into the graph (after the alignment), optimizing when enough.
+  void ApplyGnss(LoopClosureUpdate* update);
+  /// Fits the map-to-ENU alignment from the waiting observations once they span enough.
+  bool TryAlignGnss();
 
   LoopClosureConfig config_;
   PoseGraph graph_;
@@ -105,6 +132,9 @@ class LoopClosure {
   /// The correction of the last optimization, and the nodes that existed then.
   Eigen::Isometry3d T_map_odom_ = Eigen::Isometry3d::Identity();
   size_t optimized_nodes_ = 0;
+  std::unique_ptr<GnssAssociator> gnss_;       ///< null unless gnss.enabled
+  std::vector<GnssObservation> gnss_waiting_;  ///< before the alignment
+  int gnss_since_optimize_ = 0;
 };
 
 }  // namespace swlio::estimator

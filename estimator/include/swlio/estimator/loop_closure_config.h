@@ -4,6 +4,7 @@
 /// pull in Ceres.
 
 #include "swlio/core/config_issue.h"
+#include "swlio/estimator/gnss_config.h"
 #include "swlio/estimator/scan_context.h"
 #include "swlio/estimator/scan_matcher.h"
 #include "swlio/estimator/voxel_map.h"
@@ -11,7 +12,7 @@
 namespace swlio::estimator {
 
 struct LoopClosureConfig {
-  /// The daemon's and swlio-run's switch (the library itself does not read it).
+  /// Loop detection. Off, the pose graph still runs when `gnss.enabled` (GNSS edges only).
   bool enabled = true;
   /// A window keyframe becomes a graph node after this much motion since the last node.
   double keyframe_distance_m = 1.0;
@@ -72,6 +73,8 @@ struct LoopClosureConfig {
   /// The daemon's output follows a new correction at most this fast (correction_slew.h).
   double output_max_rate_mps = 0.2;
   double output_max_rate_radps = 0.05;
+  /// GNSS position factors on the nodes (off by default).
+  GnssConfig gnss;
 
   ConfigIssues Validate() const;
 };

@@ -78,6 +78,11 @@ struct WindowResult {
   /// re-initialized; the result is kInitializing and the state is not to be used.
   DivergenceReason diverged = DivergenceReason::kNone;
   size_t reinitializations = 0;  ///< so far, including this sweep's
+  /// Wheel odometry (WheelFactorConfig): the newest frame got a velocity factor; frames so
+  /// far with one, and measurements the slip gate refused.
+  bool wheel_factor = false;
+  size_t wheel_factors = 0;
+  size_t wheel_rejected = 0;
   /// This sweep became a keyframe of the local map: its features and pose (for loop closure
   /// and map saving); null otherwise.
   std::shared_ptr<const KeyframeCloud> keyframe;
@@ -91,6 +96,8 @@ class WindowEstimator {
   WindowEstimator& operator=(const WindowEstimator&) = delete;
 
   void AddImu(const ImuSample& sample);
+  /// Chassis wheel odometry (time order; used when `wheel.enabled`).
+  void AddWheel(const WheelOdometry& sample);
   WindowResult AddScan(const Scan& scan);
 
   bool initialized() const { return initialized_; }
@@ -146,6 +153,11 @@ class WindowEstimator {
   std::vector<double*> LidarBlocks(Frame* frame);
   bool IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const;
   void InsertFeatures(const Frame& frame);
+  /// The frame's wheel velocity factor from the samples around its time (window_wheel.cpp);
+  /// true when it got one.
+  bool AttachWheel(Frame* frame);
+  /// Gyro rate at `t_ns` from the buffered IMU samples (the nearest one).
+  Eigen::Vector3d GyroAt(int64_t t_ns) const;
   /// Restarts the window on a calibrated extrinsic (see calibrate_extrinsic_s): the newest
   /// frame is kept with a fresh prior, the maps are the calibration odometry's carried into the
   /// window's world at the newest sweep. False (nothing changed) when the odometry did not
@@ -182,7 +194,9 @@ class WindowEstimator {
   /// Tracked states that passed the checks, the last kGoodHistoryNs of them: a divergence may
   /// have begun a few sweeps before a check tripped, so the anchor is the oldest.
   std::deque<State> good_;
-  std::deque<ImuSample> imu_;  ///< samples from just before the newest frame on
+  std::deque<ImuSample> imu_;        ///< samples from just before the newest frame on
+  std::deque<WheelOdometry> wheel_;  ///< the last second of wheel odometry
+  size_t wheel_factors_ = 0, wheel_rejected_ = 0;
   FrontEnd front_end_;
   FrontEndOutput features_;
   Scan deskewed_;

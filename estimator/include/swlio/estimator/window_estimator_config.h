@@ -9,6 +9,7 @@
 #include "swlio/estimator/divergence_monitor.h"
 #include "swlio/estimator/dynamic_bootstrap.h"
 #include "swlio/estimator/lidar_odometry.h"
+#include "swlio/estimator/wheel_factor_config.h"
 
 namespace swlio::estimator {
 
@@ -63,6 +64,8 @@ struct WindowEstimatorConfig {
   /// below this.
   double static_max_speed_mps = 0.05;
   DynamicBootstrapConfig bootstrap;
+  /// Wheel odometry from the chassis as a velocity factor on every frame (off by default).
+  WheelFactorConfig wheel;
   // Flags last (padding).
   /// Before the window solve, the newest frame is registered alone from the IMU prediction
   /// (ScanMatcher::Match, as the LiDAR-only mode does) and associated at that pose: the window

@@ -38,6 +38,25 @@ struct Scan {
   std::vector<LidarPoint> points;
 };
 
+/// One wheel-odometry measurement of the chassis (base) frame: x forward, z up.
+struct WheelOdometry {
+  int64_t t_ns = 0;                  ///< host time
+  double linear_velocity_mps = 0.0;  ///< forward speed
+  double yaw_rate_radps = 0.0;       ///< about the base z axis, counter-clockwise positive
+};
+
+/// One GNSS position fix of the antenna (WGS-84), with the receiver's own accuracy estimate.
+struct GnssFix {
+  int64_t t_ns = 0;  ///< host time of the fix
+  double lat_deg = 0.0;
+  double lon_deg = 0.0;
+  double height_m = 0.0;  ///< above the WGS-84 ellipsoid
+  double h_acc_m = 0.0;   ///< horizontal accuracy estimate (1σ-like, as the receiver reports)
+  double v_acc_m = 0.0;   ///< vertical accuracy estimate
+  uint8_t fix_type = 0;   ///< u-blox NAV-PVT fixType: 0 none, 2 2D, 3 3D, 4 GNSS+DR, 5 time
+  uint8_t num_sv = 0;     ///< satellites used
+};
+
 /// Navigation state of the IMU body frame.
 struct State {
   int64_t t_ns = 0;

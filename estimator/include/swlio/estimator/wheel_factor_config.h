@@ -1,0 +1,33 @@
+#pragma once
+/// @file
+/// Options of the wheel-odometry velocity factor (wheel_velocity_factor.h), apart from it so
+/// that configuration code does not pull in Ceres.
+
+#include <Eigen/Geometry>
+
+#include "swlio/core/config_issue.h"
+
+namespace swlio::estimator {
+
+struct WheelFactorConfig {
+  /// Off by default: only a chassis that reports odometry on CAN has it (daemon `can:`).
+  bool enabled = false;
+  /// The chassis base frame (x forward, z up; the point whose speed the wheels report, midway
+  /// between the driven wheels) in the IMU frame.
+  Eigen::Isometry3d T_imu_base = Eigen::Isometry3d::Identity();
+  /// Standard deviations of the base velocity: forward (the wheels' speed: noise, radius error
+  /// and slip), lateral and vertical (the non-holonomic constraint: a wheeled base does not
+  /// slide sideways; vertical also absorbs bumps and suspension travel).
+  double sigma_forward_mps = 0.05;
+  double sigma_lateral_mps = 0.05;
+  double sigma_vertical_mps = 0.1;
+  /// A frame takes the measurement interpolated at its time from samples at most this far from
+  /// it (the nearest one held when the next has not arrived yet); none: no factor.
+  double max_gap_s = 0.05;
+  /// Slip gate: a measurement further than this from the predicted forward speed is dropped.
+  double max_innovation_mps = 0.5;
+
+  ConfigIssues Validate() const;
+};
+
+}  // namespace swlio::estimator
