@@ -341,6 +341,46 @@ void Bind(Section s, estimator::DynamicBootstrapConfig& c) {
   s.Finish();
 }
 
+/// `T_imu_base` as translation_m and rotation_rpy_deg (the extrinsic's convention).
+void Bind(Section s, estimator::WheelFactorConfig& c) {
+  s.Get("enabled", c.enabled);
+  estimator::ExtrinsicConfig base;
+  {
+    Section t = s.Child("T_imu_base");
+    t.Get("translation_m", base.translation_m);
+    t.Get("rotation_rpy_deg", base.rotation_rpy_deg);
+    t.Finish();
+  }
+  c.T_imu_base = base.ToIsometry();
+  s.Get("sigma_forward_mps", c.sigma_forward_mps);
+  s.Get("sigma_lateral_mps", c.sigma_lateral_mps);
+  s.Get("sigma_vertical_mps", c.sigma_vertical_mps);
+  s.Get("max_gap_s", c.max_gap_s);
+  s.Get("max_innovation_mps", c.max_innovation_mps);
+  s.Finish();
+}
+
+void Bind(Section s, estimator::GnssConfig& c) {
+  s.Get("enabled", c.enabled);
+  s.Get("origin_lat_deg", c.origin_lat_deg);
+  s.Get("origin_lon_deg", c.origin_lon_deg);
+  s.Get("origin_height_m", c.origin_height_m);
+  std::array<double, 3> antenna = {c.antenna_imu_m.x(), c.antenna_imu_m.y(), c.antenna_imu_m.z()};
+  s.Get("antenna_imu_m", antenna);
+  c.antenna_imu_m = Eigen::Vector3d(antenna[0], antenna[1], antenna[2]);
+  s.Get("min_fix_type", c.min_fix_type);
+  s.Get("max_h_acc_m", c.max_h_acc_m);
+  s.Get("sigma_scale", c.sigma_scale);
+  s.Get("min_sigma_m", c.min_sigma_m);
+  s.Get("min_interval_s", c.min_interval_s);
+  s.Get("max_interpolation_s", c.max_interpolation_s);
+  s.Get("align_min_distance_m", c.align_min_distance_m);
+  s.Get("optimize_every_fixes", c.optimize_every_fixes);
+  s.Get("kernel", c.kernel);
+  s.Get("max_chi2", c.max_chi2);
+  s.Finish();
+}
+
 /// `odometry` is not a key: it is built from the `estimator` section and the extrinsic.
 void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   s.Get("window_size", c.window_size);
@@ -372,6 +412,7 @@ void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   s.Get("estimate_gravity_tilt", c.estimate_gravity_tilt);
   Bind(s.Child("bootstrap"), c.bootstrap);
   Bind(s.Child("divergence"), c.divergence);
+  Bind(s.Child("wheel"), c.wheel);
   s.Finish();
 }
 
@@ -413,6 +454,7 @@ void Bind(Section s, estimator::LoopClosureConfig& c) {
   s.Get("max_iterations", c.max_iterations);
   s.Get("output_max_rate_mps", c.output_max_rate_mps);
   s.Get("output_max_rate_radps", c.output_max_rate_radps);
+  Bind(s.Child("gnss"), c.gnss);
   s.Finish();
 }
 
@@ -474,6 +516,9 @@ void Bind(Section s, ipc::IpcConfig& c) {
   s.Get("health_topic", c.health_topic);
   s.Get("path_topic", c.path_topic);
   s.Get("path_max_poses", c.path_max_poses);
+  s.Get("map_topic", c.map_topic);
+  s.Get("map_max_points", c.map_max_points);
+  s.Get("map_publish_period_s", c.map_publish_period_s);
   s.Finish();
 }
 

@@ -71,6 +71,8 @@ ConfigIssues DaemonConfig::Validate() const {
   }
   AppendWithPrefix(issues, "estimator.window", window_issues);
   AppendWithPrefix(issues, "estimator.loop_closure", loop_closure.Validate());
+  CheckThat(issues, !window.wheel.enabled || can.enabled, "estimator.window.wheel.enabled",
+            "needs the chassis odometry: can.enabled");
   AppendWithPrefix(issues, "estimator.localization", localization.Validate());
   AppendWithPrefix(issues, "map", map.Validate());
   AppendWithPrefix(issues, "ipc", ipc.Validate());

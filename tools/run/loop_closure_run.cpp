@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 
 #include "spread.h"
 #include "swlio/daemon/tum_output.h"
@@ -27,6 +29,40 @@ State LoopClosureRun::OnSweep(const State& odom, const estimator::KeyframeCloud*
   out.T_world_imu = closure_.T_map_odom() * odom.T_world_imu;
   out.vel_world = closure_.T_map_odom().linear() * odom.vel_world;
   return out;
+}
+
+void LoopClosureRun::OnGnss(const GnssFix& fix) {
+  const int64_t t0 = now_ns_ != nullptr ? now_ns_() : 0;
+  const estimator::LoopClosureUpdate u = closure_.AddGnss(fix);
+  if (u.optimized && now_ns_ != nullptr) {
+    gnss_ms_.push_back(static_cast<double>(now_ns_() - t0) * 1e-6);
+  }
+}
+
+bool LoopClosureRun::WriteEnu(const std::string& path, std::string* error) const {
+  const std::optional<Eigen::Isometry3d> T_enu_map = closure_.T_enu_map();
+  if (!T_enu_map) {
+    *error = "no GNSS alignment (too few fixes, or they never spanned align_min_distance_m)";
+    return false;
+  }
+  std::ofstream out(path);
+  if (!out) {
+    *error = "cannot write " + path;
+    return false;
+  }
+  const std::optional<Geodetic> o = closure_.enu_origin();
+  char header[256];
+  std::snprintf(header, sizeof header,
+                "# timestamp tx ty tz qx qy qz qw  (IMU frame in the local ENU frame at lat %.8f "
+                "lon %.8f h %.3f; final pose graph)\n",
+                o ? o->lat_deg : 0.0, o ? o->lon_deg : 0.0, o ? o->height_m : 0.0);
+  out << header;
+  for (State s : sweeps_) {
+    s.T_world_imu = *T_enu_map * closure_.CorrectedPose(s.t_ns, s.T_world_imu);
+    daemon::WriteTumLine(out, s);
+  }
+  if (!out) *error = "cannot write " + path;
+  return static_cast<bool>(out);
 }
 
 bool LoopClosureRun::WriteOptimized(const std::string& path) const {
@@ -92,7 +128,19 @@ std::string LoopClosureRun::SummaryJson() const {
                 "\"accepted_ms\": [%.2f, %.2f, %.2f]}",
                 s.nodes, s.attempts, s.accepted, s.rejected, ByDescriptor(), verify[0], verify[1],
                 verify[2], graph[0], graph[1], graph[2]);
-  return json;
+  std::string out = json;
+  if (s.gnss.fixes == 0) return out;
+  const auto gnss = Spread(gnss_ms_);
+  const std::optional<Eigen::Isometry3d> T = closure_.T_enu_map();
+  const double yaw = T ? std::atan2(T->linear()(1, 0), T->linear()(0, 0)) : 0.0;
+  std::snprintf(json, sizeof json,
+                ", \"gnss\": {\"fixes\": %zu, \"bad_quality\": %zu, \"rate_limited\": %zu, "
+                "\"unplaced\": %zu, \"edges\": %zu, \"switched_off\": %zu, \"aligned\": %s, "
+                "\"enu_yaw_rad\": %.4f, \"optimize_ms\": [%.2f, %.2f, %.2f]}",
+                s.gnss.fixes, s.gnss.bad_quality, s.gnss.rate_limited, s.gnss.unplaced,
+                s.gnss_edges, s.gnss_switched_off, T ? "true" : "false", yaw, gnss[0], gnss[1],
+                gnss[2]);
+  return out + json;
 }
 
 }  // namespace swlio::tools

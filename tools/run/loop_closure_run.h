@@ -4,7 +4,9 @@
 /// LoopClosure (estimator/loop_closure.h), keyframes become graph nodes, and the trajectory is
 /// written twice: as it would have been published (each sweep with the correction known at
 /// its time: `--out`) and after the run with the final graph (`--out-optimized`). The loop
-/// attempts can be written as CSV (`--loops`). Timing: thread CPU time of each AddKeyframe.
+/// attempts can be written as CSV (`--loops`). With GNSS (`--gnss on`) the fixes go in too,
+/// and the final trajectory can be written georeferenced, in the local ENU frame (`--out-enu`).
+/// Timing: thread CPU time of each AddKeyframe (and of each AddGnss that optimized).
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -26,8 +28,13 @@ class LoopClosureRun {
   /// state in the map frame with the correction known now.
   State OnSweep(const State& odom, const estimator::KeyframeCloud* keyframe);
 
+  /// A GNSS fix (time order with the sweeps).
+  void OnGnss(const GnssFix& fix);
+
   /// Every sweep passed to OnSweep, corrected with the final graph (TUM).
   bool WriteOptimized(const std::string& path) const;
+  /// The same in the local ENU frame (GNSS); false with *error before the alignment.
+  bool WriteEnu(const std::string& path, std::string* error) const;
   /// One row per verified candidate.
   bool WriteLoops(const std::string& path) const;
   /// `"loops": {...}` for the summary JSON: counts and the update times (ms).
@@ -45,6 +52,7 @@ class LoopClosureRun {
   std::vector<State> sweeps_;      ///< odometry frame
   std::vector<double> update_ms_;  ///< AddKeyframe calls that verified a candidate
   std::vector<double> graph_ms_;   ///< of those, the ones that optimized
+  std::vector<double> gnss_ms_;    ///< AddGnss calls that optimized
 };
 
 }  // namespace swlio::tools

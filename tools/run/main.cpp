@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "aux_sensors.h"
 #include "localization_run.h"
 #include "loop_closure_run.h"
 #include "swlio/core/lie.h"
@@ -39,6 +40,7 @@ const swlio::estimator::WindowEstimatorConfig& WindowDefaults() {
 
 struct Options {
   std::string loop_closure = "off", out_optimized, loops;
+  std::string wheel = "off", gnss = "off", out_enu;  ///< optional sensors (aux_sensors.h)
   std::string save_map, map_pcd, map;  ///< map files (loop closure writes, --localize reads)
   bool localize = false;
   std::string dir, out, timings, diagnostics, covariance, config, mode = "tightly-coupled";
@@ -128,6 +130,8 @@ void WriteCovariance(std::ostream& out,
 /// Running means for the summary line.
 struct Summary {
   size_t scans = 0, tracked = 0, failed = 0, skipped = 0, reinitializations = 0;
+  size_t wheel_factors = 0, wheel_rejected = 0;  ///< the window's counts (--wheel on)
+  bool wheel = false;
   double total_ms = 0.0, planes = 0.0, edges = 0.0, inliers = 0.0, iterations = 0.0;
   std::string extra;  ///< more JSON members (loop closure), or empty
 
@@ -142,15 +146,23 @@ struct Summary {
     inliers += static_cast<double>(r.match.plane_inliers + r.match.edge_inliers);
     iterations += r.match.iterations;
   }
+  std::string WheelJson() const {
+    if (!wheel) return "";
+    char json[128];
+    std::snprintf(json, sizeof json, ", \"wheel\": {\"factors\": %zu, \"rejected\": %zu}",
+                  wheel_factors, wheel_rejected);
+    return json;
+  }
   void Print() const {
     const double n = std::max<double>(1.0, static_cast<double>(tracked + failed));
     std::printf(
         "{\"scans\": %zu, \"tracked\": %zu, \"match_failed\": %zu, \"skipped\": %zu, "
         "\"mean_scan_ms\": %.2f, "
         "\"mean_planes\": %.0f, \"mean_edges\": %.0f, \"mean_inliers\": %.0f, "
-        "\"mean_iterations\": %.2f, \"reinitializations\": %zu%s%s}\n",
+        "\"mean_iterations\": %.2f, \"reinitializations\": %zu%s%s%s}\n",
         scans, tracked, failed, skipped, total_ms / n, planes / n, edges / n, inliers / n,
-        iterations / n, reinitializations, extra.empty() ? "" : ", ", extra.c_str());
+        iterations / n, reinitializations, WheelJson().c_str(), extra.empty() ? "" : ", ",
+        extra.c_str());
   }
 };
 
@@ -247,9 +259,21 @@ int Run(const Options& opt) {
               << "/manifest.yaml and no --config; using identity\n";
   }
   std::string error;
+  // --wheel / --gnss win over the configuration's switches (both off by default).
+  const bool wheel =
+      opt.given.count("--wheel") > 0 ? opt.wheel == "on" : daemon_config.window.wheel.enabled;
+  const bool gnss =
+      opt.given.count("--gnss") > 0 ? opt.gnss == "on" : daemon_config.loop_closure.gnss.enabled;
+  daemon_config.window.wheel.enabled = false;
+  daemon_config.loop_closure.gnss.enabled = false;
+  swlio::daemon::RecordingReadOptions read;
+  if (!swlio::tools::SetUpAuxSensors(opt.dir, wheel, gnss, &daemon_config, &read, &error)) {
+    std::cerr << "swlio-run: " << error << "\n";
+    return 1;
+  }
   auto reader = swlio::daemon::RecordingReader::Open(
       opt.dir, swlio::daemon::WithManifestPorts(opt.dir, daemon_config.lidar), daemon_config.imu,
-      &error);
+      read, &error);
   if (!reader) {
     std::cerr << "swlio-run: " << error << "\n";
     return 1;
@@ -291,6 +315,7 @@ int Run(const Options& opt) {
   setup.odometry = config;
   setup.window = window_config;
   Summary summary;
+  summary.wheel = window_config.wheel.enabled && tightly_coupled;
   std::unique_ptr<swlio::tools::LoopClosureRun> loops;
   // --loop-closure wins over the configuration's estimator.loop_closure.enabled (on by
   // default, and then off in lidar-only mode, which makes no keyframes for it).
@@ -305,6 +330,11 @@ int Run(const Options& opt) {
   }
   const bool loop_closure =
       asked ? opt.loop_closure == "on" : daemon_config.loop_closure.enabled && tightly_coupled;
+  if (gnss && (!tightly_coupled || opt.localize)) {
+    std::cerr << "swlio-run: --gnss on needs --mode tightly-coupled, without --localize\n";
+    return 1;
+  }
+  daemon_config.loop_closure.enabled = loop_closure;  // off: the graph runs for GNSS alone
   std::unique_ptr<swlio::tools::LocalizationRun> localization;
   if (opt.localize) {
     swlio::estimator::LocalizationConfig lc;
@@ -315,7 +345,7 @@ int Run(const Options& opt) {
       std::cerr << "swlio-run: " << error << "\n";
       return 1;
     }
-  } else if (loop_closure) {
+  } else if (loop_closure || gnss) {
     loops = std::make_unique<swlio::tools::LoopClosureRun>(daemon_config.loop_closure,
                                                            &swlio::daemon::ThreadCpuNowNs);
   } else if (!opt.save_map.empty()) {
@@ -327,6 +357,8 @@ int Run(const Options& opt) {
     if (covariance && w.covariance.valid) WriteCovariance(covariance, r.state, w.covariance);
     summary.Add(r);
     summary.reinitializations = w.reinitializations;  // the estimator's count
+    summary.wheel_factors = std::max(summary.wheel_factors, w.wheel_factors);
+    summary.wheel_rejected = std::max(summary.wheel_rejected, w.wheel_rejected);
     if (w.diverged != swlio::estimator::DivergenceReason::kNone) {
       std::cerr << "swlio-run: sweep ending at " << static_cast<double>(scan.t_end_ns) * 1e-9
                 << " s: " << swlio::estimator::ToString(w.diverged) << ", re-initializing\n";
@@ -348,7 +380,10 @@ int Run(const Options& opt) {
   int64_t start_ns = -1;
   while (reader->Next(&e)) {
     const bool imu = e.kind == swlio::daemon::RecordingEvent::Kind::kImu;
-    const int64_t t_ns = imu ? e.imu.t_ns : e.scan.t_start_ns;
+    const int64_t t_ns = imu                                                    ? e.imu.t_ns
+                         : e.kind == swlio::daemon::RecordingEvent::Kind::kScan ? e.scan.t_start_ns
+                         : e.kind == swlio::daemon::RecordingEvent::Kind::kGnss ? e.gnss.t_ns
+                                                                                : e.wheel.t_ns;
     if (start_ns < 0) {
       start_ns = t_ns + static_cast<int64_t>(opt.start_s * 1e9);
       if (localization) localization->SetStart(t_ns);
@@ -356,10 +391,19 @@ int Run(const Options& opt) {
     if (t_ns < start_ns) continue;
     if (opt.end_s > 0.0 && t_ns >= start_ns + static_cast<int64_t>((opt.end_s - opt.start_s) * 1e9))
       break;
-    if (imu) {
-      runner.AddImu(e.imu);
-    } else {
-      runner.AddScan(std::move(e.scan));
+    switch (e.kind) {
+      case swlio::daemon::RecordingEvent::Kind::kImu:
+        runner.AddImu(e.imu);
+        break;
+      case swlio::daemon::RecordingEvent::Kind::kScan:
+        runner.AddScan(std::move(e.scan));
+        break;
+      case swlio::daemon::RecordingEvent::Kind::kWheel:
+        runner.AddWheel(e.wheel);
+        break;
+      case swlio::daemon::RecordingEvent::Kind::kGnss:
+        if (loops) loops->OnGnss(e.gnss);
+        break;
     }
   }
   // Sweeps the IMU stream never covered (the recording's last ones) are not processed.
@@ -374,6 +418,10 @@ int Run(const Options& opt) {
     }
     if (!opt.loops.empty() && !loops->WriteLoops(opt.loops)) {
       std::cerr << "swlio-run: cannot write " << opt.loops << "\n";
+      return 1;
+    }
+    if (!opt.out_enu.empty() && !loops->WriteEnu(opt.out_enu, &error)) {
+      std::cerr << "swlio-run: --out-enu: " << error << "\n";
       return 1;
     }
     if (!opt.save_map.empty() && !loops->SaveMap(opt.save_map, opt.map_pcd, &error)) {
@@ -454,6 +502,21 @@ int Main(int argc, char** argv) {
          "loop closure and pose graph (tightly-coupled; estimator.loop_closure in --config)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  app.add_option("--wheel", opt.wheel,
+                 "wheel odometry from the recording's can.log as a velocity factor "
+                 "(tightly-coupled; estimator.window.wheel; the manifest's wheel: block gives the "
+                 "CAN layout and the base frame, else --config's can: section)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  app.add_option("--gnss", opt.gnss,
+                 "GNSS fixes from imu.xbus (GnssPvtData) as position factors in the pose graph "
+                 "(estimator.loop_closure.gnss; the manifest's gnss: block gives the ENU origin "
+                 "and the lever arm); runs the graph even with --loop-closure off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  app.add_option("--out-enu", opt.out_enu,
+                 "with --gnss on: every sweep corrected by the final graph, in the local ENU "
+                 "frame (TUM)");
   app.add_option("--out-optimized", opt.out_optimized,
                  "with loop closure: every sweep corrected by the final pose graph (TUM)");
   app.add_option("--loops", opt.loops,
@@ -484,10 +547,10 @@ int Main(int argc, char** argv) {
                  "daemon configuration (swlio.yaml): sensors, estimator, estimator.window (the "
                  "flags above override it), extrinsic (a manifest's extrinsic wins)");
   CLI11_PARSE(app, argc, argv);
-  for (const char* flag :
-       {"--window-size", "--iterations", "--reassociations", "--lidar-sigma", "--bias-prior-acc",
-        "--estimate-extrinsic", "--degenerate-eigenvalue", "--calibrate-extrinsic",
-        "--lidar-floor-m", "--lidar-floor-tilt", "--lidar-floor-yaw", "--loop-closure"}) {
+  for (const char* flag : {"--window-size", "--iterations", "--reassociations", "--lidar-sigma",
+                           "--bias-prior-acc", "--estimate-extrinsic", "--degenerate-eigenvalue",
+                           "--calibrate-extrinsic", "--lidar-floor-m", "--lidar-floor-tilt",
+                           "--lidar-floor-yaw", "--loop-closure", "--wheel", "--gnss"}) {
     if (app.count(flag) > 0) opt.given.insert(flag);
   }
   return Run(opt);
