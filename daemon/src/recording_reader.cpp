@@ -1,18 +1,52 @@
 #include "swlio/daemon/recording_reader.h"
 
-#include <cstdio>
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "swlio/daemon/imu_stage.h"
 #include "swlio/daemon/lidar_stage.h"
+#include "swlio/drivers/candump_log.h"
 #include "swlio/drivers/pcap_file.h"
+#include "swlio/drivers/wheel_odom_decoder.h"
 #include "swlio/drivers/xsens/mtdata2.h"
 #include "swlio/drivers/xsens/xbus.h"
 
 namespace swlio::daemon {
 
 namespace xs = drivers::xsens;
+
+namespace {
+
+/// A usable GnssPvtData item as a fix at host time `t_ns`. Units (u-blox NAV-PVT): lat/lon
+/// 1e-7 deg, height and accuracies mm. Usable: fixType 2 (2-D), 3 (3-D) or 4 (GNSS + dead
+/// reckoning), not 0 (none), 1 (dead reckoning only) or 5 (time only); flags bit 0 (gnssFixOK)
+/// set; a position on the Earth (height −2…+50 km); accuracies in (0, 1 km].
+std::optional<GnssFix> ToGnssFix(const xs::XsensGnssPvt& p, int64_t t_ns) {
+  GnssFix f;
+  f.t_ns = t_ns;
+  f.lat_deg = p.lat_1e7deg * 1e-7;
+  f.lon_deg = p.lon_1e7deg * 1e-7;
+  f.height_m = p.height_mm * 1e-3;
+  f.h_acc_m = p.h_acc_mm * 1e-3;
+  f.v_acc_m = p.v_acc_mm * 1e-3;
+  f.fix_type = p.fix_type;
+  f.num_sv = p.num_sv;
+  const bool fix = p.fix_type >= 2 && p.fix_type <= 4 && (p.flags & 0x01) != 0;
+  const bool place = std::abs(f.lat_deg) <= 90.0 && std::abs(f.lon_deg) <= 180.0 &&
+                     f.height_m >= -2e3 && f.height_m <= 5e4;
+  const bool accuracy = f.h_acc_m > 0.0 && f.h_acc_m <= 1e3 && f.v_acc_m > 0.0 && f.v_acc_m <= 1e3;
+  if (!fix || !place || !accuracy) return std::nullopt;
+  return f;
+}
+
+/// `a` comes first when not after `b` (an absent time never does).
+bool NotAfter(const int64_t* a, const int64_t* b) {
+  return a != nullptr && (b == nullptr || *a <= *b);
+}
+
+}  // namespace
 
 /// The LiDAR side: pcap → LidarStage (decoder, clock model, scan assembler).
 struct RecordingReader::Lidar {
@@ -45,8 +79,17 @@ std::unique_ptr<RecordingReader> RecordingReader::Open(const std::filesystem::pa
                                                        const drivers::LidarConfig& lidar,
                                                        const drivers::ImuConfig& imu,
                                                        std::string* error) {
+  return Open(dir, lidar, imu, RecordingReadOptions{}, error);
+}
+
+std::unique_ptr<RecordingReader> RecordingReader::Open(const std::filesystem::path& dir,
+                                                       const drivers::LidarConfig& lidar,
+                                                       const drivers::ImuConfig& imu,
+                                                       const RecordingReadOptions& options,
+                                                       std::string* error) {
   std::unique_ptr<RecordingReader> reader(new RecordingReader());
-  if (!reader->ReadImu(dir, imu, error)) return nullptr;
+  if (!reader->ReadImu(dir, imu, options.gnss, error)) return nullptr;
+  if (options.wheel && !reader->ReadWheel(dir, *options.wheel, error)) return nullptr;
   reader->lidar_ = std::make_unique<Lidar>(lidar);
   drivers::PcapUdpFilter filter;
   filter.dst_ports = {lidar.msop_port, lidar.difop_port};
@@ -57,6 +100,7 @@ std::unique_ptr<RecordingReader> RecordingReader::Open(const std::filesystem::pa
 
 bool RecordingReader::ReadImu(const std::filesystem::path& dir,
                               const drivers::ImuConfig& imu,
+                              bool gnss,
                               std::string* error) {
   std::ifstream bytes(dir / "imu.xbus", std::ios::binary);
   std::ifstream rx(dir / "imu.rx.csv");
@@ -89,7 +133,13 @@ bool RecordingReader::ReadImu(const std::filesystem::path& dir,
             xs::DecodeMtData2(frame.payload, &m) != xs::MtData2Status::kOk) {
           continue;
         }
-        if (auto s = stage.Map(ToImuRaw(m, t_rx, frame.frame_bytes))) imu_.push_back(*s);
+        const std::optional<ImuSample> s = stage.Map(ToImuRaw(m, t_rx, frame.frame_bytes));
+        if (s) imu_.push_back(*s);
+        if (!gnss || !m.gnss_pvt) continue;
+        // The fix takes its message's IMU time; without one (a dropped sample) it has none.
+        const std::optional<GnssFix> fix = s ? ToGnssFix(*m.gnss_pvt, s->t_ns) : std::nullopt;
+        if (fix) gnss_.push_back(*fix);
+        (fix ? stats_.gnss_fixes : stats_.gnss_rejected)++;
       }
     }
   }
@@ -97,6 +147,61 @@ bool RecordingReader::ReadImu(const std::filesystem::path& dir,
   stats_.imu_checksum_errors = framer.stats().checksum_errors;
   stats_.imu_skipped_bytes = framer.stats().skipped_bytes;
   stats_.imu_clock = stage.clock();
+  return true;
+}
+
+bool RecordingReader::ReadWheel(const std::filesystem::path& dir,
+                                const drivers::CanConfig& can,
+                                std::string* error) {
+  ConfigIssues issues;
+  std::optional<drivers::WheelOdomDecoder> decoder =
+      drivers::WheelOdomDecoder::Create(can, &issues);
+  if (!decoder) {
+    *error = "invalid wheel-odometry CAN layout:";
+    for (const ConfigIssue& i : issues) *error += " " + i.key + ": " + i.reason + ";";
+    return false;
+  }
+  std::ifstream in(dir / "can.log");
+  if (!in) {
+    stats_.wheel_log_missing = 1;
+    return true;
+  }
+  drivers::CandumpReader log(in);
+  drivers::CandumpRecord r;
+  uint64_t unusable = 0;
+  while (log.Next(&r)) {
+    const std::optional<drivers::WheelOdomSample> s = decoder->Decode(r.frame, r.t_ns);
+    if (!s) continue;
+    const bool in_order = wheel_.empty() || s->t_ns >= wheel_.back().t_ns;
+    if (!in_order || !std::isfinite(s->linear_velocity_mps) || !std::isfinite(s->yaw_rate_radps)) {
+      ++unusable;
+      continue;
+    }
+    wheel_.push_back({s->t_ns, s->linear_velocity_mps, s->yaw_rate_radps});
+  }
+  const drivers::CandumpCounters& lc = log.counters();
+  const drivers::WheelOdomCounters& dc = decoder->counters();
+  stats_.wheel_samples = wheel_.size();
+  stats_.wheel_frames_dropped = lc.malformed_lines + lc.can_fd_lines +
+                                (dc.frames - dc.frames_used) + dc.unpaired_dropped + unusable;
+  return true;
+}
+
+bool RecordingReader::NextOptional(int64_t limit_ns, RecordingEvent* event) {
+  const int64_t* t_imu = imu_next_ < imu_.size() ? &imu_[imu_next_].t_ns : nullptr;
+  const int64_t* t_gnss = gnss_next_ < gnss_.size() ? &gnss_[gnss_next_].t_ns : nullptr;
+  const int64_t* t_wheel = wheel_next_ < wheel_.size() ? &wheel_[wheel_next_].t_ns : nullptr;
+  const bool gnss_first = NotAfter(t_gnss, t_wheel);
+  const int64_t* t = gnss_first ? t_gnss : t_wheel;
+  // Not yet due; an IMU sample goes before a fix or wheel sample of the same time.
+  if (t == nullptr || *t > limit_ns || (t_imu != nullptr && *t_imu <= *t)) return false;
+  if (gnss_first) {
+    event->kind = RecordingEvent::Kind::kGnss;
+    event->gnss = gnss_[gnss_next_++];
+  } else {
+    event->kind = RecordingEvent::Kind::kWheel;
+    event->wheel = wheel_[wheel_next_++];
+  }
   return true;
 }
 
@@ -113,7 +218,10 @@ bool RecordingReader::Next(RecordingEvent* event) {
       stats_.lidar_clock = lidar_->stage.clock();
     }
   }
-  if (imu_next_ < imu_.size() && (!have_scan_ || imu_[imu_next_].t_ns <= pending_scan_.t_end_ns)) {
+  const int64_t limit_ns =
+      have_scan_ ? pending_scan_.t_end_ns : std::numeric_limits<int64_t>::max();
+  if (NextOptional(limit_ns, event)) return true;
+  if (imu_next_ < imu_.size() && imu_[imu_next_].t_ns <= limit_ns) {
     event->kind = RecordingEvent::Kind::kImu;
     event->imu = imu_[imu_next_++];
     return true;
@@ -123,50 +231,6 @@ bool RecordingReader::Next(RecordingEvent* event) {
   event->scan = std::move(pending_scan_);
   have_scan_ = false;
   return true;
-}
-
-TimeScale ManifestTimeScale(const std::filesystem::path& dir) {
-  std::ifstream in(dir / "manifest.yaml");
-  std::string line;
-  TimeScale t;
-  double scale = 0.0;
-  long long origin = 0;
-  while (std::getline(in, line)) {
-    if (std::sscanf(line.c_str(), "time_scale: %lf", &scale) == 1 && scale > 0.0) t.scale = scale;
-    if (std::sscanf(line.c_str(), "time_origin_ns: %lld", &origin) == 1) t.origin_ns = origin;
-  }
-  return t;
-}
-
-drivers::LidarConfig WithManifestPorts(const std::filesystem::path& dir,
-                                       drivers::LidarConfig lidar) {
-  std::ifstream in(dir / "manifest.yaml");
-  std::string line;
-  unsigned port = 0;
-  while (std::getline(in, line)) {
-    if (std::sscanf(line.c_str(), " msop_port: %u", &port) == 1 && port <= 65535)
-      lidar.msop_port = static_cast<uint16_t>(port);
-    if (std::sscanf(line.c_str(), " difop_port: %u", &port) == 1 && port <= 65535)
-      lidar.difop_port = static_cast<uint16_t>(port);
-  }
-  return lidar;
-}
-
-std::optional<Eigen::Isometry3d> ManifestExtrinsic(const std::filesystem::path& dir) {
-  std::ifstream in(dir / "manifest.yaml");
-  std::string line;
-  double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1};
-  int found = 0;
-  while (std::getline(in, line)) {
-    found += std::sscanf(line.c_str(), " translation_m: [%lf, %lf, %lf]", &t[0], &t[1], &t[2]) == 3;
-    found += std::sscanf(line.c_str(), " quaternion_xyzw: [%lf, %lf, %lf, %lf]", &q[0], &q[1],
-                         &q[2], &q[3]) == 4;
-  }
-  if (found != 2) return std::nullopt;
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
-  return T;
 }
 
 }  // namespace swlio::daemon

@@ -1,5 +1,6 @@
 #include "imu_sim.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "swlio/core/time.h"
@@ -15,7 +16,10 @@ Eigen::Vector3d NormalVec(Rng& rng, double sigma) {
 /// Host receive times: each frame leaves the device after its transmission time and waits for
 /// the next serial burst.
 void AssignDelivery(std::vector<SimImuSample>& samples, const ImuSimConfig& config, Rng& rng) {
-  const double tx_s = config.frame_bytes * 10.0 / config.baud;  // 8N1: 10 bits per byte
+  auto tx_ns = [&config](const SimImuSample& s) {  // 8N1: 10 bits per byte
+    const double bytes = config.frame_bytes + (s.has_gnss_pvt ? config.gnss_pvt_item_bytes : 0.0);
+    return SecToNs(bytes * 10.0 / config.baud);
+  };
   double burst_s = 0.0;
   size_t i = 0;
   while (i < samples.size()) {
@@ -24,10 +28,23 @@ void AssignDelivery(std::vector<SimImuSample>& samples, const ImuSimConfig& conf
     if (rng.Uniform() < config.delivery.stall_probability) period += config.delivery.stall_s;
     burst_s += std::max(period, 1e-4);
     const int64_t burst_ns = SecToNs(burst_s);
-    while (i < samples.size() && samples[i].t_true_ns + SecToNs(tx_s) <= burst_ns) {
+    while (i < samples.size() && samples[i].t_true_ns + tx_ns(samples[i]) <= burst_ns) {
       samples[i].t_rx_ns = burst_ns;
       ++i;
     }
+  }
+}
+
+/// Marks the first sample at or after each GNSS epoch (ImuSimConfig::gnss_pvt_period_s).
+void MarkGnssEpochs(std::vector<SimImuSample>& samples, const ImuSimConfig& config) {
+  if (config.gnss_pvt_period_s <= 0.0) return;
+  const int64_t period_ns = SecToNs(config.gnss_pvt_period_s);
+  const int64_t first_ns = SecToNs(config.gnss_first_fix_s);
+  int64_t next_epoch_ns = (std::max<int64_t>(first_ns, 0) + period_ns - 1) / period_ns * period_ns;
+  for (SimImuSample& s : samples) {
+    if (s.t_true_ns < next_epoch_ns) continue;
+    s.has_gnss_pvt = true;
+    next_epoch_ns = (s.t_true_ns / period_ns + 1) * period_ns;
   }
 }
 
@@ -67,6 +84,7 @@ std::vector<SimImuSample> SimulateImu(const Trajectory& trajectory,
     bias_acc += NormalVec(rng, n.acc_bias_random_walk * std::sqrt(dt));
     bias_gyro += NormalVec(rng, n.gyro_bias_random_walk * std::sqrt(dt));
   }
+  MarkGnssEpochs(out, config);
   AssignDelivery(out, config, rng);
   return out;
 }

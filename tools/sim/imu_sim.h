@@ -63,6 +63,7 @@ struct SimImuSample {
   Eigen::Vector3d gyro_radps = Eigen::Vector3d::Zero();
   Eigen::Vector3d bias_acc = Eigen::Vector3d::Zero();   ///< truth
   Eigen::Vector3d bias_gyro = Eigen::Vector3d::Zero();  ///< truth
+  bool has_gnss_pvt = false;  ///< its MTData2 message also carries GnssPvtData (gnss_sim.h)
 };
 
 struct ImuSimConfig {
@@ -73,6 +74,15 @@ struct ImuSimConfig {
   SerialDelivery delivery;
   double frame_bytes = 60.0;  ///< for the transmission time at `baud`
   double baud = 921600.0;
+  /// GnssPvtData output (gnss_sim.h): the first sample at or after each multiple of this period
+  /// of GNSS time (taken as the simulation's time) carries the item, from `gnss_first_fix_s`
+  /// on; 0: no GNSS items (--no-gnss). 4 Hz: the MTi-G-710's GNSS output rate. The first fix
+  /// comes after 1 s, a u-blox M8's hot-start time to first fix (u-blox MAX-M8 data sheet).
+  double gnss_pvt_period_s = 0.25;
+  double gnss_first_fix_s = 1.0;
+  /// Bytes a GnssPvtData item adds to a frame (XDI, size, 94 bytes of data), which lengthen its
+  /// transmission.
+  double gnss_pvt_item_bytes = 3.0 + 94.0;
 };
 
 /// Samples over [0, duration] host seconds, in order; deterministic for a seed.

@@ -41,6 +41,50 @@ std::vector<swlio::sim::TimeWindow> ParseWindows(const std::vector<std::string>&
   return out;
 }
 
+/// "START:DURATION:METRES" (seconds, seconds, metres east).
+swlio::sim::GnssJump ParseJump(const std::string& text) {
+  const std::string what = "expected three numbers as START:DURATION:METRES, got '" + text + "'";
+  const size_t a = text.find(':');
+  const size_t b = a == std::string::npos ? a : text.find(':', a + 1);
+  if (b == std::string::npos) throw std::invalid_argument(what);
+  auto number = [&what](const std::string& part) {
+    try {
+      size_t used = 0;
+      const double v = std::stod(part, &used);
+      if (used != part.size()) throw std::invalid_argument(what);
+      return v;
+    } catch (const std::logic_error&) {  // stod: invalid_argument, out_of_range
+      throw std::invalid_argument(what);
+    }
+  };
+  return {number(text.substr(0, a)), number(text.substr(a + 1, b - a - 1)),
+          number(text.substr(b + 1))};
+}
+
+/// The optional streams (GNSS items, wheel odometry) and the GNSS faults, for recordings and
+/// live runs alike.
+struct StreamArgs {
+  bool no_gnss = false, no_wheel = false;
+  std::vector<std::string> gnss_outages, gnss_jumps;
+
+  void Add(CLI::App& app) {
+    app.add_flag("--no-gnss", no_gnss, "no GnssPvtData items in the IMU stream");
+    app.add_flag("--no-wheel", no_wheel, "no can.log (wheel odometry) in a recording");
+    app.add_option("--gnss-outage", gnss_outages,
+                   "fault: GNSS without a fix (fixType 0) during START:DURATION (s)");
+    app.add_option("--gnss-jump", gnss_jumps,
+                   "fault: GNSS positions METRES east during START:DURATION:METRES, "
+                   "accuracy unchanged (an outlier)");
+  }
+
+  void Apply(swlio::sim::SimSetup* setup) const {
+    if (no_gnss) setup->imu.gnss_pvt_period_s = 0.0;
+    if (no_wheel) setup->wheel.enabled = false;
+    setup->gnss.outages = ParseWindows(gnss_outages);
+    for (const std::string& j : gnss_jumps) setup->gnss.jumps.push_back(ParseJump(j));
+  }
+};
+
 /// The live mode's fault injection (sim_faults.h) on the command line.
 struct FaultArgs {
   swlio::sim::LiveFaults faults;
@@ -103,14 +147,17 @@ int RunFile(const swlio::sim::SimSetup& setup, const std::string& out) {
   std::printf(
       "{\"scenario\": \"%s\", \"seed\": %llu, \"duration_s\": %.3f, \"length_m\": %.2f, "
       "\"msop_packets\": %llu, \"difop_packets\": %llu, \"valid_returns\": %llu, "
-      "\"imu_frames\": %llu, \"groundtruth_poses\": %llu, \"generation_s\": %.2f}\n",
+      "\"imu_frames\": %llu, \"groundtruth_poses\": %llu, \"gnss_items\": %llu, "
+      "\"wheel_frames\": %llu, \"generation_s\": %.2f}\n",
       setup.scenario.name.c_str(), static_cast<unsigned long long>(setup.seed),
       swlio::sim::SimDuration(setup), setup.trajectory->length_m(),
       static_cast<unsigned long long>(stats.msop_packets),
       static_cast<unsigned long long>(stats.difop_packets),
       static_cast<unsigned long long>(stats.valid_returns),
       static_cast<unsigned long long>(stats.imu_frames),
-      static_cast<unsigned long long>(stats.gt_poses), secs);
+      static_cast<unsigned long long>(stats.gt_poses),
+      static_cast<unsigned long long>(stats.gnss_items),
+      static_cast<unsigned long long>(stats.wheel_frames), secs);
   return 0;
 }
 
@@ -146,6 +193,8 @@ int Run(int argc, char** argv) {
   app.add_option("--start-delay", live_opts.start_delay_s, "live: seconds before streaming");
   FaultArgs fault_args;
   fault_args.Add(app);
+  StreamArgs stream_args;
+  stream_args.Add(app);
   CLI11_PARSE(app, argc, argv);
 
   if (list) {
@@ -161,6 +210,7 @@ int Run(int argc, char** argv) {
     std::cerr << "swlio-sim: unknown scenario '" << scenario << "' (see --list)\n";
     return 2;
   }
+  stream_args.Apply(&*setup);
   if (std::string error; !swlio::sim::RepeatRoute(&*setup, laps, &error)) {
     std::cerr << "swlio-sim: --laps: " << error << "\n";
     return 2;

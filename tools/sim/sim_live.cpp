@@ -160,6 +160,9 @@ bool RunLive(const SimSetup& setup,
         setup, RecordingStats{}, MonotonicNs() + SecToNs(options.start_delay_s), "live");
   }
   const std::vector<SimImuSample> imu = SimulateImu(*setup.trajectory, setup.imu, setup.seed);
+  const std::vector<SimGnssFix> fixes =
+      SimulateGnss(*setup.trajectory, setup.gnss, imu, setup.seed);
+  size_t next_fix = 0;
   // A repeated route (RepeatRoute) casts its first lap before streaming and replays it.
   std::optional<LidarLaps> laps;
   std::optional<LidarSimulator> once;
@@ -209,7 +212,7 @@ bool RunLive(const SimSetup& setup,
     for (const int64_t t = imu[i].t_rx_ns; i < imu.size() && imu[i].t_rx_ns == t; ++i) {
       SimImuSample sample = imu[i];
       if (!faults.PassImu(t_s, &sample)) continue;
-      const size_t n = EncodeImuFrame(sample, frame);
+      const size_t n = EncodeImuFrame(sample, frame, PvtForSample(fixes, i, &next_fix));
       burst.insert(burst.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(n));
     }
     if (options.imu_write_ns != nullptr) {
@@ -233,6 +236,7 @@ bool RunLive(const SimSetup& setup,
     rs.msop_packets = laps ? laps->msop_packets() : once->msop_packets();
     rs.difop_packets = laps ? laps->difop_packets() : once->difop_packets();
     rs.imu_frames = imu.size();
+    rs.gnss_items = fixes.size();
     std::ofstream(options.out_dir / "manifest.yaml") << ManifestYaml(setup, rs, start_ns, "live");
   }
   return true;

@@ -40,6 +40,9 @@ bool WriteGroundTruth(const SimSetup& setup,
 
 bool WriteImu(const SimSetup& setup, const std::filesystem::path& dir, RecordingStats* stats) {
   const std::vector<SimImuSample> samples = SimulateImu(*setup.trajectory, setup.imu, setup.seed);
+  const std::vector<SimGnssFix> fixes =
+      SimulateGnss(*setup.trajectory, setup.gnss, samples, setup.seed);
+  size_t next_fix = 0;
   std::ofstream bytes(dir / "imu.xbus", std::ios::binary);
   std::ofstream rx(dir / "imu.rx.csv");
   rx << "byte_offset,bytes,t_rx_ns\n";
@@ -50,14 +53,27 @@ bool WriteImu(const SimSetup& setup, const std::filesystem::path& dir, Recording
     const int64_t t_rx = samples[i].t_rx_ns;
     const uint64_t burst_start = offset;
     for (; i < samples.size() && samples[i].t_rx_ns == t_rx; ++i) {
-      const size_t n = EncodeImuFrame(samples[i], frame);
+      const size_t n = EncodeImuFrame(samples[i], frame, PvtForSample(fixes, i, &next_fix));
       bytes.write(reinterpret_cast<const char*>(frame.data()), static_cast<std::streamsize>(n));
       offset += n;
       ++stats->imu_frames;
     }
     rx << burst_start << ',' << (offset - burst_start) << ',' << (t_rx + kFileHostStartNs) << '\n';
   }
+  for (const SimGnssFix& f : fixes) stats->gnss_no_fix += f.has_fix ? 0 : 1;
+  stats->gnss_items = fixes.size();
   return static_cast<bool>(bytes) && static_cast<bool>(rx);
+}
+
+bool WriteWheels(const SimSetup& setup, const std::filesystem::path& dir, RecordingStats* stats) {
+  if (!setup.wheel.enabled) return true;
+  const std::vector<SimWheelSample> wheels =
+      SimulateWheels(*setup.trajectory, setup.wheel, setup.seed);
+  std::ofstream can_log(dir / "can.log");
+  std::ofstream truth(dir / "wheel_truth.csv");
+  stats->wheel_frames = wheels.size();
+  return WriteCanLog(wheels, kFileHostStartNs, can_log) &&
+         WriteWheelTruth(wheels, kFileHostStartNs, truth);
 }
 
 bool WriteLidar(const SimSetup& setup,
@@ -87,8 +103,11 @@ bool WriteLidar(const SimSetup& setup,
 
 }  // namespace
 
-size_t EncodeImuFrame(const SimImuSample& sample, std::span<uint8_t> out) {
+size_t EncodeImuFrame(const SimImuSample& sample,
+                      std::span<uint8_t> out,
+                      const xs::XsensGnssPvt* gnss_pvt) {
   xs::MtData2Sample m;
+  if (gnss_pvt != nullptr) m.gnss_pvt = *gnss_pvt;
   m.packet_counter = sample.packet_counter;
   m.sample_time_fine = sample.sample_time_fine;
   const double acc[3] = {sample.acc_mps2.x(), sample.acc_mps2.y(), sample.acc_mps2.z()};
@@ -99,6 +118,14 @@ size_t EncodeImuFrame(const SimImuSample& sample, std::span<uint8_t> out) {
   const size_t n = xs::EncodeMtData2(m, payload);
   if (n == 0) return 0;
   return xs::EncodeXbusFrame(xs::mid::kMtData2, std::span(payload).first(n), out);
+}
+
+const xs::XsensGnssPvt* PvtForSample(const std::vector<SimGnssFix>& fixes,
+                                     size_t index,
+                                     size_t* next) {
+  while (*next < fixes.size() && fixes[*next].imu_index < index) ++*next;
+  if (*next < fixes.size() && fixes[*next].imu_index == index) return &fixes[(*next)++].pvt;
+  return nullptr;
 }
 
 std::string TumLine(const SimSetup& setup, double t_s, int64_t host_ns) {
@@ -124,6 +151,10 @@ bool WriteRecording(const SimSetup& setup,
   if (!WriteLidar(setup, dir / "lidar.pcap", stats, error)) return false;
   if (!WriteImu(setup, dir, stats)) {
     *error = "cannot write the IMU files in " + dir.string();
+    return false;
+  }
+  if (!WriteWheels(setup, dir, stats)) {
+    *error = "cannot write can.log / wheel_truth.csv in " + dir.string();
     return false;
   }
   if (!WriteGroundTruth(setup, dir / "groundtruth.tum", stats)) {

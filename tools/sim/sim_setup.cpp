@@ -23,6 +23,19 @@ Eigen::Isometry3d TrueExtrinsic(Rng& rng) {
   return T;
 }
 
+/// The chassis base right below the IMU on the ground, axes as the IMU's (x forward, z up).
+/// Not ahead of or behind it: the route moves the IMU along its heading, so the point below it
+/// is the one without sideways speed, i.e. the differential drive's axle midpoint; a base
+/// elsewhere would slide sideways in turns against the non-holonomic model.
+/// Wheel radius errors: one draw per seed.
+void SetUpWheels(const RouteSpec& route, uint64_t seed, WheelSimConfig* wheel) {
+  wheel->T_imu_base = Eigen::Isometry3d::Identity();
+  wheel->T_imu_base.translation() = Eigen::Vector3d(0.0, 0.0, -route.imu_height_m);
+  Rng rng(seed ^ 0x3EE1ull);
+  wheel->noise.scale_error_left = rng.Normal(wheel->noise.scale_error_sigma);
+  wheel->noise.scale_error_right = rng.Normal(wheel->noise.scale_error_sigma);
+}
+
 }  // namespace
 
 std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
@@ -46,6 +59,7 @@ std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
   // IMU SampleTimeFine: device uptime (up to ~11 h) drifting up to ±50 ppm.
   setup.imu.clock.offset_s = rng.Uniform(10.0, 40'000.0);
   setup.imu.clock.drift_ppm = rng.Uniform(-50.0, 50.0);
+  SetUpWheels(s->route, seed, &setup.wheel);
   if (duration_s) {
     setup.trajectory->Truncate(std::max(0.1, *duration_s));
   }

@@ -9,10 +9,12 @@
 #include <optional>
 #include <string>
 
+#include "gnss_sim.h"
 #include "imu_sim.h"
 #include "lidar_sim.h"
 #include "scenarios.h"
 #include "trajectory.h"
+#include "wheel_sim.h"
 #include "world.h"
 
 namespace swlio::sim {
@@ -25,6 +27,8 @@ struct SimSetup {
   std::unique_ptr<Trajectory> trajectory;
   ImuSimConfig imu;
   LidarSimConfig lidar;       ///< includes T_imu_lidar and the LiDAR clock
+  GnssSimConfig gnss;         ///< the MTi's GNSS items (their rate: imu.gnss_pvt_period_s)
+  WheelSimConfig wheel;       ///< chassis odometry on CAN (T_imu_base, drawn scale errors)
   double gt_rate_hz = 200.0;  ///< ground-truth pose rate
 };
 
