@@ -33,14 +33,21 @@ std::optional<ImuSample> ImuStage::Map(const ImuRaw& raw) {
     ++counters_.no_sample_time;
     return std::nullopt;
   }
-  if (!latency_set_ && baud_ > 0) {  // 10 bits per byte on an 8N1 line
-    clock_config_.fixed_latency_ns = static_cast<int64_t>(static_cast<double>(raw.frame_bytes) *
-                                                          10.0 / static_cast<double>(baud_) * 1e9);
+  // Transmission time of the frame: 10 bits per byte on an 8N1 line.
+  const int64_t tx_ns = baud_ > 0 ? static_cast<int64_t>(static_cast<double>(raw.frame_bytes) *
+                                                         10.0 / static_cast<double>(baud_) * 1e9)
+                                  : 0;
+  if (!latency_set_) {
+    clock_config_.fixed_latency_ns = tx_ns;
     clock_ = drivers::ClockModel(clock_config_);
     latency_set_ = true;
   }
+  // Frames differ in length (a GnssPvtData item adds 97 bytes, ~1 ms at 921600 baud): each
+  // one's receive time is moved to where a frame of the first one's length would have ended,
+  // so the model's fixed latency holds for all.
+  const int64_t t_rx_ns = raw.t_rx_ns - (tx_ns - clock_config_.fixed_latency_ns);
   const int64_t stf_ns = drivers::xsens::SampleTimeFineToNs(raw.sample_time_fine);
-  const int64_t t_host_ns = clock_.Observe(stf_ns, raw.t_rx_ns);
+  const int64_t t_host_ns = clock_.Observe(stf_ns, t_rx_ns);
   if (!raw.has_inertial || !raw.acc_mps2.allFinite() || !raw.gyro_radps.allFinite()) {
     ++counters_.incomplete;
     return std::nullopt;

@@ -45,6 +45,26 @@ TEST(ImuStage, MapsSampleTimeToHostWithDriftAndBursts) {
   EXPECT_EQ(stage.counters().samples, 400u * 60u);
 }
 
+TEST(ImuStage, LongerFramesDoNotShiftTheTimes) {
+  // Every 100th frame carries a GnssPvtData item (97 bytes more, ~1.05 ms longer on the wire),
+  // the very first one too: the times of all the others must not move by that much.
+  ImuStage stage(921600);
+  auto tx_ns = [](int bytes) { return static_cast<int64_t>(bytes * 10 / 921600.0 * 1e9); };
+  double worst_ms = 0.0;
+  for (int k = 0; k < 400 * 30; ++k) {
+    const int64_t true_host = 5'000'000'000 + int64_t{k} * 2'500'000;
+    ImuRaw r = Raw(static_cast<uint32_t>(1000 + 25 * k), 0);
+    r.frame_bytes = k % 100 == 0 ? 47 + 97 : 47;
+    r.t_rx_ns = true_host + tx_ns(static_cast<int>(r.frame_bytes));
+    const auto s = stage.Map(r);
+    ASSERT_TRUE(s.has_value()) << k;
+    if (k > 400 * 5) {
+      worst_ms = std::max(worst_ms, std::abs(static_cast<double>(s->t_ns - true_host)) * 1e-6);
+    }
+  }
+  EXPECT_LT(worst_ms, 0.2) << "a 1.05 ms bias would remain if the first frame's length held";
+}
+
 TEST(ImuStage, DropsSamplesItCannotUse) {
   ImuStage stage(921600);
   ImuRaw no_time = Raw(1000, 1'000'000'000);
