@@ -129,6 +129,27 @@ ipc::DiagnosticStatus LocalizationStatus(const HealthSnapshot& s) {
   return d;
 }
 
+/// The map cloud on DDS: how many, how large, what they cost (map_publisher.h). Warns while
+/// the newest map could not be built or written.
+ipc::DiagnosticStatus MapStatus(const HealthSnapshot& s) {
+  const MapPublishCounters& c = s.map;
+  ipc::DiagnosticStatus d;
+  d.name = "swlio: map";
+  d.hardware_id = "swlio";
+  d.level = c.last_failed ? ipc::DiagnosticLevel::kWarn : ipc::DiagnosticLevel::kOk;
+  d.message = c.last_failed     ? "the newest map cloud was not published"
+              : c.published > 0 ? std::to_string(c.points) + " points published"
+                                : "no map cloud yet";
+  d.values = {{"maps_published", Count(c.published)},
+              {"failures", Count(c.failures)},
+              {"points", Count(c.points)},
+              {"bytes", Count(c.bytes)},
+              {"voxel_m", Num(c.voxel_m, "%.3f")},
+              {"build_ms", Num(c.build_ms, "%.1f")},
+              {"write_ms", Num(c.write_ms, "%.1f")}};
+  return d;
+}
+
 /// How long ago (host seconds) the last processed sweep ended: the estimate's latency plus
 /// any backlog; it grows when the estimator falls behind its input or the LiDAR stops.
 std::string SweepAge(const HealthSnapshot& s) {
@@ -226,6 +247,7 @@ ipc::DiagnosticArray HealthReporter::Diagnostics(const HealthSnapshot& now) {
   if (now.can_enabled) a.status.push_back(CanStatus(now, r));
   if (now.loop_closure.enabled) a.status.push_back(LoopClosureStatus(now));
   if (now.localization.enabled) a.status.push_back(LocalizationStatus(now));
+  if (now.map.enabled) a.status.push_back(MapStatus(now));
   return a;
 }
 

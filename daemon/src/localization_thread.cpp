@@ -20,6 +20,8 @@ LocalizationThread::LocalizationThread(estimator::SavedMap map,
 }
 
 void LocalizationThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
+  beat.Beat();
+  if (map_ != nullptr) map_->Publish(localizer_.map(), beat);  // keyframes wait in the queue
   KeyframePtr keyframe;
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();

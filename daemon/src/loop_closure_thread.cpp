@@ -18,6 +18,7 @@ void LoopClosureThread::Run(const std::atomic<bool>& stop, const Watchdog::Handl
   KeyframePtr keyframe;
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
+    PublishMapIfDue(beat);  // also when idle: a correction may wait for the period to end
     if (!q_.keyframes_in->WaitPop(&keyframe, 100'000)) continue;
     Handle(*keyframe);
     keyframe.reset();
@@ -46,6 +47,7 @@ void LoopClosureThread::Handle(const estimator::KeyframeCloud& keyframe) {
   const double correction_rad = Eigen::AngleAxisd(C.rotation()).angle();
   correction_m_.store(correction_m, kRelaxed);
   correction_rad_.store(correction_rad, kRelaxed);
+  if (map_ != nullptr) map_->MarkChanged();
   q_.corrections_out->Push(
       MapCorrection{keyframe.t_ns, C,
                     std::make_shared<const std::vector<estimator::MapNode>>(closure_.MapPath())});
@@ -54,6 +56,14 @@ void LoopClosureThread::Handle(const estimator::KeyframeCloud& keyframe) {
       "nodes solved in {:.1f} ms, correction now {:.2f} m / {:.2f} deg",
       u.attempt.node, u.attempt.candidate, u.attempt.distance_m, u.attempt.check.fitness, st.nodes,
       ms, correction_m, correction_rad * 180.0 / std::numbers::pi);
+}
+
+void LoopClosureThread::PublishMapIfDue(const Watchdog::Handle& beat) {
+  if (map_ == nullptr || !map_->Due(MonotonicNowNs())) return;
+  const int64_t t0 = MonotonicNowNs();
+  const estimator::SavedMap map = closure_.ToSavedMap();
+  beat.Beat();
+  map_->Publish(map, beat, static_cast<double>(MonotonicNowNs() - t0) * 1e-6);
 }
 
 size_t LoopClosureThread::SaveMap(const std::string& path,

@@ -116,9 +116,11 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
         config.loop_closure, LoopClosureQueues{&q.keyframes, &q.corrections});
   }
   if (localize && !rt->LoadLocalization(error)) return nullptr;
+  const FrameIds frames;
+  rt->MakeMapPublisher(frames.world);
   Runtime* self = rt.get();
   rt->publisher_thread_ = std::make_unique<PublisherThread>(
-      rt->publisher_.get(), FrameIds{},
+      rt->publisher_.get(), frames,
       PublisherQueues{&q.poses, &q.odometry, &q.publisher_wake,
                       keyframes ? &q.corrections : nullptr},
       time, [self](int64_t) { return self->published_health_.Diagnostics(self->Snapshot()); },
@@ -143,6 +145,15 @@ bool Runtime::LoadLocalization(std::string* error) {
   localization_ = std::make_unique<LocalizationThread>(
       std::move(*map), c, LoopClosureQueues{&queues_->keyframes, &queues_->corrections});
   return true;
+}
+
+void Runtime::MakeMapPublisher(const std::string& frame_id) {
+  const ipc::IpcConfig& c = config_.ipc;
+  if (!publisher_ || c.map_publish_period_s <= 0.0 || (!loop_closure_ && !localization_)) return;
+  map_publisher_ = std::make_unique<MapPublisher>(
+      publisher_.get(), frame_id, static_cast<size_t>(c.map_max_points), c.map_publish_period_s);
+  if (loop_closure_) loop_closure_->PublishMapTo(map_publisher_.get());
+  if (localization_) localization_->PublishMapTo(map_publisher_.get());
 }
 
 void Runtime::SaveMap() {
@@ -231,6 +242,7 @@ HealthSnapshot Runtime::Snapshot() const {
   s.publisher = publisher_thread_->counters();
   if (loop_closure_) s.loop_closure = loop_closure_->counters();
   if (localization_) s.localization = localization_->counters();
+  if (map_publisher_) s.map = map_publisher_->counters();
   s.queues = queues_->Counters();
   if (recorder_) {
     for (const QueueCounters& c : recorder_->QueueCountersList()) s.queues.push_back(c);

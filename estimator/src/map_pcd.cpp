@@ -24,6 +24,10 @@ void SetError(std::string* error, std::string message) {
 
 // Every feature point in the map frame with its voxel; "" or what is wrong.
 std::string Gather(const SavedMap& map, double voxel_m, std::vector<CellPoint>* out) {
+  size_t total = 0;
+  for (const SavedMapNode& node : map.nodes)
+    total += node.planes_lidar.size() + node.edges_lidar.size();
+  out->reserve(total);
   for (size_t i = 0; i < map.nodes.size(); ++i) {
     const SavedMapNode& node = map.nodes[i];
     const Eigen::Isometry3d T_map_lidar = node.T_map_imu * node.T_imu_lidar;
@@ -91,26 +95,33 @@ void WritePcd(std::ostream& out, const std::vector<Eigen::Vector3f>& points) {
 
 }  // namespace
 
-long WriteMergedPcd(std::ostream& out, const SavedMap& map, double voxel_m, std::string* error) {
+std::optional<std::vector<Eigen::Vector3f>> MergedMapCloud(const SavedMap& map,
+                                                           double voxel_m,
+                                                           std::string* error) {
   if (!std::isfinite(voxel_m) || voxel_m < kMergedCloudMinVoxelM) {
     SetError(error, "merged cloud: voxel size " + std::to_string(voxel_m) +
                         " m must be finite and at least " + std::to_string(kMergedCloudMinVoxelM) +
                         " m");
-    return -1;
+    return std::nullopt;
   }
   std::vector<CellPoint> points;
   const std::string issue = Gather(map, voxel_m, &points);
   if (!issue.empty()) {
     SetError(error, "merged cloud: " + issue);
-    return -1;
+    return std::nullopt;
   }
-  const std::vector<Eigen::Vector3f> centroids = Centroids(&points);
-  WritePcd(out, centroids);
+  return Centroids(&points);
+}
+
+long WriteMergedPcd(std::ostream& out, const SavedMap& map, double voxel_m, std::string* error) {
+  const std::optional<std::vector<Eigen::Vector3f>> centroids = MergedMapCloud(map, voxel_m, error);
+  if (!centroids) return -1;
+  WritePcd(out, *centroids);
   if (!out) {
     SetError(error, "merged cloud: stream write failed");
     return -1;
   }
-  return static_cast<long>(centroids.size());
+  return static_cast<long>(centroids->size());
 }
 
 bool SaveMergedPcd(const std::string& path,

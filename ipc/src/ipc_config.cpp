@@ -29,11 +29,15 @@ ConfigIssues IpcConfig::Validate() const {
   // DDS domain ids map onto UDP ports; 232 is the largest that fits (DDSI-RTPS 2.2 §9.6.1.1).
   CheckInRange<int64_t>(issues, "domain_id", domain_id, 0, 232);
   CheckInRange<int64_t>(issues, "path_max_poses", path_max_poses, 1, 1'000'000);
+  // 10 M points × 16 bytes still fits the uint32 row_step of sensor_msgs/PointCloud2.
+  CheckInRange<int64_t>(issues, "map_max_points", map_max_points, 1'000, 10'000'000);
+  CheckInRange(issues, "map_publish_period_s", map_publish_period_s, 0.0, 86'400.0);
   CheckThat(issues, !dds_config_file.empty(), "dds_config_file", "must name a DDS XML file");
   CheckTopic(issues, "pose_topic", pose_topic);
   CheckTopic(issues, "odometry_topic", odometry_topic);
   CheckTopic(issues, "health_topic", health_topic);
   CheckTopic(issues, "path_topic", path_topic);
+  CheckTopic(issues, "map_topic", map_topic);
   return issues;
 }
 

@@ -14,6 +14,8 @@ const char* TopicLabel(Topic topic) {
       return "health";
     case Topic::kPath:
       return "path";
+    case Topic::kMap:
+      return "map";
   }
   return "?";
 }
@@ -87,6 +89,13 @@ bool Publisher::PublishPath(const Path& path) {
   wire::PathMsg msg{};
   if (!wire::ToWire(path, &storage, &msg)) return Count(false);
   return Count(dds_write(writers_[Index(Topic::kPath)], &msg) == DDS_RETCODE_OK);
+}
+
+bool Publisher::PublishMap(const PointCloud2& map) {
+  wire::PointCloudStorage storage;
+  wire::PointCloud2Msg msg{};
+  if (!wire::ToWire(map, &storage, &msg)) return Count(false);
+  return Count(dds_write(writers_[Index(Topic::kMap)], &msg) == DDS_RETCODE_OK);
 }
 
 int Publisher::MatchedSubscriptions(Topic topic) const {

@@ -29,7 +29,9 @@ std::unique_ptr<Subscriber> Subscriber::Create(const Participant& participant,
   if (!issues.empty()) {
     return fail("invalid ipc configuration: " + issues.front().key + " " + issues.front().reason);
   }
-  if (options.history_depth < 1) return fail("history_depth must be at least 1");
+  if (options.history_depth < 1 || options.map_history_depth < 1) {
+    return fail("history_depth and map_history_depth must be at least 1");
+  }
   std::unique_ptr<Subscriber> subscriber(new Subscriber());
   subscriber->waitset_ = dds_create_waitset(participant.handle());
   if (subscriber->waitset_ < 0) {
@@ -45,7 +47,8 @@ std::unique_ptr<Subscriber> Subscriber::Create(const Participant& participant,
       return fail("cannot create DDS topic '" + name + "': " + dds_strretcode(topic));
     }
     subscriber->topics_[static_cast<size_t>(i)] = topic;
-    dds_qos_t* qos = wire::MakeQos(topic_id, /*writer=*/false, options.history_depth);
+    const int depth = topic_id == Topic::kMap ? options.map_history_depth : options.history_depth;
+    dds_qos_t* qos = wire::MakeQos(topic_id, /*writer=*/false, depth);
     const dds_entity_t reader = dds_create_reader(participant.handle(), topic, qos, nullptr);
     dds_delete_qos(qos);
     if (reader < 0) {
@@ -118,6 +121,10 @@ std::vector<Received<DiagnosticArray>> Subscriber::TakeHealth() {
 
 std::vector<Received<Path>> Subscriber::TakePaths() {
   return Take<Path, wire::PathMsg>(Topic::kPath);
+}
+
+std::vector<Received<PointCloud2>> Subscriber::TakeMaps() {
+  return Take<PointCloud2, wire::PointCloud2Msg>(Topic::kMap);
 }
 
 int Subscriber::MatchedPublications(Topic topic) const {

@@ -178,6 +178,44 @@ bool FromWire(const DiagnosticArrayMsg& in, DiagnosticArray* out) {
   return FromHeader(in.header, &out->t_ns, &out->frame_id);
 }
 
+bool ToWire(const PointCloud2& in, PointCloudStorage* storage, PointCloud2Msg* out) {
+  if (in.data.size() > std::numeric_limits<uint32_t>::max()) return false;
+  storage->fields.resize(in.fields.size());
+  for (size_t i = 0; i < in.fields.size(); ++i) {
+    const PointField& f = in.fields[i];
+    storage->fields[i] = {Borrow(f.name), f.offset, static_cast<uint8_t>(f.datatype), f.count};
+  }
+  BorrowSequence(storage->fields, &out->fields);
+  out->height = in.height;
+  out->width = in.width;
+  out->is_bigendian = in.is_bigendian;
+  out->point_step = in.point_step;
+  out->row_step = in.row_step;
+  // Borrowed like the strings: Cyclone only reads the buffer while it serializes the sample.
+  out->data._length = static_cast<uint32_t>(in.data.size());
+  out->data._maximum = out->data._length;
+  out->data._buffer = const_cast<uint8_t*>(in.data.empty() ? nullptr : in.data.data());
+  out->data._release = false;
+  out->is_dense = in.is_dense;
+  return ToHeader(in.t_ns, in.frame_id, &out->header);
+}
+
+bool FromWire(const PointCloud2Msg& in, PointCloud2* out) {
+  out->fields.resize(in.fields._length);
+  for (uint32_t i = 0; i < in.fields._length; ++i) {
+    const PointFieldMsg& f = in.fields._buffer[i];
+    out->fields[i] = {Copy(f.name), f.offset, static_cast<PointFieldType>(f.datatype), f.count};
+  }
+  out->height = in.height;
+  out->width = in.width;
+  out->is_bigendian = in.is_bigendian;
+  out->point_step = in.point_step;
+  out->row_step = in.row_step;
+  out->data.assign(in.data._buffer, in.data._buffer + in.data._length);
+  out->is_dense = in.is_dense;
+  return FromHeader(in.header, &out->t_ns, &out->frame_id);
+}
+
 const dds_topic_descriptor_t* Descriptor(Topic topic) {
   switch (topic) {
     case Topic::kPose:
@@ -188,6 +226,8 @@ const dds_topic_descriptor_t* Descriptor(Topic topic) {
       return &diagnostic_msgs_msg_dds__DiagnosticArray__desc;
     case Topic::kPath:
       return &nav_msgs_msg_dds__Path__desc;
+    case Topic::kMap:
+      return &sensor_msgs_msg_dds__PointCloud2__desc;
   }
   return nullptr;
 }
@@ -202,6 +242,8 @@ std::string DdsTopicName(const IpcConfig& config, Topic topic) {
       return "rt/" + config.health_topic;
     case Topic::kPath:
       return "rt/" + config.path_topic;
+    case Topic::kMap:
+      return "rt/" + config.map_topic;
   }
   return {};
 }

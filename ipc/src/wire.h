@@ -15,6 +15,7 @@
 #include "diagnostic_msgs.h"
 #include "geometry_msgs.h"
 #include "nav_msgs.h"
+#include "sensor_msgs.h"
 #include "swlio/ipc/ipc_config.h"
 #include "swlio/ipc/messages.h"
 
@@ -31,6 +32,8 @@ using PathMsg = nav_msgs_msg_dds__Path_;
 using KeyValueMsg = diagnostic_msgs_msg_dds__KeyValue_;
 using StatusMsg = diagnostic_msgs_msg_dds__DiagnosticStatus_;
 using DiagnosticArrayMsg = diagnostic_msgs_msg_dds__DiagnosticArray_;
+using PointFieldMsg = sensor_msgs_msg_dds__PointField_;
+using PointCloud2Msg = sensor_msgs_msg_dds__PointCloud2_;
 
 /// int64 ns ↔ builtin_interfaces/Time (sec = floor(t_ns / 1e9)). ToTime fails when the
 /// seconds do not fit an int32; FromTime fails when nanosec ≥ 1e9.
@@ -64,6 +67,14 @@ struct DiagnosticStorage {
 };
 bool ToWire(const DiagnosticArray& in, DiagnosticStorage* storage, DiagnosticArrayMsg* out);
 bool FromWire(const DiagnosticArrayMsg& in, DiagnosticArray* out);
+
+/// Storage the borrowed C structs of a PointCloud2 point into (the data bytes are borrowed from
+/// the message itself, not copied).
+struct PointCloudStorage {
+  std::vector<PointFieldMsg> fields;
+};
+bool ToWire(const PointCloud2& in, PointCloudStorage* storage, PointCloud2Msg* out);
+bool FromWire(const PointCloud2Msg& in, PointCloud2* out);
 
 /// The generated type descriptor of `topic`'s message.
 const dds_topic_descriptor_t* Descriptor(Topic topic);

@@ -1,8 +1,10 @@
 // swlio-echo as a separate process: what it prints and records for samples that really cross
-// loopback UDP from this process's Publisher. Domains 121..124.
+// loopback UDP from this process's Publisher. Domains 121..125 and 136.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -13,6 +15,7 @@
 #include "child_process.h"
 #include "ipc_test_util.h"
 #include "swlio/ipc/participant.h"
+#include "swlio/ipc/point_cloud.h"
 #include "swlio/ipc/publisher.h"
 
 namespace swlio::ipc {
@@ -144,6 +147,50 @@ TEST(EchoCli, PrintsOneLinePerSampleOfEveryTopic) {
       << lines[1];
   EXPECT_EQ(lines[2].rfind("path t=4.000000000 frame=map poses=3", 0), 0u) << lines[2];
   EXPECT_EQ(lines[3].rfind("pose t=1.000000000 frame=map p=[", 0), 0u) << lines[3];
+}
+
+std::string Shortest(double v) {
+  char buffer[32];
+  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, v).ptr);
+}
+
+TEST(EchoCli, LateEchoGetsTheLatchedMapOverLoopbackUdp) {
+  // 200,000 points (2.4 MB, ~1,800 UDP fragments) published before swlio-echo exists: its
+  // TRANSIENT_LOCAL reader gets the map from the writer's history across loopback UDP.
+  const IpcConfig config = test_util::LoopbackConfig(136);
+  std::string error;
+  auto participant = Participant::Create(config, &error);
+  ASSERT_NE(participant, nullptr) << error;
+  auto publisher = Publisher::Create(*participant, config, &error);
+  ASSERT_NE(publisher, nullptr) << error;
+  PointCloud2 map;
+  map.t_ns = 7'000'000'001;
+  map.frame_id = "map";
+  constexpr size_t kPoints = 200'000;
+  ASSERT_TRUE(InitXyzCloud(kPoints, false, &map));
+  std::array<double, 3> lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t i = 0; i < kPoints; ++i) {
+    const float t = static_cast<float>(i) * 1e-3f;
+    const std::array<float, 3> p = {t * std::cos(t), t * std::sin(t), 0.25f * t - 3.0f};
+    SetPoint(i, p, 0.0f, &map);
+    for (size_t a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], static_cast<double>(p[a]));
+      hi[a] = std::max(hi[a], static_cast<double>(p[a]));
+    }
+  }
+  ASSERT_TRUE(publisher->PublishMap(map));
+  ChildProcess echo(EchoArgs(136, {"--topics", "map", "--count", "1", "--duration", "30"}));
+  ASSERT_TRUE(echo.running());
+  std::string line;
+  ASSERT_TRUE(echo.ReadLine(&line, 40.0)) << "the latched map did not arrive";
+  EXPECT_EQ(echo.Wait(), 0);
+  auto box = [](const std::array<double, 3>& v) {
+    return "[" + Shortest(v[0]) + " " + Shortest(v[1]) + " " + Shortest(v[2]) + "]";
+  };
+  EXPECT_EQ(line,
+            "map t=7.000000001 frame=map points=200000 (200000x1) bytes=2400000 point_step=12 "
+            "fields=x,y,z min=" +
+                box(lo) + " max=" + box(hi));
 }
 
 TEST(EchoCli, RefusesNonLoopbackConfig) {

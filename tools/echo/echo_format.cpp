@@ -1,8 +1,12 @@
 #include "echo_format.h"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cstdio>
+#include <limits>
+
+#include "swlio/ipc/point_cloud.h"
 
 namespace swlio::tools::echo {
 namespace {
@@ -110,6 +114,36 @@ std::string FormatLine(const ipc::Path& m) {
     out.append(" last_t=").append(FormatStamp(m.poses.back().t_ns));
     AppendPose(out, "last_", m.poses.back().pose);
   }
+  return out;
+}
+
+std::string FormatLine(const ipc::PointCloud2& m) {
+  std::string out;
+  AppendHeader(out, "map", m.t_ns, m.frame_id);
+  const uint64_t points = uint64_t{m.width} * m.height;
+  out.append(" points=").append(std::to_string(points));
+  out.append(" (").append(std::to_string(m.width)).append("x");
+  out.append(std::to_string(m.height)).append(")");
+  out.append(" bytes=").append(std::to_string(m.data.size()));
+  out.append(" point_step=").append(std::to_string(m.point_step));
+  out.append(" fields=");
+  for (size_t i = 0; i < m.fields.size(); ++i)
+    out.append(i > 0 ? "," : "").append(m.fields[i].name);
+  if (points == 0 || !ipc::HasXyzLayout(m)) return out;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::array<double, 3> lo = {kInf, kInf, kInf};
+  std::array<double, 3> hi = {-kInf, -kInf, -kInf};
+  for (size_t i = 0; i < points; ++i) {
+    const std::array<float, 3> p = ipc::XyzAt(m, i);
+    for (size_t a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], static_cast<double>(p[a]));
+      hi[a] = std::max(hi[a], static_cast<double>(p[a]));
+    }
+  }
+  out += " min=";
+  AppendVector(out, lo);
+  out += " max=";
+  AppendVector(out, hi);
   return out;
 }
 

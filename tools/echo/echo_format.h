@@ -20,6 +20,10 @@ std::string FormatLine(const ipc::PoseWithCovarianceStamped& m);
 std::string FormatLine(const ipc::Odometry& m);
 std::string FormatLine(const ipc::DiagnosticArray& m);
 std::string FormatLine(const ipc::Path& m);
+/// A summary, never the points: "map t=... frame=... points=N (width×height) bytes=B
+/// point_step=S fields=x,y,z" plus, for the x/y/z float32 layout, the points' bounding box
+/// "min=[...] max=[...]".
+std::string FormatLine(const ipc::PointCloud2& m);
 
 /// "t x y z qx qy qz qw" (TUM RGB-D benchmark trajectory format).
 std::string TumLine(int64_t t_ns, const ipc::Pose& pose);

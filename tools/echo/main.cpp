@@ -33,7 +33,7 @@ void OnSignal(int) { g_stop = true; }
 
 struct EchoOptions {
   ipc::IpcConfig ipc;
-  std::vector<std::string> topics{"pose", "odometry", "health", "path"};
+  std::vector<std::string> topics{"pose", "odometry", "health", "path", "map"};
   std::string record_tum;
   std::string record_from = "pose";
   std::string latency_csv;
@@ -91,9 +91,11 @@ class Sink {
   /// Counts per topic and the pose write→take latency percentiles, to stderr.
   void Summary() {
     if (summary_) summary_->Flush();
-    std::fprintf(stderr, "swlio-echo: pose %lld, odometry %lld, health %lld, path %lld samples",
+    std::fprintf(stderr,
+                 "swlio-echo: pose %lld, odometry %lld, health %lld, path %lld, map %lld samples",
                  static_cast<long long>(counts_[0]), static_cast<long long>(counts_[1]),
-                 static_cast<long long>(counts_[2]), static_cast<long long>(counts_[3]));
+                 static_cast<long long>(counts_[2]), static_cast<long long>(counts_[3]),
+                 static_cast<long long>(counts_[4]));
     if (!transport_ns_.empty()) {
       std::sort(transport_ns_.begin(), transport_ns_.end());
       auto at = [&](double q) {
@@ -134,13 +136,14 @@ void AddOptions(CLI::App& app, EchoOptions& o) {
       ->capture_default_str();
   app.add_option("--topics", o.topics, "which topics to read")
       ->delimiter(',')
-      ->check(CLI::IsMember({"pose", "odometry", "health", "path"}))
+      ->check(CLI::IsMember({"pose", "odometry", "health", "path", "map"}))
       ->capture_default_str();
   app.add_option("--pose-topic", o.ipc.pose_topic, "ROS 2 name (DDS adds rt/)")
       ->capture_default_str();
   app.add_option("--odometry-topic", o.ipc.odometry_topic)->capture_default_str();
   app.add_option("--health-topic", o.ipc.health_topic)->capture_default_str();
   app.add_option("--path-topic", o.ipc.path_topic)->capture_default_str();
+  app.add_option("--map-topic", o.ipc.map_topic)->capture_default_str();
   app.add_option("--record", o.record_tum, "write received poses to this TUM file");
   app.add_option("--record-from", o.record_from, "topic whose poses --record writes")
       ->check(CLI::IsMember({"pose", "odometry"}))
@@ -197,6 +200,7 @@ int Run(EchoOptions& options) {
     sink.Handle(Topic::kOdometry, subscriber->TakeOdometry());
     sink.Handle(Topic::kHealth, subscriber->TakeHealth());
     sink.Handle(Topic::kPath, subscriber->TakePaths());
+    sink.Handle(Topic::kMap, subscriber->TakeMaps());
   }
   sink.Summary();
   if (code == 2) std::cerr << "swlio-echo: --count not reached within --duration\n";

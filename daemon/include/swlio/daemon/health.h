@@ -13,6 +13,7 @@
 #include "swlio/daemon/lidar_rx.h"
 #include "swlio/daemon/localization_thread.h"
 #include "swlio/daemon/loop_closure_thread.h"
+#include "swlio/daemon/map_publisher.h"
 #include "swlio/daemon/optimizer_thread.h"
 #include "swlio/daemon/propagator_thread.h"
 #include "swlio/daemon/publisher_thread.h"
@@ -32,6 +33,7 @@ struct HealthSnapshot {
   PublisherCounters publisher;
   LoopClosureCounters loop_closure;   ///< `enabled` false when loop closure is off
   LocalizationCounters localization;  ///< `enabled` false unless localizing in a saved map
+  MapPublishCounters map;             ///< `enabled` false unless the map cloud is published
   std::vector<QueueCounters> queues;
 };
 

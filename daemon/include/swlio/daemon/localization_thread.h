@@ -6,7 +6,8 @@
 /// the fixed map) and hands every new T_map_odom to the publisher. The first one jumps (the
 /// publisher holds every pose until then); later ones, a relocalization after the pose was
 /// lost included, are followed at the bounded rate (the planner never sees a teleport once it
-/// has a pose). Shares only queues with the other threads.
+/// has a pose). Shares only queues with the other threads. With a MapPublisher, the saved map's
+/// cloud is published once when the thread starts (the map never changes).
 
 #include <atomic>
 #include <cstdint>
@@ -39,6 +40,9 @@ class LocalizationThread {
   LocalizationThread(estimator::SavedMap map,
                      const estimator::LocalizationConfig& config,
                      const LoopClosureQueues& queues);
+  /// Publish the saved map's cloud through `map` (not owned; null: no map cloud) when Run
+  /// starts. Call before Run.
+  void PublishMapTo(MapPublisher* map) { map_ = map; }
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   /// Relaxed copies (any thread).
   LocalizationCounters counters() const;
@@ -49,6 +53,7 @@ class LocalizationThread {
 
   estimator::MapLocalizer localizer_;
   LoopClosureQueues q_;
+  MapPublisher* map_ = nullptr;
   uint64_t map_nodes_ = 0;
   bool published_in_map_ = false;  ///< the jump has been sent
   std::atomic<int> state_{0};

@@ -5,13 +5,15 @@
 /// solves) and hands every new map correction to the publisher, which follows it at a bounded
 /// rate. It never blocks the optimizer or the IMU-rate output: they share only queues, and a
 /// keyframe that finds the queue full is dropped and counted (the graph then has a longer
-/// odometry edge, nothing worse).
+/// odometry edge, nothing worse). With a MapPublisher, the corrected map cloud is rebuilt and
+/// published here after a correction, at most once per its period (map_publisher.h).
 
 #include <atomic>
 #include <cstdint>
 #include <string>
 
 #include "swlio/daemon/live_types.h"
+#include "swlio/daemon/map_publisher.h"
 #include "swlio/daemon/spsc_queue.h"
 #include "swlio/daemon/watchdog.h"
 #include "swlio/estimator/loop_closure.h"
@@ -41,6 +43,8 @@ struct LoopClosureCounters {
 class LoopClosureThread {
  public:
   LoopClosureThread(const estimator::LoopClosureConfig& config, const LoopClosureQueues& queues);
+  /// Publish the map cloud through `map` (not owned; null: no map cloud). Call before Run.
+  void PublishMapTo(MapPublisher* map) { map_ = map; }
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   /// Relaxed copies (any thread).
   LoopClosureCounters counters() const;
@@ -50,9 +54,12 @@ class LoopClosureThread {
 
  private:
   void Handle(const estimator::KeyframeCloud& keyframe);
+  /// Publishes the corrected map when a correction is pending and the period is over.
+  void PublishMapIfDue(const Watchdog::Handle& beat);
 
   estimator::LoopClosure closure_;
   LoopClosureQueues q_;
+  MapPublisher* map_ = nullptr;
   std::atomic<uint64_t> keyframes_{0}, nodes_{0}, attempts_{0}, accepted_{0}, rejected_{0},
       switched_off_{0};
   std::atomic<double> last_ms_{0.0}, max_ms_{0.0}, correction_m_{0.0}, correction_rad_{0.0};

@@ -27,6 +27,7 @@
 #include "swlio/daemon/daemon_config.h"
 #include "swlio/daemon/estimator_runner.h"
 #include "swlio/daemon/health.h"
+#include "swlio/daemon/map_publisher.h"
 #include "swlio/daemon/recorder.h"
 #include "swlio/daemon/time_scale.h"
 #include "swlio/daemon/watchdog.h"
@@ -80,6 +81,9 @@ class Runtime {
   Runtime(const DaemonConfig& config, const RuntimeOptions& options);
   /// Loads map.load_path and makes the localization thread; false with *error.
   bool LoadLocalization(std::string* error);
+  /// The map cloud's publisher, handed to the loop-closure or localization thread (when DDS
+  /// runs and ipc.map_publish_period_s > 0).
+  void MakeMapPublisher(const std::string& frame_id);
   /// With loop closure and map.save_path: the graph as a saved map (once, at stop).
   void SaveMap();
   void Spawn(std::vector<std::thread>* group,
@@ -100,6 +104,8 @@ class Runtime {
   std::unique_ptr<OptimizerThread> optimizer_;
   std::unique_ptr<LoopClosureThread> loop_closure_;   ///< only with estimator.loop_closure
   std::unique_ptr<LocalizationThread> localization_;  ///< only with map.localize
+  /// With DDS, either of the two above and ipc.map_publish_period_s > 0; used by that thread.
+  std::unique_ptr<MapPublisher> map_publisher_;
   std::unique_ptr<PublisherThread> publisher_thread_;
   std::unique_ptr<Recorder> recorder_;
   HealthReporter published_health_;          ///< used by the publisher thread only

@@ -21,8 +21,11 @@
 /// side voxel_m anchored at the map origin; points come out in voxel order (x, then y, then z
 /// cell index ascending).
 
+#include <Eigen/Core>
 #include <iosfwd>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "swlio/estimator/saved_map.h"
 
@@ -37,9 +40,16 @@ inline constexpr double kMergedCloudVoxelM = 0.1;
 /// The smallest voxel side accepted.
 inline constexpr double kMergedCloudMinVoxelM = 1e-3;
 
+/// The merged cloud itself (what WriteMergedPcd writes, and what swliod publishes): one
+/// centroid per voxel of side voxel_m, map frame, in voxel order. std::nullopt with *error
+/// ("merged cloud: ...") when voxel_m is not finite or below kMergedCloudMinVoxelM, or a
+/// map-frame point is not finite or beyond kMergedCloudMaxCoordinateM.
+std::optional<std::vector<Eigen::Vector3f>> MergedMapCloud(const SavedMap& map,
+                                                           double voxel_m,
+                                                           std::string* error);
+
 /// Writes the merged cloud; the number of points written, or -1 with *error ("merged cloud:
-/// ...") when voxel_m is not finite or below kMergedCloudMinVoxelM, a map-frame point is not
-/// finite or beyond kMergedCloudMaxCoordinateM, or the stream fails.
+/// ...") when MergedMapCloud refuses or the stream fails.
 long WriteMergedPcd(std::ostream& out, const SavedMap& map, double voxel_m, std::string* error);
 
 /// WriteMergedPcd into `path` (through `path` + ".tmp" and a rename).

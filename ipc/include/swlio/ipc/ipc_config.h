@@ -21,9 +21,16 @@ struct IpcConfig {
   std::string odometry_topic = "swlio/odometry";  ///< scan-rate odometry with covariance
   std::string health_topic = "diagnostics";       ///< 1 Hz health (ROS 2 /diagnostics)
   std::string path_topic = "swlio/path";          ///< keyframe path
+  std::string map_topic = "swlio/map";            ///< map cloud (sensor_msgs/PointCloud2)
   /// The keyframe path holds the newest this many keyframes: bounded memory and message size
   /// on a robot that patrols for days (a soak saw the whole path grow with every lap).
   int64_t path_max_poses = 5000;
+  /// The published map cloud holds at most this many points (12 bytes each): the voxel is
+  /// coarsened until it fits (daemon/map_publisher.h), bounding the sample's size.
+  int64_t map_max_points = 500'000;
+  /// Mapping: the map cloud is rebuilt and published after a loop correction, at most once per
+  /// this period (s). Localizing: the saved map is published once at start. 0: never.
+  double map_publish_period_s = 10.0;
 
   ConfigIssues Validate() const;
 };

@@ -3,13 +3,13 @@
 /// The messages swlio publishes, as plain C++ values that mirror the ROS 2 messages field for
 /// field (the IDL in ipc/idl/ is the wire layout; this header never sees Cyclone DDS).
 ///
-/// | Topic     | ROS 2 type                                  | DDS type name |
-/// |-----------|---------------------------------------------|---------------------------------------------------------|
-/// | kPose     | geometry_msgs/msg/PoseWithCovarianceStamped |
-/// geometry_msgs::msg::dds_::PoseWithCovarianceStamped_    | | kOdometry | nav_msgs/msg/Odometry |
-/// nav_msgs::msg::dds_::Odometry_                          | | kHealth   |
-/// diagnostic_msgs/msg/DiagnosticArray         | diagnostic_msgs::msg::dds_::DiagnosticArray_ | |
-/// kPath     | nav_msgs/msg/Path                           | nav_msgs::msg::dds_::Path_ |
+/// Topics, their ROS 2 types and DDS type names (`<pkg>::msg::dds_::<Type>_`):
+/// - kPose: geometry_msgs/msg/PoseWithCovarianceStamped,
+///   geometry_msgs::msg::dds_::PoseWithCovarianceStamped_
+/// - kOdometry: nav_msgs/msg/Odometry, nav_msgs::msg::dds_::Odometry_
+/// - kHealth: diagnostic_msgs/msg/DiagnosticArray, diagnostic_msgs::msg::dds_::DiagnosticArray_
+/// - kPath: nav_msgs/msg/Path, nav_msgs::msg::dds_::Path_
+/// - kMap: sensor_msgs/msg/PointCloud2, sensor_msgs::msg::dds_::PointCloud2_
 ///
 /// Stamps: `t_ns` is carried as builtin_interfaces/Time (sec = floor(t_ns / 1e9), nanosec =
 /// the remainder), so every t_ns whose seconds fit an int32 round-trips exactly. Which clock
@@ -22,9 +22,9 @@
 
 namespace swlio::ipc {
 
-/// The four topics of IpcConfig.
-enum class Topic : uint8_t { kPose = 0, kOdometry = 1, kHealth = 2, kPath = 3 };
-inline constexpr int kTopicCount = 4;
+/// The topics of IpcConfig.
+enum class Topic : uint8_t { kPose = 0, kOdometry = 1, kHealth = 2, kPath = 3, kMap = 4 };
+inline constexpr int kTopicCount = 5;
 
 /// Row-major 6x6 covariance over (x, y, z, rotation about X, Y, Z), as in
 /// geometry_msgs/PoseWithCovariance and TwistWithCovariance.
@@ -100,6 +100,42 @@ struct Path {
   std::vector<PoseStamped> poses;
 };
 
+/// sensor_msgs/PointField datatype (a ROS `uint8`; other values pass through).
+enum class PointFieldType : uint8_t {
+  kInt8 = 1,
+  kUint8 = 2,
+  kInt16 = 3,
+  kUint16 = 4,
+  kInt32 = 5,
+  kUint32 = 6,
+  kFloat32 = 7,
+  kFloat64 = 8
+};
+
+/// sensor_msgs/PointField: one named field of every point.
+struct PointField {
+  std::string name;
+  uint32_t offset = 0;  ///< bytes from the start of a point
+  PointFieldType datatype = PointFieldType::kFloat32;
+  uint32_t count = 1;  ///< elements of `datatype`
+};
+
+/// sensor_msgs/PointCloud2: `height` rows of `width` points, each `point_step` bytes laid out
+/// as `fields` say; `data` holds height × row_step bytes. point_cloud.h builds and reads the
+/// x, y, z (float32) layout swlio publishes.
+struct PointCloud2 {
+  int64_t t_ns = 0;
+  std::string frame_id;
+  uint32_t height = 1;
+  uint32_t width = 0;
+  std::vector<PointField> fields;
+  bool is_bigendian = false;
+  uint32_t point_step = 0;  ///< bytes per point
+  uint32_t row_step = 0;    ///< bytes per row (width × point_step when rows are packed)
+  std::vector<uint8_t> data;
+  bool is_dense = true;  ///< no invalid (NaN) points
+};
+
 /// A received sample with the times it was written and taken.
 template <typename Message>
 struct Received {
@@ -109,7 +145,7 @@ struct Received {
   int64_t source_realtime_ns = 0;   ///< writer's CLOCK_REALTIME at dds_write (DDS source time)
 };
 
-/// "pose", "odometry", "health" or "path".
+/// "pose", "odometry", "health", "path" or "map".
 const char* TopicLabel(Topic topic);
 
 }  // namespace swlio::ipc

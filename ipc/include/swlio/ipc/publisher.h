@@ -1,11 +1,12 @@
 #pragma once
 /// @file
-/// Writes swlio's four topics on a Participant. Cyclone DDS stays behind this header.
+/// Writes swlio's topics on a Participant. Cyclone DDS stays behind this header.
 ///
 /// Topic names are IpcConfig's ROS 2 names with the "rt/" prefix ROS 2 uses for topics
 /// ("swlio/pose" → DDS "rt/swlio/pose"). QoS follows ROS 2 conventions (see qos_profile.h and
 /// ipc/README.md): every writer is RELIABLE and KEEP_LAST, so it never blocks the caller and
-/// matches both reliable and best-effort readers; the path is TRANSIENT_LOCAL (latched).
+/// matches both reliable and best-effort readers; the path and the map are TRANSIENT_LOCAL
+/// (latched).
 /// Writers pin XCDR1, the encoding Fast DDS 2.9 (ROS 2's default middleware) reads.
 ///
 /// Thread safety: each Publish* may be called from any one thread at a time per topic; the
@@ -25,7 +26,7 @@ namespace swlio::ipc {
 
 class Publisher {
  public:
-  /// Creates the four topics and writers on `participant` (which must outlive the Publisher).
+  /// Creates the topics and writers on `participant` (which must outlive the Publisher).
   /// Returns nullptr with `error` filled when a topic name is invalid or DDS refuses.
   static std::unique_ptr<Publisher> Create(const Participant& participant,
                                            const IpcConfig& config,
@@ -40,6 +41,10 @@ class Publisher {
   bool PublishOdometry(const Odometry& odometry);
   bool PublishHealth(const DiagnosticArray& health);
   bool PublishPath(const Path& path);
+  /// A map cloud of several MB: Cyclone serializes it in this call (one copy of `map.data`) and
+  /// sends it in fragments; readers that miss fragments get them repaired by the reliable
+  /// protocol. The writer keeps the newest map for late joiners (TRANSIENT_LOCAL, KEEP_LAST 1).
+  bool PublishMap(const PointCloud2& map);
 
   /// Readers currently matched to the topic's writer, as Cyclone counts them (the count to
   /// trust: Fast DDS may report "matched" for a writer whose data it then refuses).

@@ -3,14 +3,14 @@
 /// The QoS of each swlio topic, chosen like ROS 2 so that a ROS 2 node's default subscription
 /// (RELIABLE, VOLATILE, KEEP_LAST 10) matches every topic without a QoS override.
 ///
-/// | Topic                   | Reliability | Durability      | History      | Why |
-/// |-------------------------|-------------|-----------------|--------------|------------------------------|
-/// | pose (IMU rate)         | RELIABLE    | VOLATILE        | KEEP_LAST 10 | matches reliable and
-/// best-effort readers; keep-last never blocks the writer | | odometry (scan rate)    | RELIABLE |
-/// VOLATILE        | KEEP_LAST 10 | as ROS 2 default             | | health (/diagnostics)   |
-/// RELIABLE    | VOLATILE        | KEEP_LAST 10 | as ROS 2 diagnostic_updater  | | path (keyframes)
-/// | RELIABLE    | TRANSIENT_LOCAL | KEEP_LAST 1  | latched: late joiners get the last path (like
-/// /map) |
+/// - pose (IMU rate): RELIABLE, VOLATILE, KEEP_LAST 10. Matches reliable and best-effort
+///   readers; keep-last never blocks the writer.
+/// - odometry (scan rate): RELIABLE, VOLATILE, KEEP_LAST 10, as ROS 2's default.
+/// - health (/diagnostics): RELIABLE, VOLATILE, KEEP_LAST 10, as ROS 2's diagnostic_updater.
+/// - path (keyframes): RELIABLE, TRANSIENT_LOCAL, KEEP_LAST 1. Latched: late joiners get the
+///   last path (like /map).
+/// - map (PointCloud2, MBs): RELIABLE, TRANSIENT_LOCAL, KEEP_LAST 1. Latched: rviz2 started
+///   later gets the newest map; the writer keeps one map, never a backlog.
 ///
 /// Every writer also pins data representation XCDR1 (Fast DDS 2.9 reads only XCDR1). Deadline,
 /// lifespan, liveliness (AUTOMATIC) and ownership (SHARED) stay at the DDS defaults, as in ROS 2.
@@ -32,7 +32,9 @@ struct QosProfile {
 
 /// The writer QoS of `topic` (table above).
 constexpr QosProfile WriterQos(Topic topic) {
-  if (topic == Topic::kPath) return {Reliability::kReliable, Durability::kTransientLocal, 1};
+  if (topic == Topic::kPath || topic == Topic::kMap) {
+    return {Reliability::kReliable, Durability::kTransientLocal, 1};
+  }
   return {Reliability::kReliable, Durability::kVolatile, 10};
 }
 

@@ -2,8 +2,8 @@
 /// @file
 /// Reads swlio's topics (for swlio-echo and tests): decoded samples with their receive times.
 /// Cyclone DDS stays behind this header. Reader QoS requests what the writers offer (see
-/// qos_profile.h): RELIABLE, KEEP_LAST `history_depth`, VOLATILE except the path, which is
-/// TRANSIENT_LOCAL so a late subscriber still gets the last keyframe path.
+/// qos_profile.h): RELIABLE, KEEP_LAST `history_depth`, VOLATILE except the path and the map,
+/// which are TRANSIENT_LOCAL so a late subscriber still gets the last keyframe path and map.
 
 #include <array>
 #include <cstdint>
@@ -20,8 +20,11 @@ namespace swlio::ipc {
 struct SubscriberOptions {
   /// Reader history per topic: samples not yet taken beyond this many are overwritten.
   int history_depth = 100;
+  /// The map reader's history: maps are MBs each and each supersedes the last, so a reader
+  /// that falls behind keeps only the newest.
+  int map_history_depth = 1;
   /// Which topics to read (indexed by Topic).
-  std::array<bool, kTopicCount> topics{true, true, true, true};
+  std::array<bool, kTopicCount> topics{true, true, true, true, true};
 };
 
 class Subscriber {
@@ -44,6 +47,7 @@ class Subscriber {
   std::vector<Received<Odometry>> TakeOdometry();
   std::vector<Received<DiagnosticArray>> TakeHealth();
   std::vector<Received<Path>> TakePaths();
+  std::vector<Received<PointCloud2>> TakeMaps();
 
   /// Writers currently matched to the topic's reader (0 when not subscribed).
   int MatchedPublications(Topic topic) const;
