@@ -44,7 +44,10 @@ void CanRx::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
     }
     for (int i = 0; i < n; ++i) {
       const drivers::CanRxFrame& f = frames_[static_cast<size_t>(i)];
-      decoder_.Decode(f.frame, f.t_ns);
+      const std::optional<drivers::WheelOdomSample> s = decoder_.Decode(f.frame, f.t_ns);
+      if (s && wheel_ != nullptr) {
+        wheel_->Push(WheelOdometry{s->t_ns, s->linear_velocity_mps, s->yaw_rate_radps});
+      }
       if (record_ != nullptr) record_->Push(f);
     }
     Publish(false);

@@ -100,6 +100,14 @@ ipc::DiagnosticStatus LoopClosureStatus(const HealthSnapshot& s) {
               {"attempt_ms_max", Num(c.max_attempt_ms, "%.1f")},
               {"correction_m", Num(c.correction_m, "%.3f")},
               {"correction_deg", Num(c.correction_rad * 180.0 / std::numbers::pi, "%.3f")}};
+  if (c.gnss) {
+    d.values.push_back({"gnss_fixes", Count(c.gnss_fixes)});
+    d.values.push_back({"gnss_edges", Count(c.gnss_edges)});
+    d.values.push_back({"gnss_rejected", Count(c.gnss_rejected)});
+    d.values.push_back({"gnss_switched_off", Count(c.gnss_switched_off)});
+    d.values.push_back({"gnss_aligned", c.gnss_aligned ? "true" : "false"});
+    d.values.push_back({"enu_yaw_deg", Num(c.enu_yaw_rad * 180.0 / std::numbers::pi, "%.2f")});
+  }
   return d;
 }
 
@@ -185,6 +193,10 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
       {"imu_only_s", Num(s.optimizer.imu_only_s, "%.2f")},
       {"sweep_age_s", SweepAge(s)},
       {"last_divergence", s.optimizer.last_divergence}};
+  if (s.optimizer.wheel_factors + s.optimizer.wheel_rejected > 0) {
+    d.values.push_back({"wheel_factors", Count(s.optimizer.wheel_factors)});
+    d.values.push_back({"wheel_rejected", Count(s.optimizer.wheel_rejected)});
+  }
   return d;
 }
 

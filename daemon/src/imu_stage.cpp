@@ -22,6 +22,10 @@ ImuRaw ToImuRaw(const drivers::xsens::MtData2Sample& sample, int64_t t_rx_ns, si
     raw.acc_mps2 = s->acc_mps2;
     raw.gyro_radps = s->gyro_radps;
   }
+  if (sample.gnss_pvt) {
+    raw.has_gnss_pvt = true;
+    raw.gnss_pvt = *sample.gnss_pvt;
+  }
   return raw;
 }
 

@@ -24,12 +24,15 @@ void OptimizerThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle&
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
     q_.wake->Wait(20'000);  // a LiDAR packet or an IMU sample, whichever comes first
-    // IMU first: a sweep is processed once a sample past its end has arrived.
+    // IMU first: a sweep is processed once a sample past its end has arrived (wheel odometry
+    // before it, so a sweep's wheel samples are in by then).
+    DrainWheel();
     DrainImu();
     DrainLidar();
     Publish();
   }
   // Stopping: the rx threads and the propagator have stopped; finish what they queued.
+  DrainWheel();
   DrainImu();
   DrainLidar();
   Publish();
@@ -40,6 +43,15 @@ void OptimizerThread::DrainImu() {
   while (q_.imu_in->Pop(&sample)) {
     runner_.AddImu(sample);
     newest_imu_t_ns_ = sample.t_ns;
+  }
+}
+
+void OptimizerThread::DrainWheel() {
+  if (q_.wheel_in == nullptr) return;
+  WheelOdometry sample;
+  while (q_.wheel_in->Pop(&sample)) {
+    sample.t_ns = time_.ToDaemon(sample.t_ns);
+    runner_.AddWheel(sample);
   }
 }
 
@@ -82,6 +94,8 @@ TrackingState OptimizerThread::Classify(const estimator::OdometryResult& r) {
 void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& result) {
   const estimator::OdometryResult& r = result.odometry;
   reinitializations_ = result.reinitializations;  // the estimator's count
+  wheel_factors_ = result.wheel_factors;
+  wheel_rejected_ = result.wheel_rejected;
   if (result.diverged != estimator::DivergenceReason::kNone) {
     recovering_ = true;
     last_divergence_ = result.diverged;
@@ -138,6 +152,8 @@ void OptimizerThread::Publish() {
   snapshot_.last_update_ms = last_ms_;
   snapshot_.max_update_ms = max_ms_;
   snapshot_.reinitializations = reinitializations_;
+  snapshot_.wheel_factors = wheel_factors_;
+  snapshot_.wheel_rejected = wheel_rejected_;
   snapshot_.recovering = recovering_;
   snapshot_.last_divergence = estimator::ToString(last_divergence_);
 }

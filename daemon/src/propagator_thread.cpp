@@ -62,6 +62,11 @@ void PropagatorThread::Handle(const ImuRaw& raw) {
   if (!sample) return;
   last_sample_t_ns_ = sample->t_ns;
   q_.imu_out->Push(*sample);
+  if (raw.has_gnss_pvt && q_.gnss_out != nullptr) {
+    const std::optional<GnssFix> fix = drivers::xsens::ToGnssFix(raw.gnss_pvt, sample->t_ns);
+    if (fix) q_.gnss_out->Push(*fix);
+    (fix ? gnss_fixes_ : gnss_unusable_)++;
+  }
   const std::optional<estimator::ImuRateOutput> out = propagator_.Add(*sample);
   if (!out) return;
   ImuRatePose pose;
@@ -84,6 +89,8 @@ void PropagatorThread::Publish() {
   a_poses_.store(poses_, kRelaxed);
   a_states_.store(states_, kRelaxed);
   a_jumps_.store(stage_.clock().jumps, kRelaxed);
+  a_gnss_fixes_.store(gnss_fixes_, kRelaxed);
+  a_gnss_unusable_.store(gnss_unusable_, kRelaxed);
   a_last_sample_t_ns_.store(last_sample_t_ns_, kRelaxed);
   a_offset_ns_.store(stage_.clock().offset_ns, kRelaxed);
   a_drift_ppm_.store(stage_.clock().drift_ppm, kRelaxed);
@@ -101,6 +108,8 @@ PropagatorCounters PropagatorThread::counters() const {
   c.clock_offset_ns = a_offset_ns_.load(kRelaxed);
   c.clock_drift_ppm = a_drift_ppm_.load(kRelaxed);
   c.last_sample_t_ns = a_last_sample_t_ns_.load(kRelaxed);
+  c.gnss_fixes = a_gnss_fixes_.load(kRelaxed);
+  c.gnss_unusable = a_gnss_unusable_.load(kRelaxed);
   return c;
 }
 

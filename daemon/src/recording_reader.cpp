@@ -19,28 +19,6 @@ namespace xs = drivers::xsens;
 
 namespace {
 
-/// A usable GnssPvtData item as a fix at host time `t_ns`. Units (u-blox NAV-PVT): lat/lon
-/// 1e-7 deg, height and accuracies mm. Usable: fixType 2 (2-D), 3 (3-D) or 4 (GNSS + dead
-/// reckoning), not 0 (none), 1 (dead reckoning only) or 5 (time only); flags bit 0 (gnssFixOK)
-/// set; a position on the Earth (height −2…+50 km); accuracies in (0, 1 km].
-std::optional<GnssFix> ToGnssFix(const xs::XsensGnssPvt& p, int64_t t_ns) {
-  GnssFix f;
-  f.t_ns = t_ns;
-  f.lat_deg = p.lat_1e7deg * 1e-7;
-  f.lon_deg = p.lon_1e7deg * 1e-7;
-  f.height_m = p.height_mm * 1e-3;
-  f.h_acc_m = p.h_acc_mm * 1e-3;
-  f.v_acc_m = p.v_acc_mm * 1e-3;
-  f.fix_type = p.fix_type;
-  f.num_sv = p.num_sv;
-  const bool fix = p.fix_type >= 2 && p.fix_type <= 4 && (p.flags & 0x01) != 0;
-  const bool place = std::abs(f.lat_deg) <= 90.0 && std::abs(f.lon_deg) <= 180.0 &&
-                     f.height_m >= -2e3 && f.height_m <= 5e4;
-  const bool accuracy = f.h_acc_m > 0.0 && f.h_acc_m <= 1e3 && f.v_acc_m > 0.0 && f.v_acc_m <= 1e3;
-  if (!fix || !place || !accuracy) return std::nullopt;
-  return f;
-}
-
 /// `a` comes first when not after `b` (an absent time never does).
 bool NotAfter(const int64_t* a, const int64_t* b) {
   return a != nullptr && (b == nullptr || *a <= *b);
@@ -137,7 +115,7 @@ bool RecordingReader::ReadImu(const std::filesystem::path& dir,
         if (s) imu_.push_back(*s);
         if (!gnss || !m.gnss_pvt) continue;
         // The fix takes its message's IMU time; without one (a dropped sample) it has none.
-        const std::optional<GnssFix> fix = s ? ToGnssFix(*m.gnss_pvt, s->t_ns) : std::nullopt;
+        const std::optional<GnssFix> fix = s ? xs::ToGnssFix(*m.gnss_pvt, s->t_ns) : std::nullopt;
         if (fix) gnss_.push_back(*fix);
         (fix ? stats_.gnss_fixes : stats_.gnss_rejected)++;
       }

@@ -26,6 +26,9 @@ struct Runtime::Queues {
   // ~50 s of keyframes at 5/s: a loop solve of tens of ms never drops one.
   SpscQueue<KeyframePtr> keyframes{"keyframes", "optimizer", "loop_closure", 256};
   SpscQueue<MapCorrection> corrections{"corrections", "loop_closure", "publisher", 16};
+  // GNSS fixes come at 4 Hz, wheel odometry at ~50 Hz: seconds of slack each.
+  SpscQueue<GnssFix> gnss{"gnss_fixes", "propagator", "loop_closure", 64};
+  SpscQueue<WheelOdometry> wheel{"wheel_odometry", "can_rx", "optimizer", 512};
   Doorbell optimizer_wake;  // rung by lidar and imu
   Doorbell publisher_wake;  // rung by poses and odometry
 
@@ -38,7 +41,8 @@ struct Runtime::Queues {
 
   std::vector<QueueCounters> Counters() const {
     return {lidar.Counters(),    imu_raw.Counters(), imu.Counters(),       states.Counters(),
-            odometry.Counters(), poses.Counters(),   keyframes.Counters(), corrections.Counters()};
+            odometry.Counters(), poses.Counters(),   keyframes.Counters(), corrections.Counters(),
+            gnss.Counters(),     wheel.Counters()};
   }
 };
 
@@ -87,10 +91,6 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
     rt->imu_rx_->RecordTo(&rt->recorder_->serial_queue());
     if (rt->can_rx_) rt->can_rx_->RecordTo(&rt->recorder_->can_queue());
   }
-  estimator::ImuRatePropagatorConfig propagator;
-  propagator.gravity_mps2 = config.estimator.gravity_mps2;
-  rt->propagator_ = std::make_unique<PropagatorThread>(
-      config.imu.baud, propagator, PropagatorQueues{&q.imu_raw, &q.states, &q.imu, &q.poses}, time);
   const EstimatorSetup setup = MakeEstimatorSetup(config, T_imu_lidar, ModeFromConfig(config));
   // Loop closure and localization need the window's keyframes (tightly coupled mode);
   // localizing in a saved map replaces loop closure.
@@ -100,7 +100,18 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
     return nullptr;
   }
   const bool localize = config.map.localize;
-  const bool loops = config.loop_closure.enabled && tight && !localize;
+  // The pose graph runs for loop detection, for GNSS, or both.
+  const bool gnss = config.loop_closure.gnss.enabled && tight && !localize;
+  const bool loops = (config.loop_closure.enabled || gnss) && tight && !localize;
+  if (config.loop_closure.gnss.enabled && !gnss)
+    spdlog::warn("GNSS: needs estimator.mode tightly-coupled and no localization; off");
+  estimator::ImuRatePropagatorConfig propagator;
+  propagator.gravity_mps2 = config.estimator.gravity_mps2;
+  rt->propagator_ = std::make_unique<PropagatorThread>(
+      config.imu.baud, propagator,
+      PropagatorQueues{&q.imu_raw, &q.states, &q.imu, &q.poses, gnss ? &q.gnss : nullptr}, time);
+  const bool wheel = setup.window.wheel.enabled && tight && rt->can_rx_ != nullptr;
+  if (wheel) rt->can_rx_->SendTo(&q.wheel);
   if (config.loop_closure.enabled && !tight)
     spdlog::warn("loop closure: needs estimator.mode tightly-coupled; off");
   if (config.loop_closure.enabled && localize)
@@ -109,11 +120,12 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   rt->optimizer_ = std::make_unique<OptimizerThread>(
       config.lidar, setup,
       OptimizerQueues{&q.lidar, &q.imu, &q.states, &q.odometry, &q.optimizer_wake,
-                      keyframes ? &q.keyframes : nullptr},
+                      keyframes ? &q.keyframes : nullptr, wheel ? &q.wheel : nullptr},
       time, SecToNs(config.realtime.max_sweep_lag_s));
   if (loops) {
     rt->loop_closure_ = std::make_unique<LoopClosureThread>(
-        config.loop_closure, LoopClosureQueues{&q.keyframes, &q.corrections});
+        config.loop_closure,
+        LoopClosureQueues{&q.keyframes, &q.corrections, gnss ? &q.gnss : nullptr});
   }
   if (localize && !rt->LoadLocalization(error)) return nullptr;
   const FrameIds frames;

@@ -1,5 +1,6 @@
 // The can_rx thread over a socketpair (the test kernel has no CAN): frames are counted, wheel
-// odometry decoded, bad records counted, and the recorder writes them in candump format.
+// odometry decoded (and sent to the optimizer), bad records counted, and the recorder writes
+// them in candump format.
 
 #include "swlio/daemon/can_rx.h"
 
@@ -59,6 +60,8 @@ TEST(CanRx, CountsDecodesAndRecordsFrames) {
   auto recorder = Recorder::Create(dir, config, Eigen::Isometry3d::Identity(), {}, &error);
   ASSERT_NE(recorder, nullptr) << error;
   rx->RecordTo(&recorder->can_queue());
+  SpscQueue<WheelOdometry> wheel{"wheel_odometry", "can_rx", "test", 64};
+  rx->SendTo(&wheel);
   std::atomic<bool> stop{false}, stop_recorder{false};
   std::thread reader([&] { rx->Run(stop, {}); });
   std::thread writer([&] { recorder->Run(stop_recorder, {}); });
@@ -96,6 +99,16 @@ TEST(CanRx, CountsDecodesAndRecordsFrames) {
   }
   EXPECT_EQ(lines, 50u);
   EXPECT_EQ(recorder->counters().write_errors, 0u);
+  // Every decoded sample also went to the optimizer's queue: v = (1 + 2) / 2, ω = (2 − 1) / b.
+  WheelOdometry w;
+  size_t samples = 0;
+  while (wheel.Pop(&w)) {
+    ++samples;
+    EXPECT_NEAR(w.linear_velocity_mps, 1.5, 1e-9);
+    EXPECT_NEAR(w.yaw_rate_radps, 1.0 / WheelLayout().track_width_m, 1e-9);
+    EXPECT_GT(w.t_ns, 0);
+  }
+  EXPECT_EQ(samples, 50u);
 }
 
 }  // namespace

@@ -21,7 +21,13 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   drive.record_dir = ::swlio::test::MakeTempDir("runtime") / "recording";
   // With loop closure: its thread takes the window's keyframes (no place is seen twice on this
   // drive, so no loop) and the health reports it.
-  drive.adjust_config = [](DaemonConfig* c) { c->loop_closure.enabled = true; };
+  // GNSS too (the simulated MTi-G-710 sends GnssPvtData at 4 Hz over the pty): the fixes go
+  // imu_rx → propagator → loop closure; 9 m are enough to align with a 5 m span.
+  drive.adjust_config = [](DaemonConfig* c) {
+    c->loop_closure.enabled = true;
+    c->loop_closure.gnss.enabled = true;
+    c->loop_closure.gnss.align_min_distance_m = 5.0;
+  };
   const test::LiveDriveResult r = test::RunLiveDrive(drive);
   ASSERT_TRUE(r.sim_ok) << r.error;
   const HealthSnapshot& s = r.final;
@@ -35,6 +41,15 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
     EXPECT_GE(s.loop_closure.nodes, 6u);
   }
   EXPECT_EQ(s.loop_closure.accepted, 0u);
+  // ~11 s of fixes at 4 Hz after the first at 1 s; one per second is used.
+  EXPECT_TRUE(s.loop_closure.gnss);
+  EXPECT_GE(s.propagator.gnss_fixes, 30u);
+  EXPECT_EQ(s.propagator.gnss_unusable, 0u);
+  EXPECT_EQ(s.loop_closure.gnss_fixes, s.propagator.gnss_fixes);
+  if (!kSanitized) {
+    EXPECT_TRUE(s.loop_closure.gnss_aligned);
+    EXPECT_GE(s.loop_closure.gnss_edges, 3u);
+  }
   bool loop_status = false;
   for (const auto& h : r.published_health)
     for (const auto& st : h.msg.status)

@@ -319,6 +319,60 @@ TEST_F(RunOnShortDrive, LoopClosureWritesItsOutputsAndLeavesAStraightDriveAlone)
   EXPECT_NE(out.find("map file"), std::string::npos) << out;
 }
 
+// Wheel odometry (the recording's can.log, differential drive with the simulator's wheel-radius
+// errors) as the window's velocity factor: every tracked sweep gets one and the drive is
+// followed at least as well as without (bench/README.md, "Wheel odometry and GNSS").
+TEST_F(RunOnShortDrive, WheelOdometryFactorOnEverySweep) {
+  const fs::path dir = *out_ / "wheel";
+  fs::create_directories(dir);
+  const std::string run = tool_.string() + " " + dir_->string() + " --loop-closure off --out ";
+  int code = 0;
+  std::string out = test::RunCommand(run + (dir / "off.tum").string() + " 2>/dev/null", &code);
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_EQ(out.find("\"wheel\""), std::string::npos) << "off by default: " << out;
+  out = test::RunCommand(run + (dir / "on.tum").string() + " --wheel on 2>/dev/null", &code);
+  ASSERT_EQ(code, 0) << out;
+  const double factors = NumberAfterKey(out, "\"factors\": ");
+  EXPECT_GE(factors, 200.0) << out;
+  EXPECT_EQ(NumberAfterKey(out, "\"rejected\": "), 0.0) << out;
+  const double off = Ape(dir / "off.tum").stats.rmse, on = Ape(dir / "on.tum").stats.rmse;
+  std::cout << "[ wheel ] APE RMSE off " << off << " m, on " << on << " m\n";
+  EXPECT_LT(on, 1.2 * off + 0.002);
+  EXPECT_LT(on, 0.05);
+}
+
+// GNSS (GnssPvtData in imu.xbus, Gauss-Markov errors of σ 0.8 m horizontal / 1.5 m vertical):
+// with --gnss on the graph runs without loop detection, aligns its map frame to the local ENU
+// frame once the fixes span 20 m, and --out-enu is georeferenced: compared to the truth (the
+// simulator's world is that ENU frame) with no alignment at all, its error is the receiver's.
+TEST_F(RunOnShortDrive, GnssGeoreferencesTheTrajectory) {
+  const fs::path dir = *out_ / "gnss";
+  fs::create_directories(dir);
+  int code = 0;
+  const std::string out =
+      test::RunCommand(tool_.string() + " " + dir_->string() +
+                           " --loop-closure off --gnss on --out " + (dir / "online.tum").string() +
+                           " --out-enu " + (dir / "enu.tum").string() + " 2>/dev/null",
+                       &code);
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("\"aligned\": true"), std::string::npos) << out;
+  EXPECT_EQ(NumberAfterKey(out, "\"attempts\": "), 0.0) << "no loop detection: " << out;
+  EXPECT_GE(NumberAfterKey(out, "\"edges\": "), 15.0) << out;
+  eval::ApeOptions none;
+  none.alignment = eval::Alignment::kNone;
+  const eval::Evaluation geo = eval::EvaluateApe(
+      eval::LoadPaired(*dir_ / "groundtruth.tum", dir / "enu.tum", eval::Format::kTum), none);
+  std::cout << "[ gnss ] georeferenced APE RMSE (no alignment) " << geo.stats.rmse << " m\n";
+  EXPECT_GE(geo.errors.size(), 200u);
+  EXPECT_LT(geo.stats.rmse, 3.0);
+  // Without GNSS the odometry's frame is its start's: no alignment leaves it far off.
+  const eval::Evaluation odom = eval::EvaluateApe(
+      eval::LoadPaired(*dir_ / "groundtruth.tum", dir / "online.tum", eval::Format::kTum), none);
+  EXPECT_GT(odom.stats.rmse, geo.stats.rmse);
+  // The local shape stays the odometry's.
+  EXPECT_LT(Ape(dir / "enu.tum").stats.rmse, 0.1);
+}
+
 /// The number after `key` in `out`'s last line that has it (NaN if none).
 double LastNumberAfter(const std::string& out, const std::string& key) {
   const size_t at = out.rfind(key);

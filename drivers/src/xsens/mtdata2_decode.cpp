@@ -230,4 +230,22 @@ std::optional<ImuSample> ToImuSample(const MtData2Sample& sample, int64_t host_t
   return imu;
 }
 
+std::optional<GnssFix> ToGnssFix(const XsensGnssPvt& p, int64_t host_t_ns) {
+  GnssFix f;
+  f.t_ns = host_t_ns;
+  f.lat_deg = p.lat_1e7deg * 1e-7;
+  f.lon_deg = p.lon_1e7deg * 1e-7;
+  f.height_m = p.height_mm * 1e-3;
+  f.h_acc_m = p.h_acc_mm * 1e-3;
+  f.v_acc_m = p.v_acc_mm * 1e-3;
+  f.fix_type = p.fix_type;
+  f.num_sv = p.num_sv;
+  const bool fix = p.fix_type >= 2 && p.fix_type <= 4 && (p.flags & 0x01) != 0;
+  const bool place = std::abs(f.lat_deg) <= 90.0 && std::abs(f.lon_deg) <= 180.0 &&
+                     f.height_m >= -2e3 && f.height_m <= 5e4;
+  const bool accuracy = f.h_acc_m > 0.0 && f.h_acc_m <= 1e3 && f.v_acc_m > 0.0 && f.v_acc_m <= 1e3;
+  if (!fix || !place || !accuracy) return std::nullopt;
+  return f;
+}
+
 }  // namespace swlio::drivers::xsens

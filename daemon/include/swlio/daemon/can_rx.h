@@ -2,9 +2,9 @@
 /// @file
 /// The can_rx thread (when `can.enabled`): reads the chassis' SocketCAN frames (CanReader: the
 /// kernel filters them to the layout's identifiers and stamps them), decodes wheel odometry
-/// (WheelOdomDecoder) for the health's rate and counters, and pushes each frame to the
-/// recorder. The estimator does not use wheel odometry yet (a factor is issue 8's), so nothing
-/// goes to the optimizer. No allocation after construction.
+/// (WheelOdomDecoder) for the health's rate and counters, pushes each frame to the recorder
+/// and, when the window's wheel factor is on (estimator.window.wheel), each decoded sample to
+/// the optimizer. No allocation after construction.
 
 #include <array>
 #include <atomic>
@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 
+#include "swlio/core/types.h"
 #include "swlio/daemon/spsc_queue.h"
 #include "swlio/daemon/watchdog.h"
 #include "swlio/drivers/can_config.h"
@@ -39,6 +40,8 @@ class CanRx {
                                        std::string* error);
   /// Also pushes every frame to `record` (the recorder's queue); call before Run.
   void RecordTo(SpscQueue<drivers::CanRxFrame>* record) { record_ = record; }
+  /// Also pushes every decoded odometry sample to `wheel` (the optimizer's); call before Run.
+  void SendTo(SpscQueue<WheelOdometry>* wheel) { wheel_ = wheel; }
   /// Reads until `stop` is set (or the peer closes), beating at least every 100 ms.
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   CanRxCounters counters() const;
@@ -52,6 +55,7 @@ class CanRx {
   drivers::CanReader reader_;
   drivers::WheelOdomDecoder decoder_;
   SpscQueue<drivers::CanRxFrame>* record_ = nullptr;
+  SpscQueue<WheelOdometry>* wheel_ = nullptr;
   std::array<drivers::CanRxFrame, 32> frames_{};
   std::atomic<uint64_t> frames_n_{0}, samples_{0}, unknown_{0}, bad_{0}, errors_{0};
   std::atomic<bool> closed_{false};

@@ -24,6 +24,9 @@ struct ImuRaw {
   bool has_inertial = false;  ///< acceleration and rate of turn both present
   Eigen::Vector3d acc_mps2 = Eigen::Vector3d::Zero();
   Eigen::Vector3d gyro_radps = Eigen::Vector3d::Zero();
+  /// The frame's GnssPvtData item (MTi-G-710 GNSS), mapped with the sample's time downstream.
+  bool has_gnss_pvt = false;
+  drivers::xsens::XsensGnssPvt gnss_pvt;
 };
 
 /// The fields ImuStage needs from a decoded sample.

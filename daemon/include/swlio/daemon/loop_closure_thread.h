@@ -7,6 +7,9 @@
 /// keyframe that finds the queue full is dropped and counted (the graph then has a longer
 /// odometry edge, nothing worse). With a MapPublisher, the corrected map cloud is rebuilt and
 /// published here after a correction, at most once per its period (map_publisher.h).
+/// GNSS (estimator.loop_closure.gnss): the propagator's fixes go into the graph too
+/// (LoopClosure::AddGnss); their corrections reach the publisher the same way. With loop
+/// detection off (`enabled: false`) the thread runs for GNSS alone.
 
 #include <atomic>
 #include <cstdint>
@@ -23,6 +26,7 @@ namespace swlio::daemon {
 struct LoopClosureQueues {
   SpscQueue<KeyframePtr>* keyframes_in = nullptr;       ///< optimizer → loop_closure
   SpscQueue<MapCorrection>* corrections_out = nullptr;  ///< loop_closure → publisher
+  SpscQueue<GnssFix>* gnss_in = nullptr;                ///< propagator → loop_closure (optional)
 };
 
 struct LoopClosureCounters {
@@ -38,6 +42,13 @@ struct LoopClosureCounters {
   /// The current correction's size (|translation| and rotation angle of T_map_odom).
   double correction_m = 0.0;
   double correction_rad = 0.0;
+  bool gnss = false;               ///< GNSS factors configured
+  uint64_t gnss_fixes = 0;         ///< taken from the propagator
+  uint64_t gnss_edges = 0;         ///< in the graph
+  uint64_t gnss_switched_off = 0;  ///< outliers (multipath) switched off
+  uint64_t gnss_rejected = 0;      ///< gated: fix type, accuracy, rate, no odometry around it
+  bool gnss_aligned = false;       ///< the map-to-ENU alignment is estimated
+  double enu_yaw_rad = 0.0;        ///< of the map frame in ENU
 };
 
 class LoopClosureThread {
@@ -54,6 +65,11 @@ class LoopClosureThread {
 
  private:
   void Handle(const estimator::KeyframeCloud& keyframe);
+  /// The fixes queued by the propagator into the graph.
+  void DrainGnss();
+  /// A solved graph's new correction to the publisher (and the map cloud).
+  void ApplyCorrection(const estimator::LoopClosureUpdate& u, int64_t t_ns);
+  void PublishGnssCounters();
   /// Publishes the corrected map when a correction is pending and the period is over.
   void PublishMapIfDue(const Watchdog::Handle& beat);
 
@@ -63,6 +79,10 @@ class LoopClosureThread {
   std::atomic<uint64_t> keyframes_{0}, nodes_{0}, attempts_{0}, accepted_{0}, rejected_{0},
       switched_off_{0};
   std::atomic<double> last_ms_{0.0}, max_ms_{0.0}, correction_m_{0.0}, correction_rad_{0.0};
+  std::atomic<uint64_t> gnss_fixes_{0}, gnss_edges_{0}, gnss_switched_off_{0}, gnss_rejected_{0};
+  std::atomic<bool> gnss_aligned_{false};
+  std::atomic<double> enu_yaw_rad_{0.0};
+  const bool gnss_;
 };
 
 }  // namespace swlio::daemon

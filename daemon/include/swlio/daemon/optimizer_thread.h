@@ -33,6 +33,7 @@ struct OptimizerQueues {
   SpscQueue<SweepEstimate>* odometry_out = nullptr;  ///< optimizer → publisher
   Doorbell* wake = nullptr;                          ///< rung by lidar_in and imu_in
   SpscQueue<KeyframePtr>* keyframes_out = nullptr;   ///< optimizer → loop_closure (optional)
+  SpscQueue<WheelOdometry>* wheel_in = nullptr;      ///< can_rx → optimizer (optional)
 };
 
 struct OptimizerCounters {
@@ -46,6 +47,8 @@ struct OptimizerCounters {
   int degenerate_directions = 0;
   double last_update_ms = 0.0;
   double max_update_ms = 0.0;      ///< since start
+  uint64_t wheel_factors = 0;      ///< window frames with a wheel velocity factor
+  uint64_t wheel_rejected = 0;     ///< wheel measurements the slip gate refused
   uint64_t reinitializations = 0;  ///< the estimator found its state diverged and restarted
   bool recovering = false;         ///< re-initializing after the last one
   /// How long the IMU alone has carried the state (IMU samples newer than the last processed
@@ -77,6 +80,7 @@ class OptimizerThread {
   void OnResult(const Scan& scan, const estimator::WindowResult& result);
   TrackingState Classify(const estimator::OdometryResult& r);
   void DrainImu();
+  void DrainWheel();
   void DrainLidar();
   int64_t LastRxOf(int64_t t_end_ns) const;
   void Publish();
@@ -94,6 +98,7 @@ class OptimizerThread {
   TrackingState tracking_ = TrackingState::kInitializing;
   bool recovering_ = false;  ///< re-initializing after a divergence: lost until tracked again
   uint64_t reinitializations_ = 0;
+  uint64_t wheel_factors_ = 0, wheel_rejected_ = 0;
   estimator::DivergenceReason last_divergence_ = estimator::DivergenceReason::kNone;
   int degenerate_ = 0;
   int64_t newest_imu_t_ns_ = 0;  ///< daemon time

@@ -27,6 +27,8 @@ struct PropagatorQueues {
   SpscQueue<SweepEstimate>* states_in = nullptr;  ///< optimizer → propagator
   SpscQueue<ImuSample>* imu_out = nullptr;        ///< propagator → optimizer
   SpscQueue<ImuRatePose>* poses_out = nullptr;    ///< propagator → publisher
+  /// propagator → loop_closure: usable GNSS fixes at their IMU sample's host time (optional).
+  SpscQueue<GnssFix>* gnss_out = nullptr;
 };
 
 struct PropagatorCounters {
@@ -39,6 +41,8 @@ struct PropagatorCounters {
   double clock_offset_ns = 0.0;  ///< host − sensor (SampleTimeFine)
   double clock_drift_ppm = 0.0;
   int64_t last_sample_t_ns = 0;  ///< host time of the newest sample
+  uint64_t gnss_fixes = 0;       ///< usable GnssPvtData items passed on
+  uint64_t gnss_unusable = 0;    ///< items without a fix (or with impossible values)
 };
 
 class PropagatorThread {
@@ -63,10 +67,11 @@ class PropagatorThread {
   estimator::StateCovariance covariance_;
   uint64_t poses_ = 0;
   uint64_t states_ = 0;
+  uint64_t gnss_fixes_ = 0, gnss_unusable_ = 0;
   int64_t last_sample_t_ns_ = 0;
   // The snapshot health reads (relaxed atomics; fields may be from adjacent updates).
   std::atomic<uint64_t> a_samples_{0}, a_dropped_{0}, a_invalid_{0}, a_poses_{0}, a_states_{0},
-      a_jumps_{0};
+      a_jumps_{0}, a_gnss_fixes_{0}, a_gnss_unusable_{0};
   std::atomic<int64_t> a_last_sample_t_ns_{0};
   std::atomic<double> a_offset_ns_{0.0}, a_drift_ppm_{0.0};
 };

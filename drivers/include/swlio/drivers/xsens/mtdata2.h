@@ -182,4 +182,10 @@ Eigen::Vector3d XsensVectorToEnu(const XsensReal& item);
 /// with the host receive time; nullopt when either is missing.
 std::optional<ImuSample> ToImuSample(const MtData2Sample& sample, int64_t host_t_ns);
 
+/// A usable GnssPvtData item as a fix at host time `host_t_ns`. Units (u-blox NAV-PVT): lat/lon
+/// 1e-7 deg, height and accuracies mm. Usable: fixType 2 (2-D), 3 (3-D) or 4 (GNSS + dead
+/// reckoning), not 0 (none), 1 (dead reckoning only) or 5 (time only); flags bit 0 (gnssFixOK)
+/// set; a position on the Earth (height −2…+50 km); accuracies in (0, 1 km]. Else nullopt.
+std::optional<GnssFix> ToGnssFix(const XsensGnssPvt& pvt, int64_t host_t_ns);
+
 }  // namespace swlio::drivers::xsens
