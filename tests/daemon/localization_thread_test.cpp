@@ -11,28 +11,14 @@
 #include <thread>
 
 #include "box_yard.h"
+#include "box_yard_map.h"
 #include "swlio/daemon/health.h"
 #include "swlio/estimator/keyframe_descriptor.h"
 
 namespace swlio::daemon {
 namespace {
 
-estimator::SavedMap BoxYardMap(const test::Scene& scene) {
-  const estimator::ScanContextConfig d;
-  estimator::SavedMap map;
-  map.descriptor_rings = d.rings;
-  map.descriptor_sectors = d.sectors;
-  map.descriptor_max_range_m = d.max_range_m;
-  map.descriptor_min_range_m = d.min_range_m;
-  map.descriptor_height_offset_m = d.height_offset_m;
-  const std::vector<Eigen::Isometry3d> truth = test::RectangleDrive(0.0);
-  for (size_t k = 0; k < truth.size(); k += 2) {
-    const estimator::KeyframeCloud kf = test::Cut(scene, static_cast<int64_t>(k), truth[k]);
-    map.nodes.push_back({kf.t_ns, truth[k], kf.T_imu_lidar, kf.planes_lidar, kf.edges_lidar,
-                         estimator::KeyframeDescriptor(d, kf).cells});
-  }
-  return map;
-}
+using test::BoxYardMap;
 
 void WaitForKeyframes(const LocalizationThread& t, uint64_t n) {
   for (int i = 0; i < 1200 && t.counters().keyframes < n; ++i)  // ≤ 120 s under sanitizers

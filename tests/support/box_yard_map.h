@@ -1,0 +1,29 @@
+#pragma once
+/// @file
+/// Test helper: a saved map of the synthetic box yard (box_yard.h), every second keyframe of the
+/// rectangle drive at its true pose, with its descriptor (the localization and map tests).
+
+#include "box_yard.h"
+#include "swlio/estimator/keyframe_descriptor.h"
+#include "swlio/estimator/saved_map.h"
+
+namespace swlio::test {
+
+inline estimator::SavedMap BoxYardMap(const Scene& scene) {
+  const estimator::ScanContextConfig d;
+  estimator::SavedMap map;
+  map.descriptor_rings = d.rings;
+  map.descriptor_sectors = d.sectors;
+  map.descriptor_max_range_m = d.max_range_m;
+  map.descriptor_min_range_m = d.min_range_m;
+  map.descriptor_height_offset_m = d.height_offset_m;
+  const std::vector<Eigen::Isometry3d> truth = RectangleDrive(0.0);
+  for (size_t k = 0; k < truth.size(); k += 2) {
+    const estimator::KeyframeCloud kf = Cut(scene, static_cast<int64_t>(k), truth[k]);
+    map.nodes.push_back({kf.t_ns, truth[k], kf.T_imu_lidar, kf.planes_lidar, kf.edges_lidar,
+                         estimator::KeyframeDescriptor(d, kf).cells});
+  }
+  return map;
+}
+
+}  // namespace swlio::test
