@@ -373,9 +373,12 @@ void Bind(Section s, estimator::GnssConfig& c) {
   s.Get("sigma_scale", c.sigma_scale);
   s.Get("min_sigma_m", c.min_sigma_m);
   s.Get("min_interval_s", c.min_interval_s);
+  s.Get("correlation_time_s", c.correlation_time_s);
   s.Get("max_interpolation_s", c.max_interpolation_s);
   s.Get("align_min_distance_m", c.align_min_distance_m);
   s.Get("optimize_every_fixes", c.optimize_every_fixes);
+  s.Get("gate_sigmas", c.gate_sigmas);
+  s.Get("gate_reset_after", c.gate_reset_after);
   s.Get("kernel", c.kernel);
   s.Get("max_chi2", c.max_chi2);
   s.Finish();

@@ -96,7 +96,8 @@ void LoopClosureThread::PublishGnssCounters() {
   const estimator::LoopClosureStats& st = closure_.stats();
   gnss_edges_.store(st.gnss_edges, kRelaxed);
   gnss_switched_off_.store(st.gnss_switched_off, kRelaxed);
-  gnss_rejected_.store(st.gnss.bad_quality + st.gnss.rate_limited + st.gnss.unplaced, kRelaxed);
+  gnss_rejected_.store(
+      st.gnss.bad_quality + st.gnss.rate_limited + st.gnss.unplaced + st.gnss_gated, kRelaxed);
   if (const auto T = closure_.T_enu_map()) {
     gnss_aligned_.store(true, kRelaxed);
     enu_yaw_rad_.store(std::atan2(T->linear()(1, 0), T->linear()(0, 0)), kRelaxed);

@@ -26,7 +26,10 @@ Eigen::Isometry3d Interpolate(const Eigen::Isometry3d& a, const Eigen::Isometry3
 
 }  // namespace
 
-GnssAssociator::GnssAssociator(const GnssConfig& config) : config_(config) {
+GnssAssociator::GnssAssociator(const GnssConfig& config)
+    : config_(config),
+      inflation_(std::sqrt(
+          std::max(1.0, config.correlation_time_s / std::max(config.min_interval_s, 1e-3)))) {
   if (config_.has_origin()) {
     origin_ = Geodetic{config_.origin_lat_deg, config_.origin_lon_deg, config_.origin_height_m};
     enu_.emplace(*origin_);
@@ -62,8 +65,10 @@ void GnssAssociator::AddFix(const GnssFix& fix) {
   }
   taken_any_ = true;
   last_taken_t_ns_ = fix.t_ns;
-  const double sigma_h = std::max(config_.min_sigma_m, config_.sigma_scale * fix.h_acc_m);
-  const double sigma_v = std::max(config_.min_sigma_m, config_.sigma_scale * fix.v_acc_m);
+  const double sigma_h =
+      std::max(config_.min_sigma_m, config_.sigma_scale * fix.h_acc_m) * inflation_;
+  const double sigma_v =
+      std::max(config_.min_sigma_m, config_.sigma_scale * fix.v_acc_m) * inflation_;
   pending_.push_back({fix.t_ns, enu_->ToEnu(g), sigma_h, sigma_v});
   if (pending_.size() > kMaxPending) {  // the odometry stopped (standing robot, lost LiDAR)
     pending_.pop_front();
@@ -112,6 +117,7 @@ std::vector<GnssObservation> GnssAssociator::Take(std::span<const KeyframeCloud>
     o.fix_enu_m = p.enu_m;
     o.sigma_h_m = p.sigma_h_m;
     o.sigma_v_m = p.sigma_v_m;
+    o.inflation = inflation_;
     out.push_back(o);
     ++stats_.observations;
   }

@@ -1,6 +1,7 @@
 #include "swlio/estimator/loop_closure.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "swlio/estimator/keyframe_descriptor.h"  // KeyframeDescriptor
 
@@ -116,6 +117,7 @@ void LoopClosure::ApplyGnss(LoopClosureUpdate* update) {
   stats_.gnss = gnss_->stats();
   if (!graph_.has_enu_alignment() && !TryAlignGnss()) return;
   for (const GnssObservation& o : gnss_waiting_) {
+    if (!PassesGnssGate(o)) continue;
     if (graph_.AddGnssEdge(o.node, o.antenna_imu_m, o.fix_enu_m, o.sigma_h_m, o.sigma_v_m)) {
       ++update->gnss_edges_added;
       ++gnss_since_optimize_;
@@ -124,6 +126,34 @@ void LoopClosure::ApplyGnss(LoopClosureUpdate* update) {
   gnss_waiting_.clear();
   stats_.gnss_edges = graph_.gnss_edges();
   stats_.gnss_aligned = true;
+}
+
+bool LoopClosure::PassesGnssGate(const GnssObservation& o) {
+  // Where the graph has the antenna now (a node newer than the last solve sits at the current
+  // correction times its odometry, as the graph's initial value does).
+  const Eigen::Vector3d predicted = graph_.T_enu_map() * (graph_.pose(o.node) * o.antenna_imu_m);
+  const Eigen::Vector3d d = o.fix_enu_m - predicted;
+  const double sh = o.sigma_h_m / o.inflation, sv = o.sigma_v_m / o.inflation;
+  const double distance =
+      std::sqrt(d.head<2>().squaredNorm() / (sh * sh) + d.z() * d.z() / (sv * sv));
+  std::vector<double> recent(gnss_innovations_.begin(), gnss_innovations_.end());
+  double median = 1.0;
+  if (!recent.empty()) {
+    std::nth_element(recent.begin(), recent.begin() + static_cast<long>(recent.size() / 2),
+                     recent.end());
+    median = std::max(1.0, recent[recent.size() / 2]);
+  }
+  const bool pass = distance <= config_.gnss.gate_sigmas * median ||
+                    gnss_refused_in_a_row_ >= config_.gnss.gate_reset_after;
+  if (!pass) {
+    ++gnss_refused_in_a_row_;
+    ++stats_.gnss_gated;
+    return false;
+  }
+  gnss_refused_in_a_row_ = 0;
+  gnss_innovations_.push_back(distance);
+  if (gnss_innovations_.size() > 30) gnss_innovations_.pop_front();
+  return true;
 }
 
 bool LoopClosure::TryAlignGnss() {

@@ -135,11 +135,12 @@ std::string LoopClosureRun::SummaryJson() const {
   const double yaw = T ? std::atan2(T->linear()(1, 0), T->linear()(0, 0)) : 0.0;
   std::snprintf(json, sizeof json,
                 ", \"gnss\": {\"fixes\": %zu, \"bad_quality\": %zu, \"rate_limited\": %zu, "
-                "\"unplaced\": %zu, \"edges\": %zu, \"switched_off\": %zu, \"aligned\": %s, "
+                "\"unplaced\": %zu, \"gated\": %zu, \"edges\": %zu, \"switched_off\": %zu, "
+                "\"aligned\": %s, "
                 "\"enu_yaw_rad\": %.4f, \"optimize_ms\": [%.2f, %.2f, %.2f]}",
                 s.gnss.fixes, s.gnss.bad_quality, s.gnss.rate_limited, s.gnss.unplaced,
-                s.gnss_edges, s.gnss_switched_off, T ? "true" : "false", yaw, gnss[0], gnss[1],
-                gnss[2]);
+                s.gnss_gated, s.gnss_edges, s.gnss_switched_off, T ? "true" : "false", yaw, gnss[0],
+                gnss[1], gnss[2]);
   return out + json;
 }
 

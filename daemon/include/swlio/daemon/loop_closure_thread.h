@@ -46,7 +46,7 @@ struct LoopClosureCounters {
   uint64_t gnss_fixes = 0;         ///< taken from the propagator
   uint64_t gnss_edges = 0;         ///< in the graph
   uint64_t gnss_switched_off = 0;  ///< outliers (multipath) switched off
-  uint64_t gnss_rejected = 0;      ///< gated: fix type, accuracy, rate, no odometry around it
+  uint64_t gnss_rejected = 0;      ///< fix type, accuracy, rate, no odometry around it, innovation
   bool gnss_aligned = false;       ///< the map-to-ENU alignment is estimated
   double enu_yaw_rad = 0.0;        ///< of the map frame in ENU
 };

@@ -29,6 +29,9 @@ struct GnssObservation {
   Eigen::Vector3d fix_enu_m = Eigen::Vector3d::Zero();
   double sigma_h_m = 1.0;
   double sigma_v_m = 1.0;
+  /// σ's inflation for the errors' correlation (gnss_config.h); the innovation gate undoes it:
+  /// a fix is judged against the receiver's own accuracy.
+  double inflation = 1.0;
 };
 
 struct GnssStats {
@@ -66,6 +69,7 @@ class GnssAssociator {
   std::optional<Eigen::Isometry3d> OdometryAt(int64_t t_ns) const;
 
   GnssConfig config_;
+  double inflation_ = 1.0;  ///< of σ, for the errors' correlation (gnss_config.h)
   std::optional<Geodetic> origin_;
   std::optional<LocalEnu> enu_;
   std::deque<Pending> pending_;

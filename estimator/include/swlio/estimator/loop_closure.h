@@ -22,6 +22,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -63,6 +64,7 @@ struct LoopClosureStats {
   GnssStats gnss;
   size_t gnss_edges = 0;
   size_t gnss_switched_off = 0;
+  size_t gnss_gated = 0;  ///< refused by the innovation gate (gnss_config.h)
   bool gnss_aligned = false;
 };
 
@@ -119,6 +121,8 @@ class LoopClosure {
   void ApplyGnss(LoopClosureUpdate* update);
   /// Fits the map-to-ENU alignment from the waiting observations once they span enough.
   bool TryAlignGnss();
+  /// The innovation gate (GnssConfig::gate_sigmas); records the innovation of a fix it takes.
+  bool PassesGnssGate(const GnssObservation& o);
 
   LoopClosureConfig config_;
   PoseGraph graph_;
@@ -135,6 +139,8 @@ class LoopClosure {
   std::unique_ptr<GnssAssociator> gnss_;       ///< null unless gnss.enabled
   std::vector<GnssObservation> gnss_waiting_;  ///< before the alignment
   int gnss_since_optimize_ = 0;
+  std::deque<double> gnss_innovations_;  ///< of the last accepted fixes, receiver σ units
+  int gnss_refused_in_a_row_ = 0;
 };
 
 }  // namespace swlio::estimator
