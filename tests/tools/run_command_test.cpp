@@ -321,7 +321,8 @@ TEST_F(RunOnShortDrive, LoopClosureWritesItsOutputsAndLeavesAStraightDriveAlone)
 
 // Wheel odometry (the recording's can.log, differential drive with the simulator's wheel-radius
 // errors) as the window's velocity factor: every tracked sweep gets one and the drive is
-// followed at least as well as without (bench/README.md, "Wheel odometry and GNSS").
+// followed as well as without, within 20 % (on 25 m the LiDAR alone is at 1.4 cm; the wheels
+// pay off on long drives: bench/README.md, "Wheel odometry and GNSS").
 TEST_F(RunOnShortDrive, WheelOdometryFactorOnEverySweep) {
   const fs::path dir = *out_ / "wheel";
   fs::create_directories(dir);

@@ -117,9 +117,9 @@ bool WriteWheelTruth(const std::vector<SimWheelSample>& samples,
   out << "t_ns,v_x_mps,yaw_rate_radps\n";
   char line[96];
   for (const SimWheelSample& s : samples) {
-    std::snprintf(line, sizeof line, "%lld,%.6f,%.6f\n",
-                  static_cast<long long>(host_start_ns + s.t_true_ns), s.v_base_mps.x(),
-                  s.yaw_rate_radps);
+    const int64_t t_ns = host_start_ns + s.t_true_ns;
+    std::snprintf(line, sizeof line, "%lld,%.6f,%.6f\n", static_cast<long long>(t_ns),
+                  s.v_base_mps.x(), s.yaw_rate_radps);
     out << line;
   }
   return static_cast<bool>(out);
