@@ -45,10 +45,9 @@ void LoopClosureThread::Handle(const estimator::KeyframeCloud& keyframe) {
   if (gnss_) PublishGnssCounters();
   if (!u.optimized) return;
   ApplyCorrection(u, keyframe.t_ns);
-  if (!u.attempted) return;  // solved for new GNSS edges
-  const Eigen::Isometry3d C = closure_.T_map_odom();
-  const double correction_m = C.translation().norm();
-  const double correction_rad = Eigen::AngleAxisd(C.rotation()).angle();
+  if (!u.attempted) return;                                  // solved for new GNSS edges
+  const double correction_m = correction_m_.load(kRelaxed);  // as ApplyCorrection stored it
+  const double correction_rad = correction_rad_.load(kRelaxed);
   spdlog::info(
       "loop closure: node {} matches node {} ({:.2f} m apart, fitness {:.2f}); graph of {} "
       "nodes solved in {:.1f} ms, correction now {:.2f} m / {:.2f} deg",

@@ -11,16 +11,39 @@ void PoseTrack::Add(int64_t t_ns, const Eigen::Isometry3d& T_world_imu) {
       {t_ns, Eigen::Quaterniond(T_world_imu.linear()).normalized(), T_world_imu.translation()});
 }
 
-bool PoseTrack::At(int64_t t_ns, Eigen::Isometry3d* T_world_imu) const {
-  if (samples_.empty() || t_ns < samples_.front().t_ns || t_ns > samples_.back().t_ns) {
-    return false;
-  }
+std::pair<const PoseTrack::Sample*, const PoseTrack::Sample*> PoseTrack::Around(
+    int64_t t_ns) const {
+  if (samples_.size() == 1) return {&samples_[0], &samples_[0]};  // t is that sample's time
   auto hi = std::lower_bound(samples_.begin(), samples_.end(), t_ns,
                              [](const Sample& s, int64_t t) { return s.t_ns < t; });
   if (hi == samples_.begin()) hi = std::next(hi);
   if (hi == samples_.end()) hi = std::prev(hi);
-  const Sample& b = *hi;
-  const Sample& a = *std::prev(hi);
+  return {&*std::prev(hi), &*hi};
+}
+
+bool PoseTrack::At(int64_t t_ns, int64_t max_gap_ns, Eigen::Isometry3d* T_world_imu) const {
+  if (samples_.empty() || t_ns < samples_.front().t_ns || t_ns > samples_.back().t_ns) {
+    return false;
+  }
+  const auto [a, b] = Around(t_ns);
+  const bool between = a->t_ns < t_ns && t_ns < b->t_ns;
+  if (between && b->t_ns - a->t_ns > max_gap_ns) return false;
+  return At(t_ns, T_world_imu);
+}
+
+void PoseTrack::DropBefore(int64_t t_ns) {
+  const auto first = std::lower_bound(samples_.begin(), samples_.end(), t_ns,
+                                      [](const Sample& s, int64_t t) { return s.t_ns < t; });
+  samples_.erase(samples_.begin(), first);
+}
+
+bool PoseTrack::At(int64_t t_ns, Eigen::Isometry3d* T_world_imu) const {
+  if (samples_.empty() || t_ns < samples_.front().t_ns || t_ns > samples_.back().t_ns) {
+    return false;
+  }
+  const auto [pa, pb] = Around(t_ns);
+  const Sample& a = *pa;
+  const Sample& b = *pb;
   const double span = static_cast<double>(b.t_ns - a.t_ns);
   const double u = span > 0.0 ? static_cast<double>(t_ns - a.t_ns) / span : 0.0;
   T_world_imu->setIdentity();

@@ -15,15 +15,6 @@ constexpr int64_t kKeepOdometryNs = 30 * kNsPerSec;
 /// Fixes waiting for the odometry, at most (10 min at 1 Hz).
 constexpr size_t kMaxPending = 600;
 
-Eigen::Isometry3d Interpolate(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double s) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = (1.0 - s) * a.translation() + s * b.translation();
-  T.linear() = Eigen::Quaterniond(a.rotation())
-                   .slerp(s, Eigen::Quaterniond(b.rotation()))
-                   .toRotationMatrix();
-  return T;
-}
-
 }  // namespace
 
 GnssAssociator::GnssAssociator(const GnssConfig& config)
@@ -77,35 +68,23 @@ void GnssAssociator::AddFix(const GnssFix& fix) {
 }
 
 void GnssAssociator::AddOdometry(int64_t t_ns, const Eigen::Isometry3d& T_odom_imu) {
-  if (!odometry_.empty() && t_ns <= odometry_.back().first) return;
-  odometry_.emplace_back(t_ns, T_odom_imu);
-  while (odometry_.front().first < t_ns - kKeepOdometryNs) odometry_.pop_front();
-}
-
-std::optional<Eigen::Isometry3d> GnssAssociator::OdometryAt(int64_t t_ns) const {
-  const auto after = std::lower_bound(odometry_.begin(), odometry_.end(), t_ns,
-                                      [](const auto& o, int64_t t) { return o.first < t; });
-  if (after == odometry_.end()) return std::nullopt;
-  if (after->first == t_ns) return after->second;
-  if (after == odometry_.begin()) return std::nullopt;
-  const auto before = after - 1;
-  const int64_t span_ns = after->first - before->first;
-  if (static_cast<double>(span_ns) > config_.max_interpolation_s * 1e9) return std::nullopt;
-  const double s = static_cast<double>(t_ns - before->first) / static_cast<double>(span_ns);
-  return Interpolate(before->second, after->second, s);
+  if (!odometry_.empty() && t_ns <= odometry_.end_ns()) return;
+  odometry_.Add(t_ns, T_odom_imu);
+  odometry_.DropBefore(t_ns - kKeepOdometryNs);
 }
 
 std::vector<GnssObservation> GnssAssociator::Take(std::span<const KeyframeCloud> nodes) {
   std::vector<GnssObservation> out;
-  while (!pending_.empty() && !odometry_.empty() &&
-         pending_.front().t_ns <= odometry_.back().first) {
+  while (!pending_.empty() && !odometry_.empty() && pending_.front().t_ns <= odometry_.end_ns()) {
     const Pending p = pending_.front();
     pending_.pop_front();
     const auto node =
         std::upper_bound(nodes.begin(), nodes.end(), p.t_ns,
                          [](int64_t t, const KeyframeCloud& n) { return t < n.t_ns; });
-    const std::optional<Eigen::Isometry3d> T_odom_imu = OdometryAt(p.t_ns);
-    if (node == nodes.begin() || !T_odom_imu) {
+    // The odometry at the fix's time, between keyframes at most max_interpolation_s apart.
+    Eigen::Isometry3d T_odom_imu;
+    const auto max_gap_ns = static_cast<int64_t>(config_.max_interpolation_s * 1e9);
+    if (node == nodes.begin() || !odometry_.At(p.t_ns, max_gap_ns, &T_odom_imu)) {
       ++stats_.unplaced;
       continue;
     }
@@ -113,7 +92,7 @@ std::vector<GnssObservation> GnssAssociator::Take(std::span<const KeyframeCloud>
     GnssObservation o;
     o.t_ns = p.t_ns;
     o.node = static_cast<size_t>(node - nodes.begin()) - 1;
-    o.antenna_imu_m = n.T_world_imu.inverse() * (*T_odom_imu * config_.antenna_imu_m);
+    o.antenna_imu_m = n.T_world_imu.inverse() * (T_odom_imu * config_.antenna_imu_m);
     o.fix_enu_m = p.enu_m;
     o.sigma_h_m = p.sigma_h_m;
     o.sigma_v_m = p.sigma_v_m;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "box_yard.h"
+#include "box_yard_map.h"
 #include "swlio/estimator/keyframe_descriptor.h"
 
 namespace swlio::estimator {
@@ -25,20 +26,7 @@ using test::Scene;
 
 /// A map node every `every` poses of the rectangle drive, at its true pose (map = world).
 SavedMap MakeMap(const Scene& scene, size_t every) {
-  const ScanContextConfig d;
-  SavedMap map;
-  map.descriptor_rings = d.rings;
-  map.descriptor_sectors = d.sectors;
-  map.descriptor_max_range_m = d.max_range_m;
-  map.descriptor_min_range_m = d.min_range_m;
-  map.descriptor_height_offset_m = d.height_offset_m;
-  const std::vector<Eigen::Isometry3d> truth = RectangleDrive(0.0);
-  for (size_t k = 0; k < truth.size(); k += every) {
-    const KeyframeCloud kf = Cut(scene, static_cast<int64_t>(k) * 1'000'000, truth[k]);
-    map.nodes.push_back({kf.t_ns, truth[k], kf.T_imu_lidar, kf.planes_lidar, kf.edges_lidar,
-                         KeyframeDescriptor(d, kf).cells});
-  }
-  return map;
+  return test::BoxYardMap(scene, every, 1'000'000);
 }
 
 /// The second drive's odometry frame: where it started, turned and shifted from the map's.

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "swlio/core/types.h"
@@ -28,6 +29,11 @@ class PoseTrack {
   void Add(int64_t t_ns, const Eigen::Isometry3d& T_world_imu);
   /// Pose at t by interpolation; false when t lies outside the track.
   bool At(int64_t t_ns, Eigen::Isometry3d* T_world_imu) const;
+  /// The same, and false too when t falls strictly between two poses more than `max_gap_ns`
+  /// apart (a pose exactly at t is always taken).
+  bool At(int64_t t_ns, int64_t max_gap_ns, Eigen::Isometry3d* T_world_imu) const;
+  /// Forgets the poses before `t_ns` (a track kept over a sliding time window).
+  void DropBefore(int64_t t_ns);
   bool empty() const { return samples_.empty(); }
   int64_t begin_ns() const { return samples_.front().t_ns; }
   int64_t end_ns() const { return samples_.back().t_ns; }
@@ -38,6 +44,8 @@ class PoseTrack {
     Eigen::Quaterniond q;
     Eigen::Vector3d p;
   };
+  /// The two samples around t (t inside the track, which is not empty); the second may equal t.
+  std::pair<const Sample*, const Sample*> Around(int64_t t_ns) const;
   std::vector<Sample> samples_;
 };
 

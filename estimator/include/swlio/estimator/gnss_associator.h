@@ -17,6 +17,7 @@
 
 #include "swlio/core/geodetic.h"
 #include "swlio/core/types.h"
+#include "swlio/estimator/deskew.h"  // PoseTrack
 #include "swlio/estimator/gnss_config.h"
 #include "swlio/estimator/keyframe_cloud.h"
 
@@ -65,15 +66,13 @@ class GnssAssociator {
     double sigma_h_m = 1.0, sigma_v_m = 1.0;
   };
   bool Accept(const GnssFix& fix);
-  /// The odometry pose at `t_ns`, interpolated; none when not bracketed closely enough.
-  std::optional<Eigen::Isometry3d> OdometryAt(int64_t t_ns) const;
 
   GnssConfig config_;
   double inflation_ = 1.0;  ///< of σ, for the errors' correlation (gnss_config.h)
   std::optional<Geodetic> origin_;
   std::optional<LocalEnu> enu_;
   std::deque<Pending> pending_;
-  std::deque<std::pair<int64_t, Eigen::Isometry3d>> odometry_;
+  PoseTrack odometry_;  ///< T_odom_imu, the last kKeepOdometryNs
   int64_t last_taken_t_ns_ = 0;
   bool taken_any_ = false;
   GnssStats stats_;
