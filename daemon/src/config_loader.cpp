@@ -468,6 +468,8 @@ void Bind(Section s, estimator::LocalizationConfig& c) {
   s.Get("relocalize_max_correction_m", c.relocalize_max_correction_m);
   s.Get("relocalize_max_correction_rad", c.relocalize_max_correction_rad);
   s.Get("confirmations", c.confirmations);
+  s.Get("relocalize_every_m", c.relocalize_every_m);
+  s.Get("relocalize_every_rad", c.relocalize_every_rad);
   s.Get("track_every_m", c.track_every_m);
   s.Get("track_every_rad", c.track_every_rad);
   s.Get("relocalize_min_margin", c.relocalize_min_margin);

@@ -31,9 +31,13 @@ void LoopClosureThread::Handle(const estimator::KeyframeCloud& keyframe) {
   constexpr auto kRelaxed = std::memory_order_relaxed;
   keyframes_.fetch_add(1, kRelaxed);
   const int64_t t0 = MonotonicNowNs();
+  const size_t nodes_before = closure_.stats().nodes;
   const estimator::LoopClosureUpdate u = closure_.AddKeyframe(keyframe);
   const estimator::LoopClosureStats& st = closure_.stats();
   nodes_.store(st.nodes, kRelaxed);
+  // The map grew: publish it (at most once per period), so a viewer sees the area being
+  // mapped, not only what the last correction covered.
+  if (map_ != nullptr && st.nodes > nodes_before) map_->MarkChanged();
   const double ms = static_cast<double>(MonotonicNowNs() - t0) * 1e-6;
   if (u.attempted) {
     last_ms_.store(ms, kRelaxed);

@@ -11,6 +11,8 @@ ConfigIssues LocalizationConfig::Validate() const {
   CheckPositive(issues, "relocalize_max_correction_m", relocalize_max_correction_m);
   CheckPositive(issues, "relocalize_max_correction_rad", relocalize_max_correction_rad);
   CheckInRange(issues, "confirmations", confirmations, 0, 100);
+  CheckInRange(issues, "relocalize_every_m", relocalize_every_m, 0.0, 100.0);
+  CheckInRange(issues, "relocalize_every_rad", relocalize_every_rad, 0.0, 3.2);
   CheckInRange(issues, "track_every_m", track_every_m, 0.0, 100.0);
   CheckInRange(issues, "track_every_rad", track_every_rad, 0.0, 3.2);
   CheckInRange(issues, "relocalize_min_margin", relocalize_min_margin, 0.0, 1.0);

@@ -52,7 +52,11 @@ LocalizationUpdate MapLocalizer::AddKeyframe(const KeyframeCloud& keyframe) {
   ++stats_.keyframes;
   LocalizationUpdate u;
   if (state_ == LocalizationState::kRelocalizing) {
-    u = Relocalize(keyframe);
+    if (DueForRelocalization(keyframe)) {
+      u = Relocalize(keyframe);
+    } else {
+      ++stats_.relocalization_deferred;
+    }
   } else if (state_ == LocalizationState::kConfirming || DueForTracking(keyframe)) {
     u = Track(keyframe);
   }
@@ -66,9 +70,24 @@ bool MapLocalizer::DueForTracking(const KeyframeCloud& keyframe) const {
          Angle(d.linear()) >= config_.track_every_rad;
 }
 
+bool MapLocalizer::DueForRelocalization(const KeyframeCloud& keyframe) const {
+  if (!relocalization_tried_) return true;
+  const Eigen::Isometry3d d = T_odom_imu_last_try_.inverse() * keyframe.T_world_imu;
+  return d.translation().norm() >= config_.relocalize_every_m ||
+         Angle(d.linear()) >= config_.relocalize_every_rad;
+}
+
+void MapLocalizer::StartRelocalizing() {
+  state_ = LocalizationState::kRelocalizing;
+  relocalization_tried_ = false;
+}
+
 LocalizationUpdate MapLocalizer::Relocalize(const KeyframeCloud& keyframe) {
   LocalizationUpdate u;
   if (map_.nodes.empty()) return u;
+  ++stats_.relocalization_tries;
+  relocalization_tried_ = true;
+  T_odom_imu_last_try_ = keyframe.T_world_imu;
   const ScanContext query = KeyframeDescriptor(descriptor_config_, keyframe);
   const auto matches = DistinctPlaces(descriptors_.Query(query, map_.nodes.size(), {}));
   const Eigen::Isometry3d T_Gq_imu = T_gravity_imu(keyframe.T_world_imu, keyframe.T_imu_lidar);
@@ -153,12 +172,12 @@ LocalizationUpdate MapLocalizer::Track(const KeyframeCloud& keyframe) {
   T_odom_imu_last_registered_ = keyframe.T_world_imu;
   if (state_ == LocalizationState::kConfirming) {
     ++stats_.hypotheses_dropped;
-    state_ = LocalizationState::kRelocalizing;
+    StartRelocalizing();
     T_map_odom_ = Eigen::Isometry3d::Identity();
   } else if (++failures_ >= config_.lost_after_failures) {
     ++stats_.lost;
     failures_ = 0;
-    state_ = LocalizationState::kRelocalizing;
+    StartRelocalizing();
   }
   return u;
 }

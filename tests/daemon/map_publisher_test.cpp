@@ -155,6 +155,19 @@ TEST(MapPublisher, PublishesAChangedMapAtMostOncePerPeriod) {
   EXPECT_TRUE(publisher.Due(MonotonicNowNs() + SecToNs(3601.0)));
 }
 
+TEST(MapPublisher, ASlowBuildStretchesThePeriod) {
+  estimator::SavedMap map;
+  map.nodes.push_back(
+      Node(1, Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity(), {{1, 2, 3}}, {}));
+  MapPublisher publisher(nullptr, "map", 1000, 0.001);
+  publisher.MarkChanged();
+  const int64_t t0 = MonotonicNowNs();
+  ASSERT_TRUE(publisher.Publish(map, Watchdog::Handle{}, 100.0));  // a 100 ms snapshot
+  publisher.MarkChanged();
+  EXPECT_FALSE(publisher.Due(t0 + SecToNs(1.9)));  // the period is 1 ms, 20 × 100 ms wins
+  EXPECT_TRUE(publisher.Due(MonotonicNowNs() + SecToNs(2.1)));
+}
+
 ipc::DiagnosticStatus MapHealth(const MapPublishCounters& c) {
   HealthSnapshot s;
   s.map = c;
@@ -222,40 +235,42 @@ size_t DriveDrifted(size_t n, SpscQueue<KeyframePtr>* keyframes) {
   return n;
 }
 
-/// Runs a loop-closure thread with a map publisher (period: an hour) over the drive's first
-/// `n` keyframes; waits for a map when a loop was closed.
-std::pair<LoopClosureCounters, MapPublishCounters> RunLoopClosure(size_t n) {
+/// Runs a loop-closure thread with a map publisher (publication period `period_s`) over the
+/// drive's first `n` keyframes; waits for a map when a loop was closed.
+std::pair<LoopClosureCounters, MapPublishCounters> RunLoopClosure(size_t n, double period_s) {
   SpscQueue<KeyframePtr> keyframes{"keyframes", "test", "loop_closure", 512};
   SpscQueue<MapCorrection> corrections{"corrections", "loop_closure", "test", 16};
   LoopClosureThread thread(estimator::LoopClosureConfig{}, {&keyframes, &corrections});
-  MapPublisher map(nullptr, "map", 500'000, 3600.0);
+  MapPublisher map(nullptr, "map", 500'000, period_s);
   thread.PublishMapTo(&map);
   std::atomic<bool> stop{false};
   std::thread runner([&] { thread.Run(stop, Watchdog::Handle{}); });
   n = DriveDrifted(n, &keyframes);
   for (int i = 0; i < 600 && thread.counters().keyframes < n; ++i)  // ≤ 60 s: sanitizers
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  // The last keyframe's solve, then Run's next pass publishes what is due.
-  for (int i = 0; i < 100; ++i) {
+  // The last keyframe's solve, then Run's next passes publish what is due.
+  for (int i = 0; i < 100 && map.counters().published == 0; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    if (thread.counters().accepted == 0 ? i >= 5 : map.counters().published > 0) break;
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // no second map comes
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // a map due after the last solve
   stop = true;
   runner.join();
   return {thread.counters(), map.counters()};
 }
 
-TEST(MapPublisher, LoopClosurePublishesTheMapAfterACorrectionOnly) {
-  // The first 100 keyframes (50 m) close no loop: no map. The whole drive does: one map (the
-  // hour-long period holds back the maps of later corrections).
-  const auto [open_loop, no_map] = RunLoopClosure(100);
+TEST(MapPublisher, LoopClosurePublishesTheGrowingMapAtMostOncePerPeriod) {
+  // The first 100 keyframes (50 m) close no loop; the map grows, and its first node makes a
+  // map due at once: one map (the hour-long period holds back the rest).
+  const auto [open_loop, first_map] = RunLoopClosure(100, 3600.0);
   EXPECT_EQ(open_loop.accepted, 0u);
-  EXPECT_EQ(no_map.published, 0u);
-  const auto [closed, map] = RunLoopClosure(0);
+  EXPECT_EQ(first_map.published, 1u);
+  EXPECT_EQ(first_map.failures, 0u);
+  EXPECT_GT(first_map.points, 0u);
+  // The whole drive with a short period: maps while it grows and after its corrections.
+  const auto [closed, map] = RunLoopClosure(0, 0.05);
   ASSERT_GE(closed.accepted, 1u);
-  EXPECT_EQ(map.published, 1u);
+  EXPECT_GE(map.published, 2u);
   EXPECT_EQ(map.failures, 0u);
+  EXPECT_GT(map.points, first_map.points);
   EXPECT_GT(map.points, 1000u);
   EXPECT_EQ(map.bytes, 12 * map.points);
 }

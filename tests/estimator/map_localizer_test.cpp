@@ -148,6 +148,28 @@ TEST(MapLocalizer, WaitsWhereEveryPlaceHasALookAlike) {
   EXPECT_GT(guessed, 0u);  // the look-alikes do pass verification: only the margin stops them
 }
 
+// On a stretch where every place has a look-alike, relocalization is tried once per
+// relocalize_every_m (0.9 m: every second keyframe, 0.5 m apart), not on every keyframe: each try
+// verifies several places, and a daemon trying every keyframe falls behind.
+TEST(MapLocalizer, ThrottlesRelocalizationWhileAmbiguous) {
+  const test::Scene scene = test::PeriodicYard(5);
+  const std::vector<Eigen::Isometry3d> truth = RectangleDrive(0.0);
+  LocalizationConfig config;
+  config.relocalize_every_m = 0.9;
+  MapLocalizer localizer(MakeMap(scene, 2), config);
+  for (size_t k = 10; k < 20; ++k)
+    localizer.AddKeyframe(KeyframeAt(scene, truth[k], static_cast<int64_t>(k)));
+  const LocalizationStats& s = localizer.stats();
+  std::printf(
+      "[ loc ] ambiguous stretch: %zu keyframes, %zu tries, %zu deferred, %zu registrations\n",
+      s.keyframes, s.relocalization_tries, s.relocalization_deferred,
+      s.relocalization_registrations);
+  EXPECT_FALSE(localizer.localized());
+  EXPECT_EQ(s.relocalization_tries, 5u);
+  EXPECT_EQ(s.relocalization_deferred, 5u);
+  EXPECT_LE(s.relocalization_registrations, 5u * static_cast<size_t>(config.relocalize_candidates));
+}
+
 TEST(MapLocalizer, KeepsTrackingWhereTheSceneChanged) {
   const Scene mapped = BoxYard(7);
   MapLocalizer localizer(MakeMap(mapped, 2), LocalizationConfig{});
@@ -211,10 +233,12 @@ TEST(LocalizationConfig, DefaultsAreValidAndErrorsNamed) {
   LocalizationConfig c;
   c.track_min_fitness = 1.5;
   c.relocalize_candidates = 0;
+  c.relocalize_every_m = -1.0;
   const ConfigIssues issues = c.Validate();
-  ASSERT_EQ(issues.size(), 2u);
+  ASSERT_EQ(issues.size(), 3u);
   EXPECT_EQ(issues[0].key, "relocalize_candidates");
-  EXPECT_EQ(issues[1].key, "track_min_fitness");
+  EXPECT_EQ(issues[1].key, "relocalize_every_m");
+  EXPECT_EQ(issues[2].key, "track_min_fitness");
 }
 
 }  // namespace

@@ -51,18 +51,19 @@ std::string LocalizationRun::SummaryJson() const {
                                  : static_cast<double>(s.first_localized_t_ns - start_ns_) * 1e-9;
   const auto reloc = Spread(relocalize_ms_);
   const auto track = Spread(track_ms_);
-  char json[768];
+  char json[1024];
   std::snprintf(json, sizeof json,
                 "\"localization\": {\"map_nodes\": %zu, \"localized_after_s\": %.2f, "
                 "\"state\": \"%s\", \"sweeps_localized\": %zu, \"keyframes\": %zu, "
-                "\"relocalization_registrations\": %zu, \"ambiguous\": %zu, \"hypotheses\": %zu, "
+                "\"relocalization_tries\": %zu, \"relocalization_registrations\": %zu, "
+                "\"ambiguous\": %zu, \"hypotheses\": %zu, "
                 "\"hypotheses_dropped\": %zu, \"tracked\": %zu, \"track_failures\": %zu, "
                 "\"lost\": %zu, \"relocalize_ms\": [%.2f, %.2f, %.2f], "
                 "\"track_ms\": [%.2f, %.2f, %.2f]}",
                 map_nodes_, localized_after_s, estimator::ToString(localizer_.state()), sweeps_out_,
-                s.keyframes, s.relocalization_registrations, s.ambiguous, s.hypotheses,
-                s.hypotheses_dropped, s.tracked, s.track_failures, s.lost, reloc[0], reloc[1],
-                reloc[2], track[0], track[1], track[2]);
+                s.keyframes, s.relocalization_tries, s.relocalization_registrations, s.ambiguous,
+                s.hypotheses, s.hypotheses_dropped, s.tracked, s.track_failures, s.lost, reloc[0],
+                reloc[1], reloc[2], track[0], track[1], track[2]);
   return json;
 }
 

@@ -37,6 +37,8 @@ namespace swlio::daemon {
 
 /// Voxel rebuilds allowed after the first build before points are thinned instead.
 inline constexpr int kMaxVoxelSteps = 4;
+/// The time between two publications is at least this many times the last build's.
+inline constexpr double kPeriodPerBuild = 20.0;
 
 /// A merged map cloud within the point cap.
 struct MapCloud {
@@ -75,10 +77,11 @@ struct MapPublishCounters {
 class MapPublisher {
  public:
   /// `publisher` may be null (tests): maps are built and counted but not written.
-  /// `period_s` > 0: the least time between two publications while mapping.
+  /// `period_s` > 0: the least time between two publications while mapping (longer when the
+  /// build takes more than 1 / kPeriodPerBuild of it).
   MapPublisher(ipc::Publisher* publisher, std::string frame_id, size_t max_points, double period_s);
 
-  /// Mapping: the graph was corrected; a new map is due once the period has passed.
+  /// Mapping: the graph grew or was corrected; a new map is due once the period has passed.
   void MarkChanged() { changed_ = true; }
   /// A change is pending and the period since the last publication is over.
   bool Due(int64_t now_ns) const { return changed_ && now_ns >= next_ns_; }

@@ -29,6 +29,14 @@ struct LocalizationConfig {
   /// again.
   double relocalize_min_margin = 0.05;
   double distinct_m = 3.0;
+  /// While relocalizing, a keyframe is tried after this much motion since the last try (the
+  /// first keyframe, and the first after a dropped or lost pose, at once): a try verifies up
+  /// to relocalize_candidates places (~110 ms on loop943's map), and trying every window
+  /// keyframe (about five a second) on a long ambiguous stretch would take more than half a
+  /// core and back up the daemon's keyframe queue. A place ambiguous here is rarely told
+  /// apart a few decimetres on.
+  double relocalize_every_m = 1.0;
+  double relocalize_every_rad = 0.2;
   /// A relocalization is trusted (localized() true) once this many tracking registrations in
   /// a row have agreed with it; until then a failed one drops the hypothesis.
   int confirmations = 2;

@@ -4,11 +4,11 @@
 /// runs as always and gives odometry in its own world ("odom"); this class finds and keeps
 /// T_map_odom, so that the output T_map_odom · T_odom_imu lies in the saved map's frame.
 ///
-/// - Relocalizing (nothing known): each keyframe's descriptor is compared with every map
-///   node's (scan_context.h); the nearest few are verified by registration against the submap
-///   around their node, starting from the pose the match implies (keyframe_descriptor.h). The
-///   best accepted one becomes a hypothesis, unless one elsewhere fits about as well (a
-///   look-alike bay): then the next keyframe tries again.
+/// - Relocalizing (nothing known): a keyframe every `relocalize_every_m` has its descriptor
+///   compared with every map node's (scan_context.h); the nearest few are verified by registration
+///   against the submap around their node, starting from the pose the match implies
+///   (keyframe_descriptor.h). The best accepted one becomes a hypothesis, unless one elsewhere fits
+///   about as well (a look-alike bay): then a later keyframe tries again.
 /// - Confirming: the following keyframes are registered against the map from the pose the
 ///   hypothesis predicts; `confirmations` agreeing in a row make it trusted, one failure drops
 ///   it (a look-alike place does not survive the next metres).
@@ -44,6 +44,8 @@ struct LocalizationUpdate {
 
 struct LocalizationStats {
   size_t keyframes = 0;
+  size_t relocalization_tries = 0;     ///< keyframes whose descriptor was searched
+  size_t relocalization_deferred = 0;  ///< keyframes not tried: too close to the last try
   size_t relocalization_registrations = 0;
   size_t hypotheses = 0;          ///< relocalizations accepted
   size_t ambiguous = 0;           ///< keyframes where two places fitted about as well
@@ -76,6 +78,9 @@ class MapLocalizer {
   std::vector<std::pair<size_t, ScanContextMatch>> DistinctPlaces(
       const std::vector<std::pair<size_t, ScanContextMatch>>& matches) const;
   bool DueForTracking(const KeyframeCloud& keyframe) const;
+  bool DueForRelocalization(const KeyframeCloud& keyframe) const;
+  /// Back to global relocalization; the next keyframe tries at once.
+  void StartRelocalizing();
   /// Map nodes within submap_radius_m of `p_map`, nearest first, at most submap_max_nodes.
   std::vector<size_t> NodesNear(const Eigen::Vector3d& p_map) const;
   LoopSubmap BuildSubmap(size_t center, const std::vector<size_t>& nodes) const;
@@ -92,6 +97,8 @@ class MapLocalizer {
   LocalizationState state_ = LocalizationState::kRelocalizing;
   Eigen::Isometry3d T_map_odom_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d T_odom_imu_last_registered_ = Eigen::Isometry3d::Identity();
+  bool relocalization_tried_ = false;  ///< since relocalizing began
+  Eigen::Isometry3d T_odom_imu_last_try_ = Eigen::Isometry3d::Identity();
   int confirmed_ = 0;
   int failures_ = 0;
   LocalizationStats stats_;

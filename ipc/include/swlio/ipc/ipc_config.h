@@ -28,8 +28,9 @@ struct IpcConfig {
   /// The published map cloud holds at most this many points (12 bytes each): the voxel is
   /// coarsened until it fits (daemon/map_publisher.h), bounding the sample's size.
   int64_t map_max_points = 500'000;
-  /// Mapping: the map cloud is rebuilt and published after a loop correction, at most once per
-  /// this period (s). Localizing: the saved map is published once at start. 0: never.
+  /// Mapping: the map cloud is rebuilt and published as the map grows and after loop
+  /// corrections, at most once per this period (s). Localizing: the saved map is published
+  /// once at start. 0: never.
   double map_publish_period_s = 10.0;
 
   ConfigIssues Validate() const;
