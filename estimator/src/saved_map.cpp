@@ -15,6 +15,8 @@
 #include <string_view>
 #include <system_error>
 
+#include "swlio/core/fnv1a.h"
+
 namespace swlio::estimator {
 namespace {
 
@@ -23,15 +25,6 @@ constexpr size_t kHeaderBytes = 52;
 constexpr size_t kNodeFixedBytes = 128;
 constexpr size_t kPointBytes = 12;
 constexpr size_t kChecksumBytes = 8;
-
-constexpr uint64_t kFnvOffsetBasis = 0xcbf29ce484222325ULL;
-constexpr uint64_t kFnvPrime = 0x100000001b3ULL;
-
-/// FNV-1a 64 of `bytes`, continuing from `hash`.
-uint64_t Fnv1a64(std::string_view bytes, uint64_t hash = kFnvOffsetBasis) {
-  for (char b : bytes) hash = (hash ^ static_cast<unsigned char>(b)) * kFnvPrime;
-  return hash;
-}
 
 std::string Hex(uint64_t v) {
   std::string s = "0x";
@@ -97,7 +90,7 @@ class Writer {
   }
   std::ostream& out_;
   std::string buffer_;
-  uint64_t hash_ = kFnvOffsetBasis;
+  uint64_t hash_ = kFnv1a64OffsetBasis;
 };
 
 struct Header {

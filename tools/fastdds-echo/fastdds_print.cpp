@@ -3,6 +3,9 @@
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
+#include <string_view>
+
+#include "swlio/core/fnv1a.h"
 
 namespace swlio::tools::fastdds_echo {
 namespace {
@@ -96,6 +99,30 @@ std::string Line(const nav_msgs::msg::dds_::Path_& m) {
     Text(out, p.header().frame_id());
     PoseBits(out, p.pose());
   }
+  return out;
+}
+
+std::string Line(const sensor_msgs::msg::dds_::PointCloud2_& m) {
+  std::string out;
+  Header(out, "map", m.header());
+  for (const uint32_t v : {m.height(), m.width(), static_cast<uint32_t>(m.fields().size())}) {
+    out.append(" ").append(std::to_string(v));
+  }
+  for (const auto& f : m.fields()) {
+    Text(out, f.name());
+    out.append(" ").append(std::to_string(f.offset()));
+    out.append(" ").append(std::to_string(static_cast<unsigned>(f.datatype())));
+    out.append(" ").append(std::to_string(f.count()));
+  }
+  out.append(" ").append(std::to_string(static_cast<unsigned>(m.is_bigendian())));
+  out.append(" ").append(std::to_string(m.point_step()));
+  out.append(" ").append(std::to_string(m.row_step()));
+  out.append(" ").append(std::to_string(static_cast<unsigned>(m.is_dense())));
+  out.append(" ").append(std::to_string(m.data().size()));
+  const std::string_view bytes(reinterpret_cast<const char*>(m.data().data()), m.data().size());
+  char digest[24];
+  std::snprintf(digest, sizeof digest, " %016" PRIx64, Fnv1a64(bytes));
+  out += digest;
   return out;
 }
 

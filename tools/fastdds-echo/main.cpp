@@ -1,7 +1,8 @@
 // swlio-fastdds-echo: receives swlio's topics with Fast DDS, the default middleware of ROS 2,
 // as a ROS 2 node would (reader QoS RELIABLE, VOLATILE, KEEP_LAST 10 — ROS 2's default
-// subscription), and prints every sample in a bit-exact text form (fastdds_print.h) so that a
-// test can compare it bit for bit with what the Cyclone DDS publisher wrote.
+// subscription; the map cloud TRANSIENT_LOCAL, KEEP_LAST 1, as a map display asks), and prints
+// every sample in a bit-exact text form (fastdds_print.h) so that a test can compare it bit for bit
+// with what the Cyclone DDS publisher wrote.
 //
 // Output: "ready" followed by "<topic>=<type name>" for each reader, then one line per sample.
 //
@@ -35,6 +36,7 @@
 #include "fastdds_print.h"
 #include "geometry_msgsPubSubTypes.h"
 #include "nav_msgsPubSubTypes.h"
+#include "sensor_msgsPubSubTypes.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define SWLIO_FASTDDS_ECHO_ASAN 1
@@ -116,6 +118,7 @@ struct Options {
   std::string odometry_topic = "rt/swlio/odometry";
   std::string health_topic = "rt/diagnostics";
   std::string path_topic = "rt/swlio/path";
+  std::string map_topic = "rt/swlio/map";
   int count = 0;
   double timeout_s = 30.0;
 };
@@ -126,12 +129,15 @@ struct Reader {
   std::function<bool()> take_and_print;  // false when nothing was left to take
 };
 
+/// `latched`: a TRANSIENT_LOCAL reader of depth 1 (what a ROS 2 map subscriber, e.g. RViz's
+/// map display, asks for), which also gets the sample written before it joined.
 template <typename PubSubType>
 bool AddReader(fdds::DomainParticipant* participant,
                fdds::Subscriber* subscriber,
                const std::string& topic_name,
                std::vector<Reader>* readers,
-               std::string* ready) {
+               std::string* ready,
+               bool latched = false) {
   using Message = typename PubSubType::type;
   fdds::TypeSupport type(new PubSubType());
   if (type.register_type(participant) != ReturnCode_t::RETCODE_OK) return false;
@@ -143,6 +149,10 @@ bool AddReader(fdds::DomainParticipant* participant,
   qos.durability().kind = fdds::VOLATILE_DURABILITY_QOS;
   qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
   qos.history().depth = 10;
+  if (latched) {
+    qos.durability().kind = fdds::TRANSIENT_LOCAL_DURABILITY_QOS;
+    qos.history().depth = 1;
+  }
   fdds::DataReader* reader = subscriber->create_datareader(topic, qos);
   if (reader == nullptr) return false;
   auto sample = std::make_shared<Message>();
@@ -176,7 +186,9 @@ int Receive(fdds::DomainParticipant* participant, const Options& options) {
       !AddReader<diagnostic_msgs::msg::dds_::DiagnosticArray_PubSubType>(
           participant, subscriber, options.health_topic, &readers, &ready) ||
       !AddReader<nav_msgs::msg::dds_::Path_PubSubType>(participant, subscriber, options.path_topic,
-                                                       &readers, &ready)) {
+                                                       &readers, &ready) ||
+      !AddReader<sensor_msgs::msg::dds_::PointCloud2_PubSubType>(
+          participant, subscriber, options.map_topic, &readers, &ready, true)) {
     return 1;
   }
   std::printf("%s\n", ready.c_str());
@@ -215,6 +227,7 @@ int Main(int argc, char** argv) {
   app.add_option("--odometry-topic", options.odometry_topic, "DDS topic");
   app.add_option("--health-topic", options.health_topic, "DDS topic");
   app.add_option("--path-topic", options.path_topic, "DDS topic");
+  app.add_option("--map-topic", options.map_topic, "DDS topic (latched: transient local)");
   app.add_option("--count", options.count, "exit after this many samples (0: until timeout)");
   app.add_option("--timeout", options.timeout_s, "give up after this many seconds");
   CLI11_PARSE(app, argc, argv);
