@@ -185,12 +185,17 @@ Path MakePath() {
   return p;
 }
 
+/// Reads a line's "<tag> <stamp> <frame>" and compares it with what was sent.
+void ExpectHeader(Tokens& t, const char* tag, int64_t t_ns, const std::string& frame_id) {
+  EXPECT_EQ(t.Word(), tag);
+  EXPECT_EQ(t.Stamp(), t_ns);
+  EXPECT_EQ(t.Text(), frame_id);
+}
+
 /// Parses an odometry/health/path line and compares it with what was sent.
 void ExpectOdometryLine(const std::string& line, const Odometry& want) {
   Tokens t(line);
-  ASSERT_EQ(t.Word(), "odometry");
-  EXPECT_EQ(t.Stamp(), want.t_ns);
-  EXPECT_EQ(t.Text(), want.frame_id);
+  ExpectHeader(t, "odometry", want.t_ns, want.frame_id);
   EXPECT_EQ(t.Text(), want.child_frame_id);
   Odometry got;
   got.pose = t.ReadPose();
@@ -208,9 +213,7 @@ void ExpectOdometryLine(const std::string& line, const Odometry& want) {
 
 void ExpectHealthLine(const std::string& line, const DiagnosticArray& want) {
   Tokens t(line);
-  ASSERT_EQ(t.Word(), "health");
-  EXPECT_EQ(t.Stamp(), want.t_ns);
-  EXPECT_EQ(t.Text(), want.frame_id);
+  ExpectHeader(t, "health", want.t_ns, want.frame_id);
   ASSERT_EQ(t.Int(), static_cast<int64_t>(want.status.size()));
   for (const DiagnosticStatus& s : want.status) {
     EXPECT_EQ(t.Int(), static_cast<int64_t>(s.level));
@@ -228,9 +231,7 @@ void ExpectHealthLine(const std::string& line, const DiagnosticArray& want) {
 
 void ExpectPathLine(const std::string& line, const Path& want) {
   Tokens t(line);
-  ASSERT_EQ(t.Word(), "path");
-  EXPECT_EQ(t.Stamp(), want.t_ns);
-  EXPECT_EQ(t.Text(), want.frame_id);
+  ExpectHeader(t, "path", want.t_ns, want.frame_id);
   ASSERT_EQ(t.Int(), static_cast<int64_t>(want.poses.size()));
   for (const PoseStamped& p : want.poses) {
     EXPECT_EQ(t.Stamp(), p.t_ns);
@@ -296,9 +297,7 @@ PointCloud2 MakeMapCloud() {
 
 void ExpectMapLine(const std::string& line, const PointCloud2& want) {
   Tokens t(line);
-  ASSERT_EQ(t.Word(), "map");
-  EXPECT_EQ(t.Stamp(), want.t_ns);
-  EXPECT_EQ(t.Text(), want.frame_id);
+  ExpectHeader(t, "map", want.t_ns, want.frame_id);
   EXPECT_EQ(t.Int(), want.height);
   EXPECT_EQ(t.Int(), want.width);
   ASSERT_EQ(t.Int(), static_cast<int64_t>(want.fields.size()));
