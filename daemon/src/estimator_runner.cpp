@@ -16,8 +16,7 @@ EstimatorSetup MakeEstimatorSetup(const DaemonConfig& config,
                                   EstimatorMode mode) {
   EstimatorSetup s;
   s.mode = mode;
-  s.odometry.estimator = config.estimator;
-  s.odometry.T_imu_lidar = T_imu_lidar;
+  s.odometry = estimator::MakeOdometryConfig(config.estimator, T_imu_lidar);
   s.window = config.window;
   s.window.odometry = s.odometry;
   return s;

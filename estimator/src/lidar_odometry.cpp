@@ -13,6 +13,18 @@ void ToVectors(const std::vector<FeaturePoint>& in, std::vector<Eigen::Vector3d>
 
 }  // namespace
 
+LidarOdometryConfig MakeOdometryConfig(const EstimatorConfig& estimator,
+                                       const Eigen::Isometry3d& T_imu_lidar) {
+  LidarOdometryConfig c;
+  c.estimator = estimator;
+  c.T_imu_lidar = T_imu_lidar;
+  c.front_end.plane_voxel_m = estimator.plane_voxel_m;
+  c.front_end.edge_voxel_m = estimator.edge_voxel_m;
+  c.plane_map.radius_m = estimator.local_map_radius_m;
+  c.edge_map.radius_m = estimator.local_map_radius_m;
+  return c;
+}
+
 ConfigIssues LidarOdometryConfig::Validate() const {
   ConfigIssues issues;
   AppendWithPrefix(issues, "estimator", estimator.Validate());

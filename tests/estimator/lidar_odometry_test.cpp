@@ -67,5 +67,30 @@ TEST(LidarOdometryConfig, ValidateNamesTheBadKeys) {
   EXPECT_EQ(issues[2].key, "min_inliers");
 }
 
+// The configuration file's estimator.plane_voxel_m, edge_voxel_m and local_map_radius_m reach
+// the front end and the maps (they were read and then ignored: the defaults happened to agree).
+TEST(LidarOdometryConfig, MadeFromTheEstimatorSection) {
+  EstimatorConfig estimator;
+  estimator.plane_voxel_m = 0.7;
+  estimator.edge_voxel_m = 0.15;
+  estimator.local_map_radius_m = 120.0;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() << 0.1, -0.2, 0.3;
+  const LidarOdometryConfig c = MakeOdometryConfig(estimator, T);
+  EXPECT_EQ(c.front_end.plane_voxel_m, 0.7);
+  EXPECT_EQ(c.front_end.edge_voxel_m, 0.15);
+  EXPECT_EQ(c.plane_map.radius_m, 120.0);
+  EXPECT_EQ(c.edge_map.radius_m, 120.0);
+  EXPECT_TRUE(c.T_imu_lidar.isApprox(T));
+  EXPECT_EQ(c.estimator.local_map_radius_m, 120.0);
+  // The defaults of the section give the defaults of the odometry.
+  const LidarOdometryConfig d = MakeOdometryConfig(EstimatorConfig{}, T);
+  const LidarOdometryConfig plain;
+  EXPECT_EQ(d.front_end.plane_voxel_m, plain.front_end.plane_voxel_m);
+  EXPECT_EQ(d.front_end.edge_voxel_m, plain.front_end.edge_voxel_m);
+  EXPECT_EQ(d.plane_map.radius_m, plain.plane_map.radius_m);
+  EXPECT_EQ(d.edge_map.radius_m, plain.edge_map.radius_m);
+}
+
 }  // namespace
 }  // namespace swlio::estimator

@@ -238,11 +238,10 @@ void PrintCalibration(const swlio::estimator::WindowEstimator& window,
 int Run(const Options& opt) {
   swlio::daemon::DaemonConfig daemon_config;
   if (!LoadDaemonConfig(opt, &daemon_config)) return 1;
-  swlio::estimator::LidarOdometryConfig config;
-  config.estimator = daemon_config.estimator;
   const auto manifest_extrinsic = swlio::daemon::ManifestExtrinsic(opt.dir);
-  config.T_imu_lidar =
-      manifest_extrinsic.value_or(config.estimator.extrinsic_imu_lidar.ToIsometry());
+  swlio::estimator::LidarOdometryConfig config = swlio::estimator::MakeOdometryConfig(
+      daemon_config.estimator,
+      manifest_extrinsic.value_or(daemon_config.estimator.extrinsic_imu_lidar.ToIsometry()));
   const Eigen::Isometry3d T_imu_lidar_given = config.T_imu_lidar;
   if (opt.extrinsic_offset.size() == 6) {
     const auto& o = opt.extrinsic_offset;

@@ -48,6 +48,12 @@ struct LidarOdometryConfig {
   ConfigIssues Validate() const;
 };
 
+/// The odometry's options for a configuration's `estimator` section: its feature voxels
+/// (plane_voxel_m, edge_voxel_m) go to the front end and its local_map_radius_m to both maps;
+/// everything else keeps the defaults above.
+LidarOdometryConfig MakeOdometryConfig(const EstimatorConfig& estimator,
+                                       const Eigen::Isometry3d& T_imu_lidar);
+
 enum class OdometryStatus {
   kInitializing,  ///< not yet initialized: the sweep was not used
   kTracking,      ///< registered against the map
