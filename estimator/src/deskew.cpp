@@ -25,31 +25,27 @@ bool PoseTrack::At(int64_t t_ns, int64_t max_gap_ns, Eigen::Isometry3d* T_world_
   if (samples_.empty() || t_ns < samples_.front().t_ns || t_ns > samples_.back().t_ns) {
     return false;
   }
-  const auto [a, b] = Around(t_ns);
-  const bool between = a->t_ns < t_ns && t_ns < b->t_ns;
-  if (between && b->t_ns - a->t_ns > max_gap_ns) return false;
-  return At(t_ns, T_world_imu);
-}
-
-void PoseTrack::DropBefore(int64_t t_ns) {
-  const auto first = std::lower_bound(samples_.begin(), samples_.end(), t_ns,
-                                      [](const Sample& s, int64_t t) { return s.t_ns < t; });
-  samples_.erase(samples_.begin(), first);
-}
-
-bool PoseTrack::At(int64_t t_ns, Eigen::Isometry3d* T_world_imu) const {
-  if (samples_.empty() || t_ns < samples_.front().t_ns || t_ns > samples_.back().t_ns) {
-    return false;
-  }
   const auto [pa, pb] = Around(t_ns);
   const Sample& a = *pa;
   const Sample& b = *pb;
+  const bool between = a.t_ns < t_ns && t_ns < b.t_ns;
+  if (between && b.t_ns - a.t_ns > max_gap_ns) return false;
   const double span = static_cast<double>(b.t_ns - a.t_ns);
   const double u = span > 0.0 ? static_cast<double>(t_ns - a.t_ns) / span : 0.0;
   T_world_imu->setIdentity();
   T_world_imu->linear() = a.q.slerp(u, b.q).toRotationMatrix();
   T_world_imu->translation() = (1.0 - u) * a.p + u * b.p;
   return true;
+}
+
+bool PoseTrack::At(int64_t t_ns, Eigen::Isometry3d* T_world_imu) const {
+  return At(t_ns, std::numeric_limits<int64_t>::max(), T_world_imu);
+}
+
+void PoseTrack::DropBefore(int64_t t_ns) {
+  const auto first = std::lower_bound(samples_.begin(), samples_.end(), t_ns,
+                                      [](const Sample& s, int64_t t) { return s.t_ns < t; });
+  samples_.erase(samples_.begin(), first);
 }
 
 DeskewResult Deskew(const Scan& scan,

@@ -10,6 +10,12 @@ namespace {
 
 double Angle(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle(); }
 
+/// The odometry moved at least `m` or turned at least `rad` from `from` to `to`.
+bool Moved(const Eigen::Isometry3d& from, const Eigen::Isometry3d& to, double m, double rad) {
+  const Eigen::Isometry3d d = from.inverse() * to;
+  return d.translation().norm() >= m || Angle(d.linear()) >= rad;
+}
+
 /// How the map's descriptors were made; every one is compared in full.
 ScanContextConfig DescriptorConfigOf(const SavedMap& map, const LocalizationConfig& config) {
   ScanContextConfig c;
@@ -65,28 +71,24 @@ LocalizationUpdate MapLocalizer::AddKeyframe(const KeyframeCloud& keyframe) {
 }
 
 bool MapLocalizer::DueForTracking(const KeyframeCloud& keyframe) const {
-  const Eigen::Isometry3d d = T_odom_imu_last_registered_.inverse() * keyframe.T_world_imu;
-  return d.translation().norm() >= config_.track_every_m ||
-         Angle(d.linear()) >= config_.track_every_rad;
+  return Moved(T_odom_imu_last_registered_, keyframe.T_world_imu, config_.track_every_m,
+               config_.track_every_rad);
 }
 
 bool MapLocalizer::DueForRelocalization(const KeyframeCloud& keyframe) const {
-  if (!relocalization_tried_) return true;
-  const Eigen::Isometry3d d = T_odom_imu_last_try_.inverse() * keyframe.T_world_imu;
-  return d.translation().norm() >= config_.relocalize_every_m ||
-         Angle(d.linear()) >= config_.relocalize_every_rad;
+  return !T_odom_imu_last_try_ || Moved(*T_odom_imu_last_try_, keyframe.T_world_imu,
+                                        config_.relocalize_every_m, config_.relocalize_every_rad);
 }
 
 void MapLocalizer::StartRelocalizing() {
   state_ = LocalizationState::kRelocalizing;
-  relocalization_tried_ = false;
+  T_odom_imu_last_try_.reset();
 }
 
 LocalizationUpdate MapLocalizer::Relocalize(const KeyframeCloud& keyframe) {
   LocalizationUpdate u;
   if (map_.nodes.empty()) return u;
   ++stats_.relocalization_tries;
-  relocalization_tried_ = true;
   T_odom_imu_last_try_ = keyframe.T_world_imu;
   const ScanContext query = KeyframeDescriptor(descriptor_config_, keyframe);
   const auto matches = DistinctPlaces(descriptors_.Query(query, map_.nodes.size(), {}));

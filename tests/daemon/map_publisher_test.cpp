@@ -236,7 +236,7 @@ size_t DriveDrifted(size_t n, SpscQueue<KeyframePtr>* keyframes) {
 }
 
 /// Runs a loop-closure thread with a map publisher (publication period `period_s`) over the
-/// drive's first `n` keyframes; waits for a map when a loop was closed.
+/// drive's first `n` keyframes; waits for the first map, then for one due after the last solve.
 std::pair<LoopClosureCounters, MapPublishCounters> RunLoopClosure(size_t n, double period_s) {
   SpscQueue<KeyframePtr> keyframes{"keyframes", "test", "loop_closure", 512};
   SpscQueue<MapCorrection> corrections{"corrections", "loop_closure", "test", 16};

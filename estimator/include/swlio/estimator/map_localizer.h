@@ -20,6 +20,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "swlio/estimator/keyframe_cloud.h"
@@ -97,8 +98,8 @@ class MapLocalizer {
   LocalizationState state_ = LocalizationState::kRelocalizing;
   Eigen::Isometry3d T_map_odom_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d T_odom_imu_last_registered_ = Eigen::Isometry3d::Identity();
-  bool relocalization_tried_ = false;  ///< since relocalizing began
-  Eigen::Isometry3d T_odom_imu_last_try_ = Eigen::Isometry3d::Identity();
+  /// The last relocalization try's pose; none since relocalizing (re)started.
+  std::optional<Eigen::Isometry3d> T_odom_imu_last_try_;
   int confirmed_ = 0;
   int failures_ = 0;
   LocalizationStats stats_;
