@@ -1,5 +1,5 @@
 // swlio-echo as a separate process: what it prints and records for samples that really cross
-// loopback UDP from this process's Publisher. Domains 121..125 and 136.
+// loopback UDP from this process's Publisher. Domains 121..125, 136 and 137.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -147,6 +147,56 @@ TEST(EchoCli, PrintsOneLinePerSampleOfEveryTopic) {
       << lines[1];
   EXPECT_EQ(lines[2].rfind("path t=4.000000000 frame=map poses=3", 0), 0u) << lines[2];
   EXPECT_EQ(lines[3].rfind("pose t=1.000000000 frame=map p=[", 0), 0u) << lines[3];
+}
+
+// --record-path keeps only the last path (after a loop the daemon republishes the whole graph).
+TEST(EchoCli, RecordPathWritesTheLastPathReceived) {
+  const auto dir = test::MakeTempDir("echo");
+  const auto tum = dir / "path.tum";
+  ChildProcess echo(EchoArgs(137, {"--topics", "path", "--record-path", tum.string(), "--count",
+                                   "2", "--duration", "30"}));
+  ASSERT_TRUE(echo.running());
+  std::unique_ptr<Participant> participant;
+  auto publisher = MatchedPublisher(137, Topic::kPath, &participant);
+  ASSERT_NE(publisher, nullptr);
+  Path path;
+  path.frame_id = "map";
+  for (int i = 0; i < 3; ++i) {
+    PoseStamped p;
+    p.t_ns = 1'000'000'000LL * (i + 1);
+    p.pose.position_m = {10.0 + i, 0.0, 0.0};
+    path.poses.push_back(p);
+  }
+  ASSERT_TRUE(publisher->PublishPath(path));
+  path.poses.pop_back();  // the graph moved: the first two nodes elsewhere, the third gone
+  path.poses[0].pose.position_m = {-1.25, 2.0, 0.5};
+  path.poses[1].pose.position_m = {-2.5, 4.0, 1.0};
+  std::string line;
+  ASSERT_TRUE(echo.ReadLine(&line, 20.0));  // the first one is in (the reader keeps only one)
+  EXPECT_EQ(line.rfind("path t=0.000000000 frame=map poses=3", 0), 0u) << line;
+  ASSERT_TRUE(publisher->PublishPath(path));
+  ASSERT_EQ(echo.Wait(), 0);
+  const auto lines = Lines(tum);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0].rfind("# timestamp tx ty tz qx qy qz qw", 0), 0u) << lines[0];
+  for (size_t i = 0; i < 2; ++i) {
+    std::istringstream in(lines[i + 1]);
+    std::string stamp;
+    in >> stamp;
+    EXPECT_EQ(ParseStamp(stamp), path.poses[i].t_ns) << stamp;
+    Pose got;
+    for (double& v : got.position_m) in >> v;
+    for (double& v : got.orientation_xyzw) in >> v;
+    EXPECT_TRUE(test_util::SamePose(got, path.poses[i].pose)) << lines[i + 1];
+  }
+}
+
+TEST(EchoCli, RecordPathWithoutThePathTopicIsRefused) {
+  const auto dir = test::MakeTempDir("echo");
+  ChildProcess echo(EchoArgs(
+      125, {"--topics", "pose", "--record-path", (dir / "p.tum").string(), "--duration", "5"}));
+  EXPECT_EQ(echo.Wait(), 1);
+  EXPECT_FALSE(std::filesystem::exists(dir / "p.tum"));
 }
 
 std::string Shortest(double v) {

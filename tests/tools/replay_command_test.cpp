@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "sim_recording.h"
 #include "sim_setup.h"
@@ -51,6 +53,54 @@ TEST(ReplayCommand, DeterministicReplayIsByteIdenticalAndMatchesSwlioRun) {
   EXPECT_GT(std::count(a.begin(), a.end(), '\n'), 50);
   EXPECT_EQ(a, ReadAll(dir / "b.tum"));
   EXPECT_EQ(a, ReadAll(dir / "run.tum"));
+}
+
+// A daemon recording made with --time-scale 2 (the simulator at 2×) holds receive times on the
+// sensors' time base; the estimator runs on it and both tools write host times, as the daemon
+// published them: the same poses as on the unscaled recording, at origin + (t − origin) / 2.
+TEST(ReplayCommand, BothToolsWriteAScaledRecordingOnHostTime) {
+  const fs::path replay = test::ToolPath("swlio-replay");
+  const fs::path run = test::ToolPath("swlio-run");
+  if (replay.empty() || run.empty()) GTEST_SKIP() << "swlio-replay / swlio-run not built";
+  const fs::path dir = test::MakeTempDir("swlio_replay_scaled");
+  const auto setup = sim::MakeSimSetup("short", 12, 8.0);
+  ASSERT_TRUE(setup.has_value());
+  sim::RecordingStats stats;
+  std::string error;
+  ASSERT_TRUE(sim::WriteRecording(*setup, dir / "rec", &stats, &error)) << error;
+  fs::copy(dir / "rec", dir / "rec2");
+  const int64_t origin_ns = 1'000'000'000;
+  std::ofstream(dir / "rec2" / "manifest.yaml", std::ios::app)
+      << "time_scale: 2\ntime_origin_ns: " << origin_ns << "\n";
+  int code = 0;
+  const auto tool = [&](const fs::path& exe, const char* rec, const char* out) {
+    const std::string log = test::RunCommand(exe.string() + " " + (dir / rec).string() +
+                                                 (exe == replay ? " --deterministic" : "") +
+                                                 " --out " + (dir / out).string() + " 2>&1",
+                                             &code);
+    EXPECT_EQ(code, 0) << log;
+    std::ifstream in(dir / out);
+    std::vector<std::pair<double, std::string>> rows;  // stamp (s), pose
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#') continue;
+      const size_t space = line.find(' ');
+      rows.emplace_back(std::stod(line.substr(0, space)), line.substr(space));
+    }
+    return rows;
+  };
+  const auto plain = tool(run, "rec", "plain.tum");
+  const auto scaled_run = tool(run, "rec2", "run2.tum");
+  const auto scaled_replay = tool(replay, "rec2", "replay2.tum");
+  ASSERT_GT(plain.size(), 20u);
+  ASSERT_EQ(scaled_run.size(), plain.size());
+  ASSERT_EQ(scaled_replay.size(), plain.size());
+  const double origin_s = static_cast<double>(origin_ns) * 1e-9;
+  for (size_t i = 0; i < plain.size(); ++i) {
+    EXPECT_NEAR(scaled_run[i].first, origin_s + (plain[i].first - origin_s) / 2.0, 2e-9) << i;
+    EXPECT_EQ(scaled_run[i].second, plain[i].second) << i;
+    EXPECT_EQ(scaled_replay[i], scaled_run[i]) << i;
+  }
 }
 
 TEST(ReplayCommand, RefusesAFolderWithoutARecording) {

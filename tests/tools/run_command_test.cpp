@@ -258,7 +258,8 @@ TEST_F(RunOnShortDrive, LoopClosureWritesItsOutputsAndLeavesAStraightDriveAlone)
   EXPECT_NE(out.find("\"loops\""), std::string::npos) << "on by default: " << out;
   out = test::RunCommand(run + (dir / "online.tum").string() +
                              " --loop-closure on --out-optimized " + (dir / "opt.tum").string() +
-                             " --loops " + (dir / "l.csv").string() + " 2>/dev/null",
+                             " --out-path " + (dir / "path.tum").string() + " --loops " +
+                             (dir / "l.csv").string() + " 2>/dev/null",
                          &code);
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("\"attempts\": 0, \"accepted\": 0"), std::string::npos) << out;
@@ -274,6 +275,22 @@ TEST_F(RunOnShortDrive, LoopClosureWritesItsOutputsAndLeavesAStraightDriveAlone)
   const std::string optimized = slurp(dir / "opt.tum");
   EXPECT_EQ(optimized.substr(optimized.find('\n')), plain.substr(plain.find('\n')))
       << "the same poses (the header line differs)";
+  // The path: one line per node, each one of the sweeps' own lines (no loop moved them).
+  std::ifstream path(dir / "path.tum");
+  std::string line;
+  size_t path_nodes = 0;
+  std::getline(path, line);
+  EXPECT_EQ(line.rfind("# timestamp", 0), 0u) << line;
+  while (std::getline(path, line)) {
+    ++path_nodes;
+    EXPECT_NE(plain.find(line + "\n"), std::string::npos) << "not a sweep's pose: " << line;
+  }
+  EXPECT_EQ(static_cast<double>(path_nodes), nodes);
+  out = test::RunCommand(run + (dir / "x.tum").string() + " --loop-closure off --out-path " +
+                             (dir / "x_path.tum").string() + " 2>&1",
+                         &code);
+  EXPECT_NE(code, 0);
+  EXPECT_NE(out.find("need loop closure"), std::string::npos) << out;
   std::string header;
   EXPECT_EQ(CountLines(dir / "l.csv", &header), 1u);
   EXPECT_EQ(header.rfind("candidate_t_ns,node_t_ns,distance_m,verdict,", 0), 0u) << header;

@@ -1,5 +1,6 @@
 // swlio-echo: subscribe to swlio's DDS topics and print one line per sample, or record the
-// poses as a TUM trajectory and the delivery latencies as CSV. Loopback only: the Cyclone DDS
+// poses as a TUM trajectory, the last keyframe path (after loop closure: the pose graph's
+// nodes) as another, and the delivery latencies as CSV. Loopback only: the Cyclone DDS
 // configuration must keep all traffic on 127.0.0.1 (Participant refuses anything else).
 //
 // Exit codes: 0 done (--count reached, --duration over, or SIGINT/SIGTERM), 1 setup error,
@@ -36,6 +37,7 @@ struct EchoOptions {
   std::vector<std::string> topics{"pose", "odometry", "health", "path", "map"};
   std::string record_tum;
   std::string record_from = "pose";
+  std::string record_path_tum;
   std::string latency_csv;
   std::string latency_summary_csv;
   double summary_period_s = 10.0;
@@ -78,6 +80,7 @@ class Sink {
                       r.receive_steady_ns - r.msg.t_ns);
       }
       if (tum_.is_open() && options_.record_from == ipc::TopicLabel(topic)) Record(r.msg);
+      Keep(r.msg);
       if (topic == Topic::kPose)
         transport_ns_.push_back(r.receive_realtime_ns - r.source_realtime_ns);
       ++counts_[static_cast<size_t>(topic)];
@@ -87,6 +90,17 @@ class Sink {
   }
 
   int64_t total() const { return total_; }
+
+  /// The last keyframe path received, as TUM (--record-path); false with *error.
+  bool WritePath(std::string* error) const {
+    if (options_.record_path_tum.empty()) return true;
+    if (!last_path_)
+      return Fail(error, "no path received: " + options_.record_path_tum + " not written");
+    std::ofstream out(options_.record_path_tum);
+    out << kTumHeader << "  (" << last_path_->frame_id << "; the last path received)\n";
+    for (const ipc::PoseStamped& p : last_path_->poses) out << TumLine(p.t_ns, p.pose) << "\n";
+    return static_cast<bool>(out) || Fail(error, "cannot write " + options_.record_path_tum);
+  }
 
   /// Counts per topic and the pose write→take latency percentiles, to stderr.
   void Summary() {
@@ -117,6 +131,9 @@ class Sink {
   void Record(const ipc::Odometry& m) { tum_ << TumLine(m.t_ns, m.pose) << "\n"; }
   template <typename Other>
   void Record(const Other&) {}
+  void Keep(const ipc::Path& m) { last_path_ = m; }
+  template <typename Other>
+  void Keep(const Other&) {}
 
   const EchoOptions& options_;
   std::ofstream tum_;
@@ -126,6 +143,7 @@ class Sink {
   std::array<int64_t, ipc::kTopicCount> counts_{};
   int64_t total_ = 0;
   std::vector<int64_t> transport_ns_;
+  std::optional<ipc::Path> last_path_;
 };
 
 void AddOptions(CLI::App& app, EchoOptions& o) {
@@ -148,6 +166,9 @@ void AddOptions(CLI::App& app, EchoOptions& o) {
   app.add_option("--record-from", o.record_from, "topic whose poses --record writes")
       ->check(CLI::IsMember({"pose", "odometry"}))
       ->capture_default_str();
+  app.add_option("--record-path", o.record_path_tum,
+                 "at exit, write the last keyframe path received (with loop closure: the pose "
+                 "graph's nodes) to this TUM file");
   app.add_option("--latency", o.latency_csv, "write one latency CSV row per sample");
   app.add_option("--latency-summary", o.latency_summary_csv,
                  "write latency percentiles per topic every --summary-period (long runs)");
@@ -171,6 +192,11 @@ int Run(EchoOptions& options) {
   if (!options.record_tum.empty() && std::find(options.topics.begin(), options.topics.end(),
                                                options.record_from) == options.topics.end()) {
     std::cerr << "swlio-echo: --record needs the " << options.record_from << " topic in --topics\n";
+    return 1;
+  }
+  if (!options.record_path_tum.empty() &&
+      std::find(options.topics.begin(), options.topics.end(), "path") == options.topics.end()) {
+    std::cerr << "swlio-echo: --record-path needs the path topic in --topics\n";
     return 1;
   }
   std::string error;
@@ -203,6 +229,10 @@ int Run(EchoOptions& options) {
     sink.Handle(Topic::kMap, subscriber->TakeMaps());
   }
   sink.Summary();
+  if (!sink.WritePath(&error)) {
+    std::cerr << "swlio-echo: " << error << "\n";
+    code = code == 0 ? 1 : code;
+  }
   if (code == 2) std::cerr << "swlio-echo: --count not reached within --duration\n";
   return code;
 }

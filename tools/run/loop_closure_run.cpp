@@ -13,8 +13,9 @@
 namespace swlio::tools {
 
 LoopClosureRun::LoopClosureRun(const estimator::LoopClosureConfig& config,
-                               estimator::NowNsFn now_ns)
-    : closure_(config), now_ns_(now_ns) {}
+                               estimator::NowNsFn now_ns,
+                               daemon::TimeScale time)
+    : closure_(config), now_ns_(now_ns), time_(time) {}
 
 State LoopClosureRun::OnSweep(const State& odom, const estimator::KeyframeCloud* keyframe) {
   sweeps_.push_back(odom);
@@ -59,6 +60,7 @@ bool LoopClosureRun::WriteEnu(const std::string& path, std::string* error) const
   out << header;
   for (State s : sweeps_) {
     s.T_world_imu = *T_enu_map * closure_.CorrectedPose(s.t_ns, s.T_world_imu);
+    s.t_ns = time_.ToHost(s.t_ns);
     daemon::WriteTumLine(out, s);
   }
   if (!out) *error = "cannot write " + path;
@@ -71,6 +73,20 @@ bool LoopClosureRun::WriteOptimized(const std::string& path) const {
   out << "# timestamp tx ty tz qx qy qz qw  (IMU frame, host time, sweep end; final pose graph)\n";
   for (State s : sweeps_) {
     s.T_world_imu = closure_.CorrectedPose(s.t_ns, s.T_world_imu);
+    s.t_ns = time_.ToHost(s.t_ns);
+    daemon::WriteTumLine(out, s);
+  }
+  return static_cast<bool>(out);
+}
+
+bool LoopClosureRun::WritePath(const std::string& path) const {
+  std::ofstream out(path);
+  if (!out) return false;
+  out << "# timestamp tx ty tz qx qy qz qw  (IMU frame, host time; the final pose graph's nodes)\n";
+  for (const estimator::MapNode& node : closure_.MapPath()) {
+    State s;
+    s.t_ns = time_.ToHost(node.t_ns);
+    s.T_world_imu = node.T_map_imu;
     daemon::WriteTumLine(out, s);
   }
   return static_cast<bool>(out);
@@ -89,8 +105,8 @@ bool LoopClosureRun::WriteLoops(const std::string& path) const {
     std::snprintf(
         line, sizeof line,
         "%lld,%lld,%.3f,%s,%.3f,%zu,%.2f,%.4f,%.5f,%.4f,%.4f,%.4f,%.6f,%.6f,%.6f,%.6f,%s\n",
-        static_cast<long long>(closure_.node(a.candidate).t_ns),
-        static_cast<long long>(closure_.node(a.node).t_ns), a.distance_m,
+        static_cast<long long>(time_.ToHost(closure_.node(a.candidate).t_ns)),
+        static_cast<long long>(time_.ToHost(closure_.node(a.node).t_ns)), a.distance_m,
         estimator::ToString(a.check.verdict), a.check.fitness, a.check.inliers,
         a.check.min_eigenvalue, a.check.correction_m, a.check.correction_rad, T.translation().x(),
         T.translation().y(), T.translation().z(), q.x(), q.y(), q.z(), q.w(),

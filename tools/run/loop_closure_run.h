@@ -3,10 +3,10 @@
 /// swlio-run's loop closure (`--loop-closure on`): every tracked sweep's pose goes through
 /// LoopClosure (estimator/loop_closure.h), keyframes become graph nodes, and the trajectory is
 /// written twice: as it would have been published (each sweep with the correction known at
-/// its time: `--out`) and after the run with the final graph (`--out-optimized`). The loop
-/// attempts can be written as CSV (`--loops`). With GNSS (`--gnss on`) the fixes go in too,
-/// and the final trajectory can be written georeferenced, in the local ENU frame (`--out-enu`).
-/// Timing: thread CPU time of each AddKeyframe (and of each AddGnss that optimized).
+/// its time: `--out`) and after the run with the final graph (`--out-optimized`; its nodes alone:
+/// `--out-path`). The loop attempts can be written as CSV (`--loops`). With GNSS (`--gnss on`) the
+/// fixes go in too, and the final trajectory can be written georeferenced, in the local ENU frame
+/// (`--out-enu`). Timing: thread CPU time of each AddKeyframe (and of each AddGnss that optimized).
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "swlio/core/types.h"
+#include "swlio/daemon/time_scale.h"
 #include "swlio/estimator/loop_closure.h"
 #include "swlio/estimator/map_pcd.h"
 #include "swlio/estimator/stage_timer.h"
@@ -22,7 +23,10 @@ namespace swlio::tools {
 
 class LoopClosureRun {
  public:
-  LoopClosureRun(const estimator::LoopClosureConfig& config, estimator::NowNsFn now_ns);
+  /// `time`: the recording's time base; the written files' stamps go back to host time.
+  LoopClosureRun(const estimator::LoopClosureConfig& config,
+                 estimator::NowNsFn now_ns,
+                 daemon::TimeScale time = {});
 
   /// A tracked sweep's state (odometry frame) and its keyframe (null unless one); returns the
   /// state in the map frame with the correction known now.
@@ -33,6 +37,9 @@ class LoopClosureRun {
 
   /// Every sweep passed to OnSweep, corrected with the final graph (TUM).
   bool WriteOptimized(const std::string& path) const;
+  /// The final graph's nodes (one per keyframe) at their poses (TUM): the keyframe path the
+  /// daemon publishes last.
+  bool WritePath(const std::string& path) const;
   /// The same in the local ENU frame (GNSS); false with *error before the alignment.
   bool WriteEnu(const std::string& path, std::string* error) const;
   /// One row per verified candidate.
@@ -49,6 +56,7 @@ class LoopClosureRun {
 
   estimator::LoopClosure closure_;
   estimator::NowNsFn now_ns_;
+  daemon::TimeScale time_;
   std::vector<State> sweeps_;      ///< odometry frame
   std::vector<double> update_ms_;  ///< AddKeyframe calls that verified a candidate
   std::vector<double> graph_ms_;   ///< of those, the ones that optimized

@@ -39,7 +39,7 @@ const swlio::estimator::WindowEstimatorConfig& WindowDefaults() {
 }
 
 struct Options {
-  std::string loop_closure = "off", out_optimized, loops;
+  std::string loop_closure = "off", out_optimized, out_path, loops;
   std::string wheel = "off", gnss = "off", out_enu;  ///< optional sensors (aux_sensors.h)
   std::string save_map, map_pcd, map;  ///< map files (loop closure writes, --localize reads)
   bool localize = false;
@@ -277,6 +277,14 @@ int Run(const Options& opt) {
     std::cerr << "swlio-run: " << error << "\n";
     return 1;
   }
+  // A daemon recording made at --time-scale N has its receive times stretched onto the sensors'
+  // time base (time_scale.h): the estimator runs on it, and every output goes back to host
+  // time, as the daemon published it (the live simulator's ground truth is on host time too).
+  const swlio::daemon::TimeScale time = swlio::daemon::ManifestTimeScale(opt.dir);
+  const auto host = [&time](swlio::State s) {
+    s.t_ns = time.ToHost(s.t_ns);
+    return s;
+  };
   std::ofstream tum(opt.out);
   std::ofstream timings, diagnostics, covariance;
   if (!opt.timings.empty()) timings.open(opt.timings);
@@ -346,14 +354,15 @@ int Run(const Options& opt) {
     }
   } else if (loop_closure || gnss) {
     loops = std::make_unique<swlio::tools::LoopClosureRun>(daemon_config.loop_closure,
-                                                           &swlio::daemon::ThreadCpuNowNs);
-  } else if (!opt.save_map.empty()) {
-    std::cerr << "swlio-run: --save-map needs loop closure (its graph is the map)\n";
+                                                           &swlio::daemon::ThreadCpuNowNs, time);
+  } else if (!opt.save_map.empty() || !opt.out_optimized.empty() || !opt.out_path.empty()) {
+    std::cerr << "swlio-run: --save-map, --out-optimized and --out-path need loop closure (the "
+                 "pose graph)\n";
     return 1;
   }
   auto process = [&](const swlio::Scan& scan, const swlio::estimator::WindowResult& w) {
     const OdometryResult& r = w.odometry;
-    if (covariance && w.covariance.valid) WriteCovariance(covariance, r.state, w.covariance);
+    if (covariance && w.covariance.valid) WriteCovariance(covariance, host(r.state), w.covariance);
     summary.Add(r);
     summary.reinitializations = w.reinitializations;  // the estimator's count
     summary.wheel_factors = std::max(summary.wheel_factors, w.wheel_factors);
@@ -362,15 +371,16 @@ int Run(const Options& opt) {
       std::cerr << "swlio-run: sweep ending at " << static_cast<double>(scan.t_end_ns) * 1e-9
                 << " s: " << swlio::estimator::ToString(w.diverged) << ", re-initializing\n";
     }
-    if (timings) WriteTimings(timings, r, scan.t_end_ns);
-    if (diagnostics) WriteDiagnostics(diagnostics, r, scan.t_end_ns);
+    if (timings) WriteTimings(timings, r, time.ToHost(scan.t_end_ns));
+    if (diagnostics) WriteDiagnostics(diagnostics, r, time.ToHost(scan.t_end_ns));
     if (r.status != OdometryStatus::kTracking && r.status != OdometryStatus::kMatchFailed) return;
     if (localization) {
       if (swlio::State s; localization->OnSweep(r.state, w.keyframe.get(), &s))
-        swlio::daemon::WriteTumLine(tum, s);
+        swlio::daemon::WriteTumLine(tum, host(s));
       return;
     }
-    swlio::daemon::WriteTumLine(tum, loops ? loops->OnSweep(r.state, w.keyframe.get()) : r.state);
+    swlio::daemon::WriteTumLine(tum,
+                                host(loops ? loops->OnSweep(r.state, w.keyframe.get()) : r.state));
   };
   swlio::daemon::EstimatorRunner runner(setup, &swlio::daemon::ThreadCpuNowNs, process);
   swlio::daemon::RecordingEvent e;
@@ -413,6 +423,10 @@ int Run(const Options& opt) {
     summary.extra = loops->SummaryJson();
     if (!opt.out_optimized.empty() && !loops->WriteOptimized(opt.out_optimized)) {
       std::cerr << "swlio-run: cannot write " << opt.out_optimized << "\n";
+      return 1;
+    }
+    if (!opt.out_path.empty() && !loops->WritePath(opt.out_path)) {
+      std::cerr << "swlio-run: cannot write " << opt.out_path << "\n";
       return 1;
     }
     if (!opt.loops.empty() && !loops->WriteLoops(opt.loops)) {
@@ -518,6 +532,9 @@ int Main(int argc, char** argv) {
                  "frame (TUM)");
   app.add_option("--out-optimized", opt.out_optimized,
                  "with loop closure: every sweep corrected by the final pose graph (TUM)");
+  app.add_option("--out-path", opt.out_path,
+                 "with loop closure: the final pose graph's nodes (TUM; the keyframe path the "
+                 "daemon publishes last)");
   app.add_option("--loops", opt.loops,
                  "with loop closure: every verified loop candidate (CSV: times of both nodes, "
                  "verdict, fitness, inliers, Hessian's smallest eigenvalue, correction, relative "
