@@ -68,25 +68,26 @@ DynamicBootstrapConfig BootstrapConfig(const WindowEstimatorConfig& config) {
 }  // namespace
 
 WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn now_ns)
-    : config_(config),
+    : config_(WithWindowFeatures(config)),
       now_ns_(now_ns),
-      initializer_(config.odometry.estimator),
-      bootstrap_(BootstrapConfig(config)),
+      initializer_(config_.odometry.estimator),
+      bootstrap_(BootstrapConfig(config_)),
       init_sigma_velocity_mps_(config.init_sigma_velocity_mps),
       init_sigma_tilt_rad_(config.init_sigma_rotation_rad),
       init_sigma_bias_acc_mps2_(config.init_sigma_bias_acc_mps2),
-      propagator_(config.odometry.estimator.gravity_mps2),
-      front_end_(config.odometry.front_end),
-      plane_map_(config.odometry.plane_map),
-      edge_map_(config.odometry.edge_map),
-      matcher_(config.odometry.matcher),
+      propagator_(config_.odometry.estimator.gravity_mps2),
+      front_end_(config_.odometry.front_end),
+      plane_map_(config_.odometry.plane_map),
+      edge_map_(config_.odometry.edge_map),
+      matcher_(config_.odometry.matcher),
       huber_(config.huber_m / config.lidar_sigma_m),
       extrinsic_(kPoseSize),
       gravity_tilt_(kGravityTiltSize, 0.0),
       divergence_(config.divergence) {
-  PoseToParameters(config.odometry.T_imu_lidar, extrinsic_.data());
+  PoseToParameters(config_.odometry.T_imu_lidar, extrinsic_.data());
   ResetExtrinsicPrior();
   if (config.calibrate_extrinsic_s > 0.0) {
+    // The LiDAR-only odometry beside the window, with the LiDAR-only mode's own features.
     calibration_ = std::make_unique<ExtrinsicCalibrationRun>(
         config.odometry, config.calibrate_extrinsic_s, config.calibrate_retry_s);
   }

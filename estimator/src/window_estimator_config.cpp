@@ -18,6 +18,9 @@ ConfigIssues WindowEstimatorConfig::Validate() const {
   CheckInRange<size_t>(issues, "window_size", window_size, 2, 50);
   CheckInRange(issues, "max_iterations", max_iterations, 1, 50);
   CheckInRange(issues, "reassociations", reassociations, 0, 5);
+  CheckInRange(issues, "edge_threshold_m2", edge_threshold_m2, 1e-6, 100.0);
+  CheckInRange<int64_t>(issues, "max_edges_per_sector", max_edges_per_sector,
+                        odometry.front_end.features.max_sharp_edges_per_sector, 10000);
   CheckPositive(issues, "lidar_sigma_m", lidar_sigma_m);
   CheckPositive(issues, "huber_m", huber_m);
   CheckPositive(issues, "static_max_speed_mps", static_max_speed_mps);
@@ -37,6 +40,12 @@ ConfigIssues WindowEstimatorConfig::Validate() const {
   CheckInRange(issues, "bias_prior_sigma_acc_mps2", bias_prior_sigma_acc_mps2, 0.0, 10.0);
   CheckInRange(issues, "bias_prior_sigma_gyro_radps", bias_prior_sigma_gyro_radps, 0.0, 1.0);
   return issues;
+}
+
+WindowEstimatorConfig WithWindowFeatures(WindowEstimatorConfig config) {
+  config.odometry.front_end.features.edge_threshold_m2 = config.edge_threshold_m2;
+  config.odometry.front_end.features.max_edges_per_sector = config.max_edges_per_sector;
+  return config;
 }
 
 }  // namespace swlio::estimator

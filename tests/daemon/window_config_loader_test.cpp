@@ -29,6 +29,8 @@ void ExpectSameWindow(const WindowEstimatorConfig& a, const WindowEstimatorConfi
   EXPECT_EQ(a.max_iterations, b.max_iterations);
   EXPECT_EQ(a.prealign, b.prealign);
   EXPECT_EQ(a.reassociations, b.reassociations);
+  EXPECT_EQ(a.edge_threshold_m2, b.edge_threshold_m2);
+  EXPECT_EQ(a.max_edges_per_sector, b.max_edges_per_sector);
   EXPECT_EQ(a.lidar_sigma_m, b.lidar_sigma_m);
   EXPECT_EQ(a.huber_m, b.huber_m);
   EXPECT_EQ(a.degenerate_eigenvalue, b.degenerate_eigenvalue);
@@ -95,6 +97,8 @@ estimator:
     max_iterations: 6
     prealign: false
     reassociations: 2
+    edge_threshold_m2: 0.15
+    max_edges_per_sector: 40
     lidar_sigma_m: 0.04
     huber_m: 0.2
     degenerate_eigenvalue: 8
@@ -145,6 +149,8 @@ estimator:
   want.max_iterations = 6;
   want.prealign = false;
   want.reassociations = 2;
+  want.edge_threshold_m2 = 0.15;
+  want.max_edges_per_sector = 40;
   want.lidar_sigma_m = 0.04;
   want.huber_m = 0.2;
   want.degenerate_eigenvalue = 8;
@@ -203,8 +209,10 @@ estimator:
       initializer:
         min_frames: 5
         rotation_sigma_rad: -0.1
+    edge_threshold_m2: 0
+    max_edges_per_sector: 1
 )");
-  ASSERT_EQ(loaded.errors.size(), 6u) << loaded.ErrorReport();
+  ASSERT_EQ(loaded.errors.size(), 8u) << loaded.ErrorReport();
   EXPECT_EQ(loaded.errors[0].ToString(),
             "test.yaml:4:5: estimator.window.window_size: must be in [2, 50], got 1");
   EXPECT_EQ(loaded.errors[1].ToString(),
@@ -220,6 +228,11 @@ estimator:
   EXPECT_EQ(loaded.errors[5].ToString(),
             "test.yaml:12:9: estimator.window.bootstrap.initializer.rotation_sigma_rad: must be "
             "> 0, got -0.1");
+  EXPECT_EQ(loaded.errors[6].ToString(),
+            "test.yaml:13:5: estimator.window.edge_threshold_m2: must be in [1e-06, 100], got 0");
+  // Fewer than the sharp edges (max_sharp_edges_per_sector, 2) it includes.
+  EXPECT_EQ(loaded.errors[7].ToString(),
+            "test.yaml:14:5: estimator.window.max_edges_per_sector: must be in [2, 10000], got 1");
 }
 
 TEST(WindowConfig, TypeErrorsAndUnknownKeysAreReported) {

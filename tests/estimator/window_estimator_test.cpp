@@ -142,6 +142,21 @@ TEST(WindowEstimator, FirstCovarianceIsTheInitialPrior) {
   }
 }
 
+// The window's own edge settings, not odometry.front_end's, decide its sweeps' edges: a wall has
+// none above the default smoothness threshold, and some above a tiny one.
+TEST(WindowEstimator, ItsEdgeSettingsReachTheFrontEnd) {
+  WindowEstimatorConfig config;
+  config.window_size = 4;
+  config.odometry.front_end.features.edge_threshold_m2 = 1e-6;  // not the window's: ignored
+  EXPECT_EQ(StandStill(config).odometry.edges, 0u);
+  config.edge_threshold_m2 = 1e-6;
+  EXPECT_GT(StandStill(config).odometry.edges, 0u);
+  config.max_edges_per_sector = 2;
+  const WindowEstimatorConfig applied = WithWindowFeatures(config);
+  EXPECT_EQ(applied.odometry.front_end.features.edge_threshold_m2, 1e-6);
+  EXPECT_EQ(applied.odometry.front_end.features.max_edges_per_sector, 2);
+}
+
 TEST(WindowEstimatorConfig, ValidateNamesTheBadKeys) {
   WindowEstimatorConfig config;
   EXPECT_TRUE(config.Validate().empty());

@@ -4,6 +4,7 @@
 /// configuration code does not pull in Ceres.
 
 #include <cstddef>
+#include <cstdint>
 
 #include "swlio/core/config_issue.h"
 #include "swlio/estimator/divergence_monitor.h"
@@ -21,6 +22,16 @@ struct WindowEstimatorConfig {
   /// Re-associations of the newest frame at most after the window solve (each one more solve);
   /// they stop once a solve moves the pose less than matcher.reassociate_*.
   int reassociations = 1;
+  /// Edge features of the window's sweeps (and its dynamic bootstrap), in place of
+  /// odometry.front_end.features' edge_threshold_m2 and max_edges_per_sector; by default the
+  /// LiDAR-only mode's. More and weaker edges (0.15 m², 40 per sector) trade along-track
+  /// velocity for yaw (bench/README, "More, weaker edges in the window"): loop943 seeds 1–3
+  /// without loop closure, APE 0.716 / 0.360 / 0.664 → 0.454 / 0.198 / 0.372 m, yaw drift
+  /// 0.285 → 0.231°/100 m; but on run_command_test's 25 s drive the forward velocity error
+  /// 0.016 → 0.027 m/s RMS and its NEES 5.3 → 16 (limit 9). A site with long featureless
+  /// stretches and good vertical structure may want them.
+  double edge_threshold_m2 = 0.3;
+  int64_t max_edges_per_sector = 20;
   double lidar_sigma_m = 0.05;  ///< point-to-plane / point-to-line standard deviation
   double huber_m = 0.1;         ///< Huber kernel width (metres of residual)
   /// When the newest state is not believable: re-initialize (divergence_monitor.h).
@@ -98,5 +109,9 @@ struct WindowEstimatorConfig {
 
   ConfigIssues Validate() const;
 };
+
+/// `config` with its edge settings (edge_threshold_m2, max_edges_per_sector) put into
+/// odometry.front_end.features, where the front end reads them.
+WindowEstimatorConfig WithWindowFeatures(WindowEstimatorConfig config);
 
 }  // namespace swlio::estimator
