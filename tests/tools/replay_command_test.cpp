@@ -26,16 +26,23 @@ std::string ReadAll(const fs::path& path) {
   return s.str();
 }
 
+/// The simulator's `short` drive, its first `seconds`, recorded into `rec`.
+::testing::AssertionResult RecordShortDrive(uint64_t seed, double seconds, const fs::path& rec) {
+  const auto setup = sim::MakeSimSetup("short", seed, seconds);
+  if (!setup) return ::testing::AssertionFailure() << "no simulator setup";
+  sim::RecordingStats stats;
+  std::string error;
+  if (!sim::WriteRecording(*setup, rec, &stats, &error))
+    return ::testing::AssertionFailure() << error;
+  return ::testing::AssertionSuccess();
+}
+
 TEST(ReplayCommand, DeterministicReplayIsByteIdenticalAndMatchesSwlioRun) {
   const fs::path replay = test::ToolPath("swlio-replay");
   const fs::path run = test::ToolPath("swlio-run");
   if (replay.empty() || run.empty()) GTEST_SKIP() << "swlio-replay / swlio-run not built";
   const fs::path dir = test::MakeTempDir("swlio_replay");
-  const auto setup = sim::MakeSimSetup("short", 11, 10.0);
-  ASSERT_TRUE(setup.has_value());
-  sim::RecordingStats stats;
-  std::string error;
-  ASSERT_TRUE(sim::WriteRecording(*setup, dir / "rec", &stats, &error)) << error;
+  ASSERT_TRUE(RecordShortDrive(11, 10.0, dir / "rec"));
   int code = 0;
   for (const char* name : {"a.tum", "b.tum"}) {
     const std::string out =
@@ -63,11 +70,7 @@ TEST(ReplayCommand, BothToolsWriteAScaledRecordingOnHostTime) {
   const fs::path run = test::ToolPath("swlio-run");
   if (replay.empty() || run.empty()) GTEST_SKIP() << "swlio-replay / swlio-run not built";
   const fs::path dir = test::MakeTempDir("swlio_replay_scaled");
-  const auto setup = sim::MakeSimSetup("short", 12, 8.0);
-  ASSERT_TRUE(setup.has_value());
-  sim::RecordingStats stats;
-  std::string error;
-  ASSERT_TRUE(sim::WriteRecording(*setup, dir / "rec", &stats, &error)) << error;
+  ASSERT_TRUE(RecordShortDrive(12, 8.0, dir / "rec"));
   fs::copy(dir / "rec", dir / "rec2");
   const int64_t origin_ns = 1'000'000'000;
   std::ofstream(dir / "rec2" / "manifest.yaml", std::ios::app)
