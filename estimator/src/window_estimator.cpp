@@ -72,32 +72,32 @@ WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn no
       now_ns_(now_ns),
       initializer_(config_.odometry.estimator),
       bootstrap_(BootstrapConfig(config_)),
-      init_sigma_velocity_mps_(config.init_sigma_velocity_mps),
-      init_sigma_tilt_rad_(config.init_sigma_rotation_rad),
-      init_sigma_bias_acc_mps2_(config.init_sigma_bias_acc_mps2),
+      init_sigma_velocity_mps_(config_.init_sigma_velocity_mps),
+      init_sigma_tilt_rad_(config_.init_sigma_rotation_rad),
+      init_sigma_bias_acc_mps2_(config_.init_sigma_bias_acc_mps2),
       propagator_(config_.odometry.estimator.gravity_mps2),
       front_end_(config_.odometry.front_end),
       plane_map_(config_.odometry.plane_map),
       edge_map_(config_.odometry.edge_map),
       matcher_(config_.odometry.matcher),
-      huber_(config.huber_m / config.lidar_sigma_m),
+      huber_(config_.huber_m / config_.lidar_sigma_m),
       extrinsic_(kPoseSize),
       gravity_tilt_(kGravityTiltSize, 0.0),
-      divergence_(config.divergence) {
+      divergence_(config_.divergence) {
   PoseToParameters(config_.odometry.T_imu_lidar, extrinsic_.data());
   ResetExtrinsicPrior();
-  if (config.calibrate_extrinsic_s > 0.0) {
+  if (config_.calibrate_extrinsic_s > 0.0) {
     // The LiDAR-only odometry beside the window, with the LiDAR-only mode's own features.
     calibration_ = std::make_unique<ExtrinsicCalibrationRun>(
-        config.odometry, config.calibrate_extrinsic_s, config.calibrate_retry_s);
+        config.odometry, config_.calibrate_extrinsic_s, config_.calibrate_retry_s);
   }
-  if (config.bias_prior_sigma_acc_mps2 > 0.0 || config.bias_prior_sigma_gyro_radps > 0.0) {
+  if (config_.bias_prior_sigma_acc_mps2 > 0.0 || config_.bias_prior_sigma_gyro_radps > 0.0) {
     auto sigma_or_none = [](double sigma) { return sigma > 0.0 ? sigma : 1e3; };
     zero_speed_bias_.assign(kSpeedBiasSize, 0.0);
     Eigen::VectorXd sb_sigmas(kSpeedBiasSize);
     sb_sigmas << Eigen::Vector3d::Constant(1e3),  // velocity: no information
-        Eigen::Vector3d::Constant(sigma_or_none(config.bias_prior_sigma_acc_mps2)),
-        Eigen::Vector3d::Constant(sigma_or_none(config.bias_prior_sigma_gyro_radps));
+        Eigen::Vector3d::Constant(sigma_or_none(config_.bias_prior_sigma_acc_mps2)),
+        Eigen::Vector3d::Constant(sigma_or_none(config_.bias_prior_sigma_gyro_radps));
     bias_prior_ = DiagonalPrior({{zero_speed_bias_.data(), nullptr}}, sb_sigmas);
   }
 }

@@ -28,8 +28,8 @@ struct WindowEstimatorConfig {
   /// velocity for yaw (bench/README, "More, weaker edges in the window"): loop943 seeds 1–3
   /// without loop closure, APE 0.716 / 0.360 / 0.664 → 0.454 / 0.198 / 0.372 m, yaw drift
   /// 0.285 → 0.231°/100 m; but on run_command_test's 25 s drive the forward velocity error
-  /// 0.016 → 0.027 m/s RMS and its NEES 5.3 → 16 (limit 9). A site with long featureless
-  /// stretches and good vertical structure may want them.
+  /// 0.016 → 0.027 m/s RMS and its NEES 5.3 → 16 (limit 9). At 0.2 m² loop943 was worse than
+  /// both (0.724 / 0.537 / 0.766 m): the gain is not established by three runs.
   double edge_threshold_m2 = 0.3;
   int64_t max_edges_per_sector = 20;
   double lidar_sigma_m = 0.05;  ///< point-to-plane / point-to-line standard deviation
