@@ -37,10 +37,18 @@ std::string ReadAll(const fs::path& path) {
   return ::testing::AssertionSuccess();
 }
 
-TEST(ReplayCommand, DeterministicReplayIsByteIdenticalAndMatchesSwlioRun) {
-  const fs::path replay = test::ToolPath("swlio-replay");
-  const fs::path run = test::ToolPath("swlio-run");
-  if (replay.empty() || run.empty()) GTEST_SKIP() << "swlio-replay / swlio-run not built";
+/// Both tools, found next to the tests (skipped where they are not built).
+class ReplayCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    replay = test::ToolPath("swlio-replay");
+    run = test::ToolPath("swlio-run");
+    if (replay.empty() || run.empty()) GTEST_SKIP() << "swlio-replay / swlio-run not built";
+  }
+  fs::path replay, run;
+};
+
+TEST_F(ReplayCommand, DeterministicReplayIsByteIdenticalAndMatchesSwlioRun) {
   const fs::path dir = test::MakeTempDir("swlio_replay");
   ASSERT_TRUE(RecordShortDrive(11, 10.0, dir / "rec"));
   int code = 0;
@@ -65,10 +73,7 @@ TEST(ReplayCommand, DeterministicReplayIsByteIdenticalAndMatchesSwlioRun) {
 // A daemon recording made with --time-scale 2 (the simulator at 2×) holds receive times on the
 // sensors' time base; the estimator runs on it and both tools write host times, as the daemon
 // published them: the same poses as on the unscaled recording, at origin + (t − origin) / 2.
-TEST(ReplayCommand, BothToolsWriteAScaledRecordingOnHostTime) {
-  const fs::path replay = test::ToolPath("swlio-replay");
-  const fs::path run = test::ToolPath("swlio-run");
-  if (replay.empty() || run.empty()) GTEST_SKIP() << "swlio-replay / swlio-run not built";
+TEST_F(ReplayCommand, BothToolsWriteAScaledRecordingOnHostTime) {
   const fs::path dir = test::MakeTempDir("swlio_replay_scaled");
   ASSERT_TRUE(RecordShortDrive(12, 8.0, dir / "rec"));
   fs::copy(dir / "rec", dir / "rec2");
@@ -106,9 +111,7 @@ TEST(ReplayCommand, BothToolsWriteAScaledRecordingOnHostTime) {
   }
 }
 
-TEST(ReplayCommand, RefusesAFolderWithoutARecording) {
-  const fs::path replay = test::ToolPath("swlio-replay");
-  if (replay.empty()) GTEST_SKIP() << "swlio-replay not built";
+TEST_F(ReplayCommand, RefusesAFolderWithoutARecording) {
   const fs::path dir = test::MakeTempDir("swlio_replay_empty");
   int code = 0;
   const std::string out = test::RunCommand(
