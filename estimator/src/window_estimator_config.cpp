@@ -1,5 +1,7 @@
 #include "swlio/estimator/window_estimator_config.h"
 
+#include <utility>
+
 namespace swlio::estimator {
 
 ConfigIssues WindowEstimatorConfig::Validate() const {
@@ -18,9 +20,11 @@ ConfigIssues WindowEstimatorConfig::Validate() const {
   CheckInRange<size_t>(issues, "window_size", window_size, 2, 50);
   CheckInRange(issues, "max_iterations", max_iterations, 1, 50);
   CheckInRange(issues, "reassociations", reassociations, 0, 5);
-  CheckInRange(issues, "edge_threshold_m2", edge_threshold_m2, 1e-6, 100.0);
-  CheckInRange<int64_t>(issues, "max_edges_per_sector", max_edges_per_sector,
-                        odometry.front_end.features.max_sharp_edges_per_sector, 10000);
+  // The two edge settings by the front end's own rules, as WithWindowFeatures applies them.
+  for (ConfigIssue& issue : WithWindowFeatures(*this).odometry.front_end.features.Validate()) {
+    if (issue.key == "edge_threshold_m2" || issue.key == "max_edges_per_sector")
+      issues.push_back(std::move(issue));
+  }
   CheckPositive(issues, "lidar_sigma_m", lidar_sigma_m);
   CheckPositive(issues, "huber_m", huber_m);
   CheckPositive(issues, "static_max_speed_mps", static_max_speed_mps);
