@@ -179,6 +179,10 @@ int Run(int argc, char** argv) {
                  "draw the substation from this seed instead (a second drive in a mapped world)");
   app.add_option("--out", out, "output folder");
   app.add_option("--duration", duration, "cut the drive after this many seconds");
+  double stand_start = 0.0;
+  app.add_option("--stand-start", stand_start,
+                 "seconds standing still before driving off (the scenario's own: 2)")
+      ->check(CLI::Range(1.0, 3600.0));
   app.add_option("--laps", laps,
                  "drive a closed route (loop943) this many times; live: the first lap's rays "
                  "are cast before streaming and replayed (long runs at 10x)")
@@ -205,7 +209,8 @@ int Run(int argc, char** argv) {
   }
   auto setup = swlio::sim::MakeSimSetup(
       scenario, seed, duration > 0.0 ? std::optional<double>(duration) : std::nullopt,
-      app.count("--world-seed") > 0 ? std::optional<uint64_t>(world_seed) : std::nullopt);
+      app.count("--world-seed") > 0 ? std::optional<uint64_t>(world_seed) : std::nullopt,
+      app.count("--stand-start") > 0 ? std::optional<double>(stand_start) : std::nullopt);
   if (!setup) {
     std::cerr << "swlio-sim: unknown scenario '" << scenario << "' (see --list)\n";
     return 2;

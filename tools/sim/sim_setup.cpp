@@ -41,7 +41,8 @@ void SetUpWheels(const RouteSpec& route, uint64_t seed, WheelSimConfig* wheel) {
 std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
                                      uint64_t seed,
                                      std::optional<double> duration_s,
-                                     std::optional<uint64_t> world_seed) {
+                                     std::optional<uint64_t> world_seed,
+                                     std::optional<double> stand_start_s) {
   std::optional<Scenario> s = MakeScenario(scenario, seed);
   if (!s) return std::nullopt;
   SimSetup setup;
@@ -49,6 +50,7 @@ std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
   setup.seed = seed;
   setup.world_seed = world_seed.value_or(seed);
   setup.world = std::make_unique<World>(GenerateSubstation(setup.world_seed));
+  if (stand_start_s) s->route.stand_start_s = *stand_start_s;
   setup.trajectory = std::make_unique<Trajectory>(s->route, &setup.world->terrain);
   Rng rng(seed ^ 0xC10C4ull);
   // LiDAR header clock: UTC-like (2023-11 plus up to a day), drifting up to ±20 ppm.

@@ -34,11 +34,14 @@ struct SimSetup {
 
 /// Builds the setup; `duration_s` (when given) shortens the route's timeline; `world_seed`
 /// (when given) draws the substation from another seed than the drive (a second drive in a
-/// world mapped before). Returns nothing for an unknown scenario.
+/// world mapped before); `stand_start_s` (when given) replaces the scenario's standing time
+/// before the robot drives off (an inspection stop at the start). Returns nothing for an
+/// unknown scenario.
 std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
                                      uint64_t seed,
                                      std::optional<double> duration_s = std::nullopt,
-                                     std::optional<uint64_t> world_seed = std::nullopt);
+                                     std::optional<uint64_t> world_seed = std::nullopt,
+                                     std::optional<double> stand_start_s = std::nullopt);
 
 /// Trajectory duration after the optional cut.
 double SimDuration(const SimSetup& setup);
