@@ -342,6 +342,17 @@ void Bind(Section s, estimator::DynamicBootstrapConfig& c) {
 }
 
 /// `T_imu_base` as translation_m and rotation_rpy_deg (the extrinsic's convention).
+void Bind(Section s, estimator::StandstillConfig& c) {
+  s.Get("enabled", c.enabled);
+  s.Get("max_acc_std_mps2", c.max_acc_std_mps2);
+  s.Get("max_gyro_std_radps", c.max_gyro_std_radps);
+  s.Get("max_specific_force_error_mps2", c.max_specific_force_error_mps2);
+  s.Get("max_rate_radps", c.max_rate_radps);
+  s.Get("max_lidar_speed_mps", c.max_lidar_speed_mps);
+  s.Get("sigma_velocity_mps", c.sigma_velocity_mps);
+  s.Finish();
+}
+
 void Bind(Section s, estimator::WheelFactorConfig& c) {
   s.Get("enabled", c.enabled);
   estimator::ExtrinsicConfig base;
@@ -418,6 +429,7 @@ void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   Bind(s.Child("bootstrap"), c.bootstrap);
   Bind(s.Child("divergence"), c.divergence);
   Bind(s.Child("wheel"), c.wheel);
+  Bind(s.Child("standstill"), c.standstill);
   s.Finish();
 }
 

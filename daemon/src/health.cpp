@@ -192,7 +192,9 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
       {"reinitializations", Count(s.optimizer.reinitializations)},
       {"imu_only_s", Num(s.optimizer.imu_only_s, "%.2f")},
       {"sweep_age_s", SweepAge(s)},
-      {"last_divergence", s.optimizer.last_divergence}};
+      {"last_divergence", s.optimizer.last_divergence},
+      {"standing_still", s.optimizer.standing_still ? "true" : "false"},
+      {"standstill_sweeps", Count(s.optimizer.standstill_sweeps)}};
   if (s.optimizer.wheel_factors + s.optimizer.wheel_rejected > 0) {
     d.values.push_back({"wheel_factors", Count(s.optimizer.wheel_factors)});
     d.values.push_back({"wheel_rejected", Count(s.optimizer.wheel_rejected)});

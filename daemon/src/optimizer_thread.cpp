@@ -96,6 +96,8 @@ void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& 
   reinitializations_ = result.reinitializations;  // the estimator's count
   wheel_factors_ = result.wheel_factors;
   wheel_rejected_ = result.wheel_rejected;
+  standing_still_ = result.standstill;
+  standstill_sweeps_ = result.standstill_frames;
   if (result.diverged != estimator::DivergenceReason::kNone) {
     recovering_ = true;
     last_divergence_ = result.diverged;
@@ -154,6 +156,8 @@ void OptimizerThread::Publish() {
   snapshot_.reinitializations = reinitializations_;
   snapshot_.wheel_factors = wheel_factors_;
   snapshot_.wheel_rejected = wheel_rejected_;
+  snapshot_.standing_still = standing_still_;
+  snapshot_.standstill_sweeps = standstill_sweeps_;
   snapshot_.recovering = recovering_;
   snapshot_.last_divergence = estimator::ToString(last_divergence_);
 }

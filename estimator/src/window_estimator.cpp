@@ -59,6 +59,15 @@ ImuSample At(ImuSample s, int64_t t_ns) {
   return s;
 }
 
+}  // namespace
+
+double StaticStartTiltSigma(const WindowEstimatorConfig& config) {
+  return std::max(config.init_sigma_rotation_rad,
+                  config.init_sigma_bias_acc_mps2 / config.odometry.estimator.gravity_mps2);
+}
+
+namespace {
+
 DynamicBootstrapConfig BootstrapConfig(const WindowEstimatorConfig& config) {
   DynamicBootstrapConfig c = config.bootstrap;
   c.odometry = config.odometry;
@@ -129,6 +138,7 @@ void WindowEstimator::AddImu(const ImuSample& sample) {
     init_state_ = initializer_.result().state;
     const Eigen::Isometry3d T_fix = AnchorFor(init_state_.T_world_imu, init_state_.t_ns, false);
     init_state_.T_world_imu = T_fix * init_state_.T_world_imu;
+    started_static_ = true;
     anchor_.reset();
     imu_.assign(1, sample);
     bootstrap_.Reset();
@@ -144,6 +154,7 @@ void WindowEstimator::AddImu(const ImuSample& sample) {
 void WindowEstimator::StartFromBootstrap() {
   const BootstrapResult& r = bootstrap_.result();
   initialized_ = true;
+  started_static_ = false;  // the alignment's tilt σ already holds what it could not observe
   init_state_ = r.state;
   // Anchored where the new world starts: the alignment window's oldest sweep.
   const std::vector<BootstrapKeyframe>& kfs = bootstrap_.keyframes();
@@ -237,8 +248,7 @@ void WindowEstimator::SetInitialPrior(Frame* f) {
   } else {
     Eigen::VectorXd sigmas(kPoseTangentSize + kSpeedBiasSize);
     sigmas << Eigen::Vector3d::Constant(config_.init_sigma_position_m),
-        Eigen::Vector3d(init_sigma_tilt_rad_, init_sigma_tilt_rad_,
-                        config_.init_sigma_rotation_rad),
+        Eigen::Vector3d(DiagonalTiltSigma(), DiagonalTiltSigma(), config_.init_sigma_rotation_rad),
         Eigen::Vector3d::Constant(init_sigma_velocity_mps_),
         Eigen::Vector3d::Constant(init_sigma_bias_acc_mps2_),
         Eigen::Vector3d::Constant(config_.init_sigma_bias_gyro_radps);
@@ -256,6 +266,14 @@ void WindowEstimator::SetInitialPrior(Frame* f) {
   }
   prior_.prior = GaussianPrior(blocks, W);
   prior_.rank = n + n_tilt;
+}
+
+double WindowEstimator::DiagonalTiltSigma() const {
+  // With the map's tilt estimated, that block carries the ambiguity (SetInitialPrior) and the
+  // first frame's tilt is the map's gauge.
+  const bool ambiguous = started_static_ && !config_.estimate_gravity_tilt;
+  return ambiguous ? std::max(init_sigma_tilt_rad_, StaticStartTiltSigma(config_))
+                   : init_sigma_tilt_rad_;
 }
 
 Eigen::MatrixXd WindowEstimator::CorrelatedInitialPriorW(const Frame& f) const {
@@ -306,6 +324,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   out.wheel_factor = config_.wheel.enabled && AttachWheel(frame.get());
   int degenerate = 0;
   const bool have_map = plane_map_.size() > 0;
+  std::optional<Eigen::Vector3d> registered;  ///< the sweep's own registration, if any
   if (have_map) {
     // The LiDAR rows are linearized at the scan's own registration (from the IMU prediction);
     // the window solve then starts again from the prediction, which agrees with the IMU
@@ -313,6 +332,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     // solver did not work off in its iterations.
     const std::array<double, kPoseSize> predicted = frame->pose;
     if (config_.prealign && Prealign(frame.get())) {
+      registered = PoseFromParameters(frame->pose.data()).translation();
       const Eigen::Isometry3d d =
           PoseFromParameters(predicted.data()).inverse() * PoseFromParameters(frame->pose.data());
       out.prediction_error_m = d.translation().norm();
@@ -321,6 +341,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     Relinearize(frame.get(), &result.match, &degenerate);
     frame->pose = predicted;
   }
+  if (registered) out.standstill = AttachStandstill(frame.get(), *registered);
   result.times.match_ms = timer.Lap();
   frames_.push_back(std::move(frame));
   while (imu_.size() > 1 && imu_[1].t_ns <= scan.t_end_ns) imu_.pop_front();
@@ -380,6 +401,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   out.gravity_tilt_rad = Eigen::Vector2d(gravity_tilt_[0], gravity_tilt_[1]);
   out.wheel_factors = wheel_factors_;
   out.wheel_rejected = wheel_rejected_;
+  out.standstill_frames = standstill_frames_;
   result.times.optimize_ms += timer.Lap();
   result.times.total_ms =
       result.times.frontend_ms + result.times.match_ms + result.times.optimize_ms;

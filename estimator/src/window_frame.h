@@ -15,6 +15,7 @@
 #include "swlio/estimator/marginalization_prior.h"
 #include "swlio/estimator/pose_manifold.h"
 #include "swlio/estimator/preintegration.h"
+#include "swlio/estimator/standstill.h"
 #include "swlio/estimator/wheel_velocity_factor.h"
 #include "swlio/estimator/window_estimator.h"
 
@@ -32,8 +33,9 @@ struct WindowEstimator::Frame {
   size_t plane_factors = 0, line_factors = 0;
   std::unique_ptr<Preintegrator> pre;  ///< previous frame → this one
   std::unique_ptr<ImuFactor> imu;      ///< null for the first frame (or a failed interval)
-  std::unique_ptr<GravityTiltImuFactor> imu_tilt;  ///< `imu` in the map frame (estimated tilt)
-  std::unique_ptr<WheelVelocityFactor> wheel;      ///< null without a wheel measurement
+  std::unique_ptr<GravityTiltImuFactor> imu_tilt;     ///< `imu` in the map frame (estimated tilt)
+  std::unique_ptr<WheelVelocityFactor> wheel;         ///< null without a wheel measurement
+  std::unique_ptr<ZeroVelocityFactor> zero_velocity;  ///< null unless at rest (standstill.h)
 
   void SetImu(std::unique_ptr<ImuFactor> factor) {
     imu = std::move(factor);

@@ -45,6 +45,9 @@ void WindowEstimator::BuildProblem(ceres::Problem& problem) {
     if (f.wheel != nullptr) {
       problem.AddResidualBlock(f.wheel.get(), nullptr, f.pose.data(), f.speed_bias.data());
     }
+    if (f.zero_velocity != nullptr) {
+      problem.AddResidualBlock(f.zero_velocity.get(), nullptr, f.speed_bias.data());
+    }
   }
   if (prior_.prior != nullptr) {
     problem.AddResidualBlock(prior_.prior.get(), nullptr, prior_.kept_blocks);
@@ -141,6 +144,9 @@ void WindowEstimator::Marginalize() {
   }
   if (f0.wheel != nullptr) {
     m.AddResidualBlock(f0.wheel.get(), nullptr, {f0.pose.data(), f0.speed_bias.data()});
+  }
+  if (f0.zero_velocity != nullptr) {
+    m.AddResidualBlock(f0.zero_velocity.get(), nullptr, {f0.speed_bias.data()});
   }
   if (config_.estimate_gravity_tilt) {
     m.AddParameterBlock(gravity_tilt_.data(), kGravityTiltSize, nullptr, BlockRole::kKeep);

@@ -110,6 +110,20 @@ TEST(HealthReporter, SaysWhyTheEstimatorIsLostWhileItReinitializes) {
   EXPECT_TRUE(skipped);
 }
 
+TEST(HealthReporter, SaysWhetherTheRobotIsTakenToStandStill) {
+  HealthSnapshot s;
+  s.t_ns = 1'000'000'000;
+  s.optimizer.standing_still = true;
+  s.optimizer.standstill_sweeps = 42;
+  const ipc::DiagnosticArray d = HealthReporter().Diagnostics(s);
+  int found = 0;
+  for (const auto& kv : d.status[2].values) {
+    found += kv.key == "standing_still" && kv.value == "true";
+    found += kv.key == "standstill_sweeps" && kv.value == "42";
+  }
+  EXPECT_EQ(found, 2);
+}
+
 TEST(HealthReporter, SaysHowLongTheImuAloneHasCarriedTheState) {
   HealthSnapshot s;
   s.t_ns = 1'000'000'000;

@@ -74,6 +74,14 @@ void ExpectSameWindow(const WindowEstimatorConfig& a, const WindowEstimatorConfi
   EXPECT_EQ(ia.max_velocity_std_mps, ib.max_velocity_std_mps);
   EXPECT_EQ(ia.gyro_iterations, ib.gyro_iterations);
   EXPECT_EQ(ia.gravity_iterations, ib.gravity_iterations);
+  const auto &sa = a.standstill, &sb = b.standstill;
+  EXPECT_EQ(sa.enabled, sb.enabled);
+  EXPECT_EQ(sa.max_acc_std_mps2, sb.max_acc_std_mps2);
+  EXPECT_EQ(sa.max_gyro_std_radps, sb.max_gyro_std_radps);
+  EXPECT_EQ(sa.max_specific_force_error_mps2, sb.max_specific_force_error_mps2);
+  EXPECT_EQ(sa.max_rate_radps, sb.max_rate_radps);
+  EXPECT_EQ(sa.max_lidar_speed_mps, sb.max_lidar_speed_mps);
+  EXPECT_EQ(sa.sigma_velocity_mps, sb.sigma_velocity_mps);
 }
 
 TEST(WindowConfig, AbsentSectionGivesTheStructDefaults) {
@@ -142,6 +150,14 @@ estimator:
         max_velocity_std_mps: 0.2
         gyro_iterations: 4
         gravity_iterations: 5
+    standstill:
+      enabled: false
+      max_acc_std_mps2: 0.04
+      max_gyro_std_radps: 0.02
+      max_specific_force_error_mps2: 0.06
+      max_rate_radps: 0.004
+      max_lidar_speed_mps: 0.05
+      sigma_velocity_mps: 0.002
 )");
   ASSERT_TRUE(loaded.ok()) << loaded.ErrorReport();
   WindowEstimatorConfig want;
@@ -193,6 +209,13 @@ estimator:
   init.max_velocity_std_mps = 0.2;
   init.gyro_iterations = 4;
   init.gravity_iterations = 5;
+  want.standstill = {.enabled = false,
+                     .max_acc_std_mps2 = 0.04,
+                     .max_gyro_std_radps = 0.02,
+                     .max_specific_force_error_mps2 = 0.06,
+                     .max_rate_radps = 0.004,
+                     .max_lidar_speed_mps = 0.05,
+                     .sigma_velocity_mps = 0.002};
   ExpectSameWindow(loaded.config.window, want);
 }
 
@@ -233,6 +256,22 @@ estimator:
   // Fewer than the sharp edges (max_sharp_edges_per_sector, 2) it includes.
   EXPECT_EQ(loaded.errors[7].ToString(),
             "test.yaml:14:5: estimator.window.max_edges_per_sector: must be in [2, 10000], got 1");
+}
+
+TEST(WindowConfig, StandstillRangesNameKeyLineAndColumn) {
+  const LoadedConfig loaded = Load(R"(config_version: 1
+estimator:
+  window:
+    standstill:
+      sigma_velocity_mps: 0
+      max_rate_radps: -0.1
+)");
+  ASSERT_EQ(loaded.errors.size(), 2u) << loaded.ErrorReport();
+  EXPECT_EQ(loaded.errors[0].key, "estimator.window.standstill.sigma_velocity_mps");
+  EXPECT_EQ(loaded.errors[0].line, 5);
+  EXPECT_EQ(loaded.errors[1].ToString(),
+            "test.yaml:6:7: estimator.window.standstill.max_rate_radps: must be in [0, 0.5], got "
+            "-0.1");
 }
 
 TEST(WindowConfig, TypeErrorsAndUnknownKeysAreReported) {

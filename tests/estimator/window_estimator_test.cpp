@@ -112,8 +112,9 @@ TEST(WindowEstimator, ABiasedGyroAtRestIsEstimatedNotIntegrated) {
 }
 
 // The newest state's covariance in the first result is the first frame's prior (the map is still
-// empty): the diagonal one claims the tilt to init_sigma_rotation_rad; the correlated one
-// (init_tilt_follows_bias) ties it to b_a across the up axis (initial_prior.h).
+// empty): after this standing start the diagonal one gives the tilt b_a's σ / g (what the static
+// initialization cannot tell from a bias, StaticStartTiltSigma) without correlation; the
+// correlated one (init_tilt_follows_bias) ties it to b_a across the up axis (initial_prior.h).
 TEST(WindowEstimator, FirstCovarianceIsTheInitialPrior) {
   for (const bool correlated : {false, true}) {
     WindowEstimatorConfig config;
@@ -136,7 +137,8 @@ TEST(WindowEstimator, FirstCovarianceIsTheInitialPrior) {
       EXPECT_GT(tilt_x, 3e-3) << "b_a σ 0.05 m/s² reads as ~5 mrad of tilt";
       EXPECT_GT(std::abs(rho), 0.9);
     } else {
-      EXPECT_NEAR(tilt_x, config.init_sigma_rotation_rad, 1e-4);
+      EXPECT_NEAR(tilt_x, config.init_sigma_bias_acc_mps2 / 9.80665, 1e-4);
+      EXPECT_NEAR(tilt_x, StaticStartTiltSigma(config), 1e-4);
       EXPECT_LT(std::abs(rho), 0.05);
     }
   }

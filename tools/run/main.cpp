@@ -131,6 +131,7 @@ void WriteCovariance(std::ostream& out,
 struct Summary {
   size_t scans = 0, tracked = 0, failed = 0, skipped = 0, reinitializations = 0;
   size_t wheel_factors = 0, wheel_rejected = 0;  ///< the window's counts (--wheel on)
+  size_t standstill = 0;  ///< sweeps the window took for rest (zero-velocity factor)
   bool wheel = false;
   double total_ms = 0.0, planes = 0.0, edges = 0.0, inliers = 0.0, iterations = 0.0;
   std::string extra;  ///< more JSON members (loop closure), or empty
@@ -159,10 +160,11 @@ struct Summary {
         "{\"scans\": %zu, \"tracked\": %zu, \"match_failed\": %zu, \"skipped\": %zu, "
         "\"mean_scan_ms\": %.2f, "
         "\"mean_planes\": %.0f, \"mean_edges\": %.0f, \"mean_inliers\": %.0f, "
-        "\"mean_iterations\": %.2f, \"reinitializations\": %zu%s%s%s}\n",
+        "\"mean_iterations\": %.2f, \"reinitializations\": %zu, \"standstill_sweeps\": "
+        "%zu%s%s%s}\n",
         scans, tracked, failed, skipped, total_ms / n, planes / n, edges / n, inliers / n,
-        iterations / n, reinitializations, WheelJson().c_str(), extra.empty() ? "" : ", ",
-        extra.c_str());
+        iterations / n, reinitializations, standstill, WheelJson().c_str(),
+        extra.empty() ? "" : ", ", extra.c_str());
   }
 };
 
@@ -367,6 +369,7 @@ int Run(const Options& opt) {
     summary.reinitializations = w.reinitializations;  // the estimator's count
     summary.wheel_factors = std::max(summary.wheel_factors, w.wheel_factors);
     summary.wheel_rejected = std::max(summary.wheel_rejected, w.wheel_rejected);
+    summary.standstill = std::max(summary.standstill, w.standstill_frames);
     if (w.diverged != swlio::estimator::DivergenceReason::kNone) {
       std::cerr << "swlio-run: sweep ending at " << static_cast<double>(scan.t_end_ns) * 1e-9
                 << " s: " << swlio::estimator::ToString(w.diverged) << ", re-initializing\n";

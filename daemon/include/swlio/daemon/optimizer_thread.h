@@ -49,6 +49,8 @@ struct OptimizerCounters {
   double max_update_ms = 0.0;      ///< since start
   uint64_t wheel_factors = 0;      ///< window frames with a wheel velocity factor
   uint64_t wheel_rejected = 0;     ///< wheel measurements the slip gate refused
+  bool standing_still = false;     ///< the newest sweep's frame was taken for rest
+  uint64_t standstill_sweeps = 0;  ///< frames with a zero-velocity factor so far
   uint64_t reinitializations = 0;  ///< the estimator found its state diverged and restarted
   bool recovering = false;         ///< re-initializing after the last one
   /// How long the IMU alone has carried the state (IMU samples newer than the last processed
@@ -99,6 +101,8 @@ class OptimizerThread {
   bool recovering_ = false;  ///< re-initializing after a divergence: lost until tracked again
   uint64_t reinitializations_ = 0;
   uint64_t wheel_factors_ = 0, wheel_rejected_ = 0;
+  bool standing_still_ = false;
+  uint64_t standstill_sweeps_ = 0;
   estimator::DivergenceReason last_divergence_ = estimator::DivergenceReason::kNone;
   int degenerate_ = 0;
   int64_t newest_imu_t_ns_ = 0;  ///< daemon time

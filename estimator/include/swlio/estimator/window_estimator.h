@@ -83,6 +83,8 @@ struct WindowResult {
   bool wheel_factor = false;
   size_t wheel_factors = 0;
   size_t wheel_rejected = 0;
+  bool standstill = false;       ///< this sweep's frame got a zero-velocity factor
+  size_t standstill_frames = 0;  ///< so far
   /// This sweep became a keyframe of the local map: its features and pose (for loop closure
   /// and map saving); null otherwise.
   std::shared_ptr<const KeyframeCloud> keyframe;
@@ -124,6 +126,9 @@ class WindowEstimator {
   /// features matched.
   bool Prealign(Frame* frame);
   void SetInitialPrior(Frame* frame);
+  /// Roll/pitch σ of the diagonal first-frame prior (StaticStartTiltSigma after a standing
+  /// start, unless estimate_gravity_tilt gives the ambiguity its own block).
+  double DiagonalTiltSigma() const;
   Eigen::MatrixXd CorrelatedInitialPriorW(const Frame& frame) const;
   void StartFromBootstrap();
   State StateOf(const Frame& frame) const;
@@ -156,6 +161,9 @@ class WindowEstimator {
   /// The frame's wheel velocity factor from the samples around its time (window_wheel.cpp);
   /// true when it got one.
   bool AttachWheel(Frame* frame);
+  /// The frame's zero-velocity factor when its IMU interval shows rest and the sweep's own
+  /// registration `p_registered` agrees (window_standstill.cpp); true when it got one.
+  bool AttachStandstill(Frame* frame, const Eigen::Vector3d& p_registered);
   /// Gyro rate at `t_ns` from the buffered IMU samples (the nearest one).
   Eigen::Vector3d GyroAt(int64_t t_ns) const;
   /// Restarts the window on a calibrated extrinsic (see calibrate_extrinsic_s): the newest
@@ -197,6 +205,7 @@ class WindowEstimator {
   std::deque<ImuSample> imu_;        ///< samples from just before the newest frame on
   std::deque<WheelOdometry> wheel_;  ///< the last second of wheel odometry
   size_t wheel_factors_ = 0, wheel_rejected_ = 0;
+  size_t standstill_frames_ = 0;
   FrontEnd front_end_;
   FrontEndOutput features_;
   Scan deskewed_;
@@ -224,6 +233,7 @@ class WindowEstimator {
   // Flags last (padding).
   bool initialized_ = false;
   bool have_keyframe_ = false;
+  bool started_static_ = false;  ///< the last initialization was a standing start
 };
 
 }  // namespace swlio::estimator
