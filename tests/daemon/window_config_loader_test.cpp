@@ -151,7 +151,7 @@ estimator:
         gyro_iterations: 4
         gravity_iterations: 5
     standstill:
-      enabled: false
+      enabled: true
       max_acc_std_mps2: 0.04
       max_gyro_std_radps: 0.02
       max_specific_force_error_mps2: 0.06
@@ -209,7 +209,7 @@ estimator:
   init.max_velocity_std_mps = 0.2;
   init.gyro_iterations = 4;
   init.gravity_iterations = 5;
-  want.standstill = {.enabled = false,
+  want.standstill = {.enabled = true,
                      .max_acc_std_mps2 = 0.04,
                      .max_gyro_std_radps = 0.02,
                      .max_specific_force_error_mps2 = 0.06,
@@ -263,14 +263,15 @@ TEST(WindowConfig, StandstillRangesNameKeyLineAndColumn) {
 estimator:
   window:
     standstill:
+      enabled: true
       sigma_velocity_mps: 0
       max_rate_radps: -0.1
 )");
   ASSERT_EQ(loaded.errors.size(), 2u) << loaded.ErrorReport();
   EXPECT_EQ(loaded.errors[0].key, "estimator.window.standstill.sigma_velocity_mps");
-  EXPECT_EQ(loaded.errors[0].line, 5);
+  EXPECT_EQ(loaded.errors[0].line, 6);
   EXPECT_EQ(loaded.errors[1].ToString(),
-            "test.yaml:6:7: estimator.window.standstill.max_rate_radps: must be in [0, 0.5], got "
+            "test.yaml:7:7: estimator.window.standstill.max_rate_radps: must be in [0, 0.5], got "
             "-0.1");
 }
 

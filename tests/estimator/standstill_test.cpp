@@ -139,6 +139,7 @@ WindowResult StandInACorridorWithABiasStep(const WindowEstimatorConfig& config, 
 
 TEST(WindowEstimator, AtRestTheZeroVelocityFactorHoldsThePose) {
   WindowEstimatorConfig config;
+  config.standstill.enabled = true;
   const WindowResult held = StandInACorridorWithABiasStep(config, 50);
   EXPECT_GE(held.standstill_frames, 45u);
   EXPECT_LT(held.odometry.state.T_world_imu.translation().norm(), 0.01);
