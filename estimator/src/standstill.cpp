@@ -3,6 +3,8 @@
 #include <Eigen/Core>
 #include <cmath>
 
+#include "swlio/estimator/imu_moments.h"
+
 namespace swlio::estimator {
 
 ConfigIssues StandstillConfig::Validate() const {
@@ -23,27 +25,14 @@ bool ImuAtRest(const std::vector<ImuSample>& samples,
                double gravity_mps2,
                const StandstillConfig& config) {
   if (samples.size() < 4) return false;
-  Eigen::Vector3d mean_f = Eigen::Vector3d::Zero(), mean_w = Eigen::Vector3d::Zero();
-  for (const ImuSample& s : samples) {
-    mean_f += s.acc_mps2;
-    mean_w += s.gyro_radps;
-  }
-  const double n = static_cast<double>(samples.size());
-  mean_f /= n;
-  mean_w /= n;
-  Eigen::Vector3d var_f = Eigen::Vector3d::Zero(), var_w = Eigen::Vector3d::Zero();
-  for (const ImuSample& s : samples) {
-    var_f += (s.acc_mps2 - mean_f).cwiseAbs2();
-    var_w += (s.gyro_radps - mean_w).cwiseAbs2();
-  }
-  var_f /= n - 1.0;
-  var_w /= n - 1.0;
+  const ImuMoments f = ComputeImuMoments(samples, [](const ImuSample& s) { return s.acc_mps2; });
+  const ImuMoments w = ComputeImuMoments(samples, [](const ImuSample& s) { return s.gyro_radps; });
   const Eigen::Vector3d f_rest =
       R_gravity_imu.transpose() * Eigen::Vector3d(0.0, 0.0, gravity_mps2) + bias_acc;
-  return var_f.maxCoeff() <= config.max_acc_std_mps2 * config.max_acc_std_mps2 &&
-         var_w.maxCoeff() <= config.max_gyro_std_radps * config.max_gyro_std_radps &&
-         (mean_f - f_rest).norm() <= config.max_specific_force_error_mps2 &&
-         (mean_w - bias_gyro).norm() <= config.max_rate_radps;
+  return f.std.maxCoeff() <= config.max_acc_std_mps2 &&
+         w.std.maxCoeff() <= config.max_gyro_std_radps &&
+         (f.mean - f_rest).norm() <= config.max_specific_force_error_mps2 &&
+         (w.mean - bias_gyro).norm() <= config.max_rate_radps;
 }
 
 bool ZeroVelocityFactor::Evaluate(double const* const* parameters,

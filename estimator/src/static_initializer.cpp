@@ -5,28 +5,12 @@
 
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
+#include "swlio/estimator/imu_moments.h"
 
 namespace swlio::estimator {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
-
-struct Moments {
-  Vec3 mean = Vec3::Zero();
-  Vec3 std = Vec3::Zero();
-};
-
-template <typename Get>
-Moments ComputeMoments(const std::deque<ImuSample>& window, Get get) {
-  Moments m;
-  for (const ImuSample& s : window) m.mean += get(s);
-  const double n = static_cast<double>(window.size());
-  m.mean /= n;
-  Vec3 var = Vec3::Zero();
-  for (const ImuSample& s : window) var += (get(s) - m.mean).cwiseAbs2();
-  m.std = (var / std::max(n - 1.0, 1.0)).cwiseSqrt();
-  return m;
-}
 
 /// |mean of the second half − mean of the first half| of get(sample).
 template <typename Get>
@@ -94,8 +78,8 @@ const StaticInitResult& StaticInitializer::Add(const ImuSample& sample) {
 void StaticInitializer::Evaluate() {
   const auto get_acc = [](const ImuSample& s) { return s.acc_mps2; };
   const auto get_gyro = [](const ImuSample& s) { return s.gyro_radps; };
-  const Moments acc = ComputeMoments(window_, get_acc);
-  const Moments gyro = ComputeMoments(window_, get_gyro);
+  const ImuMoments acc = ComputeImuMoments(window_, get_acc);
+  const ImuMoments gyro = ComputeImuMoments(window_, get_gyro);
   const double f_norm = acc.mean.norm();
   result_.acc_std_mps2 = acc.std.maxCoeff();
   result_.gyro_std_radps = gyro.std.maxCoeff();
