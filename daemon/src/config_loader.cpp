@@ -341,7 +341,6 @@ void Bind(Section s, estimator::DynamicBootstrapConfig& c) {
   s.Finish();
 }
 
-/// `T_imu_base` as translation_m and rotation_rpy_deg (the extrinsic's convention).
 void Bind(Section s, estimator::StandstillConfig& c) {
   s.Get("enabled", c.enabled);
   s.Get("max_acc_std_mps2", c.max_acc_std_mps2);
@@ -353,6 +352,7 @@ void Bind(Section s, estimator::StandstillConfig& c) {
   s.Finish();
 }
 
+/// `T_imu_base` as translation_m and rotation_rpy_deg (the extrinsic's convention).
 void Bind(Section s, estimator::WheelFactorConfig& c) {
   s.Get("enabled", c.enabled);
   estimator::ExtrinsicConfig base;

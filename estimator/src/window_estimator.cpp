@@ -272,8 +272,7 @@ double WindowEstimator::DiagonalTiltSigma() const {
   // With the map's tilt estimated, that block carries the ambiguity (SetInitialPrior) and the
   // first frame's tilt is the map's gauge.
   const bool ambiguous = started_static_ && !config_.estimate_gravity_tilt;
-  return ambiguous ? std::max(init_sigma_tilt_rad_, StaticStartTiltSigma(config_))
-                   : init_sigma_tilt_rad_;
+  return ambiguous ? StaticStartTiltSigma(config_) : init_sigma_tilt_rad_;
 }
 
 Eigen::MatrixXd WindowEstimator::CorrelatedInitialPriorW(const Frame& f) const {
