@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "scenarios.h"
 #include "substation.h"
@@ -40,6 +41,21 @@ TEST(SimWorld, RaysHitGroundAndFenceWhereExpected) {
   EXPECT_LT(w.Cast(o, Eigen::Vector3d::UnitZ(), 100.0).range_m, 0.0);
 }
 
+TEST(SimWorld, SurfaceHeightAndGradientAtOnceEqualsEachApart) {
+  // The ray caster uses the combined call; recordings must not change with it.
+  const World w = GenerateSubstation(4);
+  std::vector<Eigen::Vector2d> points;
+  for (int i = 0; i < 200; ++i) points.emplace_back(-15.0 + 0.37 * i, 60.0 - 0.29 * i);
+  for (const Bump& b : w.terrain.bumps) points.push_back(b.center + 0.2 * b.along);
+  ASSERT_FALSE(w.terrain.bumps.empty());
+  for (const Eigen::Vector2d& p : points) {
+    double h = 0.0;
+    Eigen::Vector2d g;
+    w.terrain.SurfaceHeightAndGradient(p, &h, &g);
+    EXPECT_EQ(h, w.terrain.SurfaceHeight(p)) << p.transpose();
+    EXPECT_EQ(g, w.terrain.SurfaceGradient(p)) << p.transpose();
+  }
+}
 TEST(SimRoutes, ScenarioFactsHold) {
   const World w = GenerateSubstation(1);
   for (const std::string& name : ScenarioNames()) {

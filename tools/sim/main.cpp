@@ -195,6 +195,9 @@ int Run(int argc, char** argv) {
   app.add_option("--difop-port", live_opts.difop_port, "live: UDP port for DIFOP");
   app.add_option("--pty-link", live_opts.pty_link, "live: symlink to the IMU pty");
   app.add_option("--start-delay", live_opts.start_delay_s, "live: seconds before streaming");
+  app.add_flag("--precast", live_opts.precast,
+               "live: cast every LiDAR packet before streaming (about 1 MB per second of "
+               "driving), so the stream keeps its schedule on a loaded machine");
   FaultArgs fault_args;
   fault_args.Add(app);
   StreamArgs stream_args;

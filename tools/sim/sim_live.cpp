@@ -166,9 +166,12 @@ bool RunLive(const SimSetup& setup,
   // A repeated route (RepeatRoute) casts its first lap before streaming and replays it.
   std::optional<LidarLaps> laps;
   std::optional<LidarSimulator> once;
-  if (setup.trajectory->lap_period_s() > 0.0) {
-    std::fprintf(stderr, "sim: casting the first lap (%.0f s of driving) before streaming\n",
-                 setup.trajectory->lap_period_s());
+  // A single lap (LidarLaps of a route that is not repeated) is the whole drive.
+  if (setup.trajectory->lap_period_s() > 0.0 || options.precast) {
+    const bool repeated = setup.trajectory->lap_period_s() > 0.0;
+    std::fprintf(stderr, "sim: casting the %s (%.0f s of driving) before streaming\n",
+                 repeated ? "first lap" : "whole drive",
+                 repeated ? setup.trajectory->lap_period_s() : setup.trajectory->duration_s());
     laps.emplace(setup);
   } else {
     once.emplace(setup.world.get(), setup.trajectory.get(), setup.lidar, setup.seed);

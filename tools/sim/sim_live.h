@@ -22,6 +22,14 @@ struct LiveOptions {
   /// Wait between the preparation (the IMU samples; a repeated route's first lap, minutes for
   /// loop943) and streaming; "sim: streaming in N s" on stderr marks its start.
   double start_delay_s = 0.0;
+  /// Cast every LiDAR packet of the drive during the preparation (about 1 MB per second of
+  /// driving) instead of while streaming. Ray casting on the fly keeps up at a few times real
+  /// time on an idle core; on a loaded machine (or under a sanitizer) it falls behind, and then
+  /// every sample goes out late: the receiver sees sensor clocks running slower than the
+  /// `speed` it was told, which no real sensor does (a TSan run of the daemon's live test
+  /// streamed at 0.22× while the daemon expected 0.5×, and diverged). A repeated route is
+  /// always cast ahead (its first lap).
+  bool precast = false;
   /// If set, receives for every IMU sample (in SimulateImu's order) the CLOCK_MONOTONIC time
   /// just before its frame was written to the pty (0: not written), for latency measurements.
   std::vector<int64_t>* imu_write_ns = nullptr;

@@ -40,6 +40,8 @@ class Terrain {
   /// Height of the visible surface (driven height + gravel roughness).
   double SurfaceHeight(const Eigen::Vector2d& p) const;
   Eigen::Vector2d SurfaceGradient(const Eigen::Vector2d& p) const;
+  /// Both at once (what the ray caster needs), equal to the two above to the last bit.
+  void SurfaceHeightAndGradient(const Eigen::Vector2d& p, double* h, Eigen::Vector2d* g) const;
 
   /// First intersection of the ray o + t·d (|d| = 1) with the visible surface in (0, t_max];
   /// returns t, or a negative value when there is none (or Newton did not converge).
