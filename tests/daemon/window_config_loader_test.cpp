@@ -151,7 +151,7 @@ estimator:
         gyro_iterations: 4
         gravity_iterations: 5
     standstill:
-      enabled: true
+      enabled: false
       max_acc_std_mps2: 0.04
       max_gyro_std_radps: 0.02
       max_specific_force_error_mps2: 0.06
@@ -209,7 +209,7 @@ estimator:
   init.max_velocity_std_mps = 0.2;
   init.gyro_iterations = 4;
   init.gravity_iterations = 5;
-  want.standstill = {.enabled = true,
+  want.standstill = {.enabled = false,  // the default is on
                      .max_acc_std_mps2 = 0.04,
                      .max_gyro_std_radps = 0.02,
                      .max_specific_force_error_mps2 = 0.06,

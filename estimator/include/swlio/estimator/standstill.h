@@ -33,10 +33,7 @@
 namespace swlio::estimator {
 
 struct StandstillConfig {
-  /// Off by default: with it on, the live daemon under TSan and CPU load (sweeps skipped while
-  /// behind) diverged ("speed out of bounds") in 3 of 4 runs of
-  /// Runtime.TracksASimulatedDriveAndPublishesOverDds, 0 of 2 with it off; not yet understood.
-  bool enabled = false;
+  bool enabled = true;
   /// MTi-G-710 at 400 Hz: 0.012 m/s² and 0.0035 rad/s of white noise per axis at rest (the
   /// StaticInitializer's limits, which leave room for fans and pumps on a parked robot).
   double max_acc_std_mps2 = 0.03;
