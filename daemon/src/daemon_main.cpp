@@ -81,10 +81,12 @@ int RunDaemon(const DaemonConfig& config, const RuntimeOptions& options, int64_t
     if (now >= next_status_ns) {
       next_status_ns = now + status_period_ns;
       const HealthSnapshot s = rt->Snapshot();
-      const std::string line = logged.StatusLine(s);
+      const HealthRates rates = logged.Rates(s);
+      const std::string line = StatusLine(s, rates);
       spdlog::info("{}", line);
       notifier.Status(line);
       LogDrops(s);
+      for (const std::string& w : ClockJumpWarnings(s, rates)) spdlog::warn("{}", w);
     }
     if (max_run_ns > 0 && now - start_ns >= max_run_ns) break;
   }
@@ -93,8 +95,10 @@ int RunDaemon(const DaemonConfig& config, const RuntimeOptions& options, int64_t
   spdlog::info("stopping ({})", signal != 0 ? strsignal(signal) : "run time limit");
   rt->Stop();
   const HealthSnapshot s = rt->Snapshot();
-  spdlog::info("final {}", logged.StatusLine(s));
+  const HealthRates rates = logged.Rates(s);
+  spdlog::info("final {}", StatusLine(s, rates));
   LogDrops(s);
+  for (const std::string& w : ClockJumpWarnings(s, rates)) spdlog::warn("{}", w);
   return 0;
 }
 

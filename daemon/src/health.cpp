@@ -14,6 +14,9 @@ std::string Num(double v, const char* format = "%.3f") {
 
 std::string Count(uint64_t v) { return std::to_string(v); }
 
+/// A counter's increase; 0 when it went down (a restarted thread's counters).
+uint64_t Since(uint64_t now, uint64_t before) { return now > before ? now - before : 0; }
+
 double PerSecond(uint64_t now, uint64_t before, double dt_s) {
   return dt_s > 0.0 && now >= before ? static_cast<double>(now - before) / dt_s : 0.0;
 }
@@ -26,6 +29,10 @@ ipc::DiagnosticStatus LidarStatus(const HealthSnapshot& s, const HealthRates& r)
   const bool streaming = r.lidar_packets_hz > 0.0;
   d.level = streaming ? ipc::DiagnosticLevel::kOk : ipc::DiagnosticLevel::kError;
   d.message = streaming ? "streaming" : "no packets";
+  if (streaming && r.lidar_clock_jumps > 0) {
+    d.level = ipc::DiagnosticLevel::kWarn;
+    d.message = "streaming; clock jumped";
+  }
   d.values = {{"packets_hz", Num(r.lidar_packets_hz, "%.1f")},
               {"sweeps_hz", Num(r.sweeps_hz, "%.2f")},
               {"datagrams", Count(s.lidar_rx.datagrams)},
@@ -49,6 +56,10 @@ ipc::DiagnosticStatus ImuStatus(const HealthSnapshot& s, const HealthRates& r) {
   const bool streaming = r.imu_hz > 0.0;
   d.level = streaming ? ipc::DiagnosticLevel::kOk : ipc::DiagnosticLevel::kError;
   d.message = streaming ? "streaming" : (s.imu_rx.opens == 0 ? "device not open" : "no samples");
+  if (streaming && r.imu_clock_jumps > 0) {
+    d.level = ipc::DiagnosticLevel::kWarn;
+    d.message = "streaming; clock jumped";
+  }
   d.values = {{"rate_hz", Num(r.imu_hz, "%.1f")},
               {"samples", Count(s.imu_rx.samples)},
               {"checksum_errors", Count(s.imu_rx.checksum_errors)},
@@ -248,6 +259,9 @@ HealthRates HealthReporter::Rates(const HealthSnapshot& now) {
     r.poses_hz = PerSecond(now.publisher.poses, previous_.publisher.poses, dt);
     r.can_frames_hz = PerSecond(now.can_rx.frames, previous_.can_rx.frames, dt);
   }
+  const HealthSnapshot& before = have_previous_ ? previous_ : HealthSnapshot{};
+  r.lidar_clock_jumps = Since(now.optimizer.lidar_clock.jumps, before.optimizer.lidar_clock.jumps);
+  r.imu_clock_jumps = Since(now.propagator.clock_jumps, before.propagator.clock_jumps);
   previous_ = now;
   have_previous_ = true;
   return r;
@@ -266,7 +280,10 @@ ipc::DiagnosticArray HealthReporter::Diagnostics(const HealthSnapshot& now) {
 }
 
 std::string HealthReporter::StatusLine(const HealthSnapshot& now) {
-  const HealthRates r = Rates(now);
+  return ::swlio::daemon::StatusLine(now, Rates(now));
+}
+
+std::string StatusLine(const HealthSnapshot& now, const HealthRates& r) {
   char line[512];
   std::snprintf(line, sizeof line,
                 "status %s | lidar %.0f pkt/s %.1f sweeps/s, missing %llu | imu %.0f Hz, "
@@ -287,6 +304,28 @@ uint64_t TotalDrops(const HealthSnapshot& s) {
   uint64_t drops = s.lidar_rx.truncated + s.optimizer.dropped_waiting + s.publisher.non_finite;
   for (const QueueCounters& q : s.queues) drops += q.dropped;
   return drops;
+}
+
+std::vector<std::string> ClockJumpWarnings(const HealthSnapshot& now, const HealthRates& rates) {
+  std::vector<std::string> out;
+  auto add = [&out](const char* sensor, uint64_t jumps, uint64_t total, double offset_ns,
+                    double drift_ppm, const char* cause) {
+    if (jumps == 0) return;
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "%s clock: jumped %llu time(s) since the last status (%llu in all); offset "
+                  "now %.6f s, drift %.1f ppm. The sensor's time was stepped (%s) or does not "
+                  "run at the host's rate; data across a jump is mis-timed",
+                  sensor, static_cast<unsigned long long>(jumps),
+                  static_cast<unsigned long long>(total), offset_ns * 1e-9, drift_ppm, cause);
+    out.emplace_back(line);
+  };
+  const drivers::ClockModelStats& lidar = now.optimizer.lidar_clock;
+  add("lidar", rates.lidar_clock_jumps, lidar.jumps, lidar.offset_ns, lidar.drift_ppm,
+      "GPS/PTP time arriving, a reset");
+  add("imu", rates.imu_clock_jumps, now.propagator.clock_jumps, now.propagator.clock_offset_ns,
+      now.propagator.clock_drift_ppm, "a device reset or reconfiguration");
+  return out;
 }
 
 }  // namespace swlio::daemon

@@ -110,6 +110,45 @@ TEST(HealthReporter, SaysWhyTheEstimatorIsLostWhileItReinitializes) {
   EXPECT_TRUE(skipped);
 }
 
+TEST(HealthReporter, WarnsWhileASensorClockJumps) {
+  HealthSnapshot a;
+  a.t_ns = 1'000'000'000;
+  a.optimizer.lidar_clock.jumps = 1;  // one before the first report: reported then
+  HealthSnapshot b = a;
+  b.t_ns = 2'000'000'000;
+  b.propagator.samples = 400;
+  b.optimizer.lidar.data_packets = 750;
+  b.optimizer.lidar_clock.jumps = 3;
+  b.optimizer.lidar_clock.offset_ns = -1.5e9;
+  b.optimizer.lidar_clock.drift_ppm = 12.0;
+  HealthReporter r;
+  const HealthRates first = r.Rates(a);
+  EXPECT_EQ(first.lidar_clock_jumps, 1u);
+  ASSERT_EQ(ClockJumpWarnings(a, first).size(), 1u);
+  const HealthRates rates = r.Rates(b);
+  EXPECT_EQ(rates.lidar_clock_jumps, 2u);
+  EXPECT_EQ(rates.imu_clock_jumps, 0u);
+  const std::vector<std::string> w = ClockJumpWarnings(b, rates);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("lidar clock: jumped 2 time(s) since the last status (3 in all)"),
+            std::string::npos)
+      << w[0];
+  EXPECT_NE(w[0].find("offset now -1.500000 s"), std::string::npos) << w[0];
+
+  HealthReporter published;
+  published.Diagnostics(a);
+  const ipc::DiagnosticArray d = published.Diagnostics(b);
+  EXPECT_EQ(d.status[0].level, ipc::DiagnosticLevel::kWarn);
+  EXPECT_EQ(d.status[0].message, "streaming; clock jumped");
+  EXPECT_EQ(d.status[1].level, ipc::DiagnosticLevel::kOk);  // the IMU's clock did not jump
+  b.t_ns += 1'000'000'000;
+  b.propagator.samples += 400;
+  b.optimizer.lidar.data_packets += 750;
+  const ipc::DiagnosticArray calm = published.Diagnostics(b);  // no new jump: OK again
+  EXPECT_EQ(calm.status[0].level, ipc::DiagnosticLevel::kOk);
+  EXPECT_TRUE(ClockJumpWarnings(b, r.Rates(b)).empty());
+}
+
 TEST(HealthReporter, SaysWhetherTheRobotIsTakenToStandStill) {
   HealthSnapshot s;
   s.t_ns = 1'000'000'000;

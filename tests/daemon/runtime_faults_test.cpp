@@ -160,6 +160,14 @@ TEST(RuntimeFaults, LidarClockJumpIsReportedAndTrackingGoesOn) {
   EXPECT_EQ(r.final.optimizer.reinitializations, 0u);
   const uint64_t at_jump = r.HealthAt(6.0).optimizer.processed;
   EXPECT_GE(r.final.optimizer.processed, at_jump + 45u) << "sweeps after the jump are used";
+  bool warned = false;
+  for (const auto& h : r.published_health) {
+    for (const auto& st : h.msg.status) {
+      warned = warned || (st.name == "swlio: lidar" && st.level == ipc::DiagnosticLevel::kWarn &&
+                          st.message == "streaming; clock jumped");
+    }
+  }
+  EXPECT_TRUE(warned) << "the published health says that the LiDAR clock jumped";
 }
 
 // The Xsens SampleTimeFine counter (100 µs ticks) wraps at 2³² mid-drive: it is unwrapped, not

@@ -44,6 +44,10 @@ struct HealthRates {
   double imu_hz = 0.0;
   double poses_hz = 0.0;
   double can_frames_hz = 0.0;
+  /// Sensor clock jumps (ClockModel restarts) since the previous report; on the first report,
+  /// since the start.
+  uint64_t lidar_clock_jumps = 0;
+  uint64_t imu_clock_jumps = 0;
 };
 
 class HealthReporter {
@@ -62,5 +66,13 @@ class HealthReporter {
 
 /// Total drops over every queue and receiver: what "lossless" is checked against.
 uint64_t TotalDrops(const HealthSnapshot& s);
+
+/// One log line for `now` with the given rates (HealthReporter::StatusLine without the rates).
+std::string StatusLine(const HealthSnapshot& now, const HealthRates& rates);
+
+/// A warning per sensor whose clock jumped since the previous report (rates from the same
+/// HealthReporter::Rates call): with the new offset and drift, and what it means. Without it a
+/// field engineer saw only the estimator's divergence that mis-timed sweeps caused.
+std::vector<std::string> ClockJumpWarnings(const HealthSnapshot& now, const HealthRates& rates);
 
 }  // namespace swlio::daemon
