@@ -119,6 +119,8 @@ TEST_F(RunOnShortDrive, TightlyCoupledFollowsTheSimulatedDrive) {
                            " --covariance " + (dir / "cov.csv").string() + " 2>&1",
                        &code);
   ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("\"clock_jumps\": {\"lidar\": 0, \"imu\": 0}"), std::string::npos) << out;
+  EXPECT_EQ(out.find("clock jumped"), std::string::npos) << out;
   std::ifstream csv(dir / "t.csv");
   std::string line;
   size_t optimized = 0;
@@ -419,6 +421,27 @@ TEST(RunOnAggressiveDrive, OnlineCalibrationRecoversTheExtrinsic) {
   // before; measured 0.27° and 0.8 cm.
   EXPECT_LT(LastNumberAfter(out, "\"from_given_rotation_deg\": "), 0.5) << out;
   EXPECT_LT(LastNumberAfter(out, "\"from_given_translation_m\": "), 0.02) << out;
+}
+
+// The LiDAR's clock set anew mid-drive (GPS time arriving): the run says so, since the sweeps
+// around the step are mis-timed and a divergence would otherwise be the only sign.
+TEST(RunCommand, SaysThatASensorClockJumped) {
+  const fs::path tool = test::ToolPath("swlio-run");
+  if (tool.empty()) GTEST_SKIP() << "swlio-run not built next to the tests";
+  const fs::path dir = test::MakeTempDir("swlio_run_clock_jump");
+  auto setup = sim::MakeSimSetup("short", 12, 6.0);
+  ASSERT_TRUE(setup);
+  setup->lidar.clock.step_at_s = 4.0;
+  setup->lidar.clock.step_s = 3600.0;
+  sim::RecordingStats stats;
+  std::string error;
+  ASSERT_TRUE(sim::WriteRecording(*setup, dir, &stats, &error)) << error;
+  int code = 0;
+  const std::string out = test::RunCommand(
+      tool.string() + " " + dir.string() + " --out " + (dir / "est.tum").string() + " 2>&1", &code);
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("the LiDAR clock jumped 1 time(s)"), std::string::npos) << out;
+  EXPECT_NE(out.find("\"clock_jumps\": {\"lidar\": 1, \"imu\": 0}"), std::string::npos) << out;
 }
 
 TEST(RunCommand, MissingFolderIsAClearError) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -132,6 +133,7 @@ struct Summary {
   size_t scans = 0, tracked = 0, failed = 0, skipped = 0, reinitializations = 0;
   size_t wheel_factors = 0, wheel_rejected = 0;  ///< the window's counts (--wheel on)
   size_t standstill = 0;  ///< sweeps the window took for rest (zero-velocity factor)
+  uint64_t lidar_clock_jumps = 0, imu_clock_jumps = 0;  ///< the clock models' restarts
   bool wheel = false;
   double total_ms = 0.0, planes = 0.0, edges = 0.0, inliers = 0.0, iterations = 0.0;
   std::string extra;  ///< more JSON members (loop closure), or empty
@@ -161,12 +163,29 @@ struct Summary {
         "\"mean_scan_ms\": %.2f, "
         "\"mean_planes\": %.0f, \"mean_edges\": %.0f, \"mean_inliers\": %.0f, "
         "\"mean_iterations\": %.2f, \"reinitializations\": %zu, \"standstill_sweeps\": "
-        "%zu%s%s%s}\n",
+        "%zu, \"clock_jumps\": {\"lidar\": %llu, \"imu\": %llu}%s%s%s}\n",
         scans, tracked, failed, skipped, total_ms / n, planes / n, edges / n, inliers / n,
-        iterations / n, reinitializations, standstill, WheelJson().c_str(),
+        iterations / n, reinitializations, standstill,
+        static_cast<unsigned long long>(lidar_clock_jumps),
+        static_cast<unsigned long long>(imu_clock_jumps), WheelJson().c_str(),
         extra.empty() ? "" : ", ", extra.c_str());
   }
 };
+
+/// A sensor clock that jumped mis-times the data around the jump; the estimator's divergence
+/// that may follow would otherwise be the only sign (the daemon's health warns the same way).
+void WarnClockJumps(const swlio::daemon::RecordingStats& stats) {
+  auto warn = [](const char* sensor, const swlio::drivers::ClockModelStats& clock) {
+    if (clock.jumps == 0) return;
+    std::cerr << "swlio-run: the " << sensor << " clock jumped " << clock.jumps
+              << " time(s) in this recording (offset now " << std::fixed << std::setprecision(3)
+              << clock.offset_ns * 1e-9 << std::defaultfloat
+              << " s): its time was stepped, or it does not run at the receive clock's rate; data "
+                 "across a jump is mis-timed\n";
+  };
+  warn("LiDAR", stats.lidar_clock);
+  warn("IMU", stats.imu_clock);
+}
 
 /// The daemon configuration (defaults without --config); false with a report on errors.
 bool LoadDaemonConfig(const Options& opt, swlio::daemon::DaemonConfig* config) {
@@ -446,6 +465,9 @@ int Run(const Options& opt) {
     }
   }
   if (localization) summary.extra = localization->SummaryJson();
+  summary.lidar_clock_jumps = reader->stats().lidar_clock.jumps;
+  summary.imu_clock_jumps = reader->stats().imu_clock.jumps;
+  WarnClockJumps(reader->stats());
   summary.Print();
   if (tightly_coupled && window_config.calibrate_extrinsic_s > 0.0) {
     PrintCalibration(*runner.window(), T_imu_lidar_given);
