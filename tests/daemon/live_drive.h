@@ -203,6 +203,11 @@ inline LiveDriveResult RunLiveDrive(const LiveDrive& drive) {
     }
   }
   simulator.join();
+  // A late simulator makes the sensors' clocks run slower than the speed the daemon was told
+  // (LiveOptions::precast): say so, so that a failure it causes is not taken for the daemon's.
+  if (out.stats.max_lateness_ms > 100.0) {
+    std::cout << "[ note ] the simulator sent up to " << out.stats.max_lateness_ms << " ms late\n";
+  }
   rt->Stop();  // the consumers drain what the rx threads received
   subscriber->Wait(200'000'000);
   take();
