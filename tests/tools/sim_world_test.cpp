@@ -56,6 +56,7 @@ TEST(SimWorld, SurfaceHeightAndGradientAtOnceEqualsEachApart) {
     EXPECT_EQ(g, w.terrain.SurfaceGradient(p)) << p.transpose();
   }
 }
+
 TEST(SimRoutes, ScenarioFactsHold) {
   const World w = GenerateSubstation(1);
   for (const std::string& name : ScenarioNames()) {

@@ -167,8 +167,8 @@ bool RunLive(const SimSetup& setup,
   std::optional<LidarLaps> laps;
   std::optional<LidarSimulator> once;
   // A single lap (LidarLaps of a route that is not repeated) is the whole drive.
-  if (setup.trajectory->lap_period_s() > 0.0 || options.precast) {
-    const bool repeated = setup.trajectory->lap_period_s() > 0.0;
+  const bool repeated = setup.trajectory->lap_period_s() > 0.0;
+  if (repeated || options.precast) {
     std::fprintf(stderr, "sim: casting the %s (%.0f s of driving) before streaming\n",
                  repeated ? "first lap" : "whole drive",
                  repeated ? setup.trajectory->lap_period_s() : setup.trajectory->duration_s());
