@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "swlio/core/lie.h"
 #include "swlio/estimator/keyframe_descriptor.h"  // KeyframeDescriptor
 
 namespace swlio::estimator {
 namespace {
-
-double Angle(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle(); }
 
 std::vector<Eigen::Vector3d> Transformed(const Eigen::Isometry3d& T,
                                          const std::vector<Eigen::Vector3d>& points) {
@@ -34,7 +33,7 @@ bool LoopClosure::IsNewNode(const KeyframeCloud& keyframe) const {
   if (nodes_.empty()) return true;
   const Eigen::Isometry3d delta = nodes_.back().T_world_imu.inverse() * keyframe.T_world_imu;
   return delta.translation().norm() >= config_.keyframe_distance_m ||
-         Angle(delta.rotation()) >= config_.keyframe_angle_rad;
+         lie::Angle(delta.rotation()) >= config_.keyframe_angle_rad;
 }
 
 LoopClosureUpdate LoopClosure::AddKeyframe(const KeyframeCloud& keyframe) {

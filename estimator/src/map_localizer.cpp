@@ -3,17 +3,16 @@
 #include <algorithm>
 #include <utility>
 
+#include "swlio/core/lie.h"
 #include "swlio/estimator/keyframe_descriptor.h"
 
 namespace swlio::estimator {
 namespace {
 
-double Angle(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle(); }
-
 /// The odometry moved at least `m` or turned at least `rad` from `from` to `to`.
 bool Moved(const Eigen::Isometry3d& from, const Eigen::Isometry3d& to, double m, double rad) {
   const Eigen::Isometry3d d = from.inverse() * to;
-  return d.translation().norm() >= m || Angle(d.linear()) >= rad;
+  return d.translation().norm() >= m || lie::Angle(d.linear()) >= rad;
 }
 
 /// How the map's descriptors were made; every one is compared in full.

@@ -238,7 +238,7 @@ void AddCanCommand(CLI::App& app, int* exit_code) {
   cmd->callback([o, exit_code] { *exit_code = Run(*o); });
 }
 
-const DecodeCommandRegistrar kRegistrar(AddCanCommand);
+const DecodeCommandRegistrar kCanRegistrar(AddCanCommand);
 
 }  // namespace
 }  // namespace swlio::tools

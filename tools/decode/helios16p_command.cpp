@@ -72,7 +72,7 @@ void AddHeliosCommand(CLI::App& app, int* exit_code) {
 }
 
 // NOLINTNEXTLINE(cert-err58-cpp): start-up registration; bad_alloc here may terminate.
-const DecodeCommandRegistrar kRegistrar(AddHeliosCommand);
+const DecodeCommandRegistrar kHeliosRegistrar(AddHeliosCommand);
 
 }  // namespace
 }  // namespace swlio::tools

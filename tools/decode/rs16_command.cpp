@@ -113,7 +113,7 @@ void AddRs16Command(CLI::App& app, int* exit_code) {
 }
 
 // NOLINTNEXTLINE(cert-err58-cpp): start-up registration; bad_alloc here may terminate.
-const DecodeCommandRegistrar kRegistrar(AddRs16Command);
+const DecodeCommandRegistrar kRs16Registrar(AddRs16Command);
 
 }  // namespace
 }  // namespace swlio::tools

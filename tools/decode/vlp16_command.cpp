@@ -56,7 +56,7 @@ void AddVlp16Command(CLI::App& app, int* exit_code) {
 }
 
 // NOLINTNEXTLINE(cert-err58-cpp): start-up registration; bad_alloc here may terminate.
-const DecodeCommandRegistrar kRegistrar(AddVlp16Command);
+const DecodeCommandRegistrar kVlp16Registrar(AddVlp16Command);
 
 }  // namespace
 }  // namespace swlio::tools

@@ -84,6 +84,9 @@ inline Mat3 Exp(const Vec3& phi) { return QuatExp(phi).toRotationMatrix(); }
 /// Rotation vector of a rotation matrix, θ ∈ [0, π]; robust at θ = 0 and θ = π.
 inline Vec3 Log(const Mat3& R) { return QuatLog(Eigen::Quaterniond(R)); }
 
+/// Angle of a rotation matrix, θ ∈ [0, π] (rad).
+inline double Angle(const Mat3& R) { return Eigen::AngleAxisd(R).angle(); }
+
 /// Right Jacobian of SO(3): Jr = I − (1−cosθ)/θ² Φ + (θ−sinθ)/θ³ Φ².
 inline Mat3 RightJacobian(const Vec3& phi) {
   const double theta2 = phi.squaredNorm();
