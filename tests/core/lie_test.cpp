@@ -71,6 +71,15 @@ TEST(Lie, LogInvertsExp) {
   }
 }
 
+TEST(Lie, AngleIsTheNormOfTheRotationVector) {
+  for (const Vec3& phi : TestVectors()) {
+    EXPECT_NEAR(Angle(Exp(phi)), phi.norm(), 1e-9) << phi.transpose();
+  }
+  // Beyond a half turn the same rotation is the shorter one the other way.
+  EXPECT_NEAR(Angle(Exp(Vec3(0.0, 0.0, 1.5 * kPi))), 0.5 * kPi, 1e-9);
+  EXPECT_NEAR(Angle(Eigen::Vector3d(1, -1, -1).asDiagonal()), kPi, 1e-9);
+}
+
 TEST(Lie, SmallAngleSeriesIsContinuousAcrossTheSwitch) {
   const Vec3 axis = Vec3(0.2, -0.7, 0.4).normalized();
   const Vec3 below = axis * (kTaylorAngle * (1.0 - 1e-9));
