@@ -66,6 +66,7 @@ ConfigIssues ScanMatcherConfig::Validate() const {
   CheckInRange(issues, "line_min_ratio", line_min_ratio, 1.0, 100.0);
   CheckPositive(issues, "huber_m", huber_m);
   CheckPositive(issues, "max_residual_m", max_residual_m);
+  CheckInRange(issues, "refined_max_residual_m", refined_max_residual_m, 0.01, max_residual_m);
   CheckInRange(issues, "max_iterations", max_iterations, 1, 100);
   CheckInRange(issues, "max_associations", max_associations, 1, 100);
   CheckInRange(issues, "reassociate_translation_m", reassociate_translation_m, 0.0, 1.0);
@@ -87,6 +88,18 @@ void ScanMatcher::Associate(const std::vector<Eigen::Vector3d>& planar_lidar,
                             const Eigen::Isometry3d& T,
                             std::vector<PlaneCorrespondence>* planes,
                             std::vector<LineCorrespondence>* lines) const {
+  Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, config_.refined_max_residual_m,
+            planes, lines);
+}
+
+void ScanMatcher::Associate(const std::vector<Eigen::Vector3d>& planar_lidar,
+                            const std::vector<Eigen::Vector3d>& edge_lidar,
+                            const VoxelMap& plane_map,
+                            const VoxelMap& edge_map,
+                            const Eigen::Isometry3d& T,
+                            double max_residual_m,
+                            std::vector<PlaneCorrespondence>* planes,
+                            std::vector<LineCorrespondence>* lines) const {
   planes->clear();
   lines->clear();
   std::vector<Eigen::Vector3d> nn;
@@ -102,7 +115,7 @@ void ScanMatcher::Associate(const std::vector<Eigen::Vector3d>& planar_lidar,
     const bool planar = std::all_of(nn.begin(), nn.end(), [&](const Eigen::Vector3d& q) {
       return std::abs(n.dot(q - f.centroid)) <= config_.plane_max_distance_m;
     });
-    if (!planar || std::abs(n.dot(x - f.centroid)) > config_.max_residual_m) continue;
+    if (!planar || std::abs(n.dot(x - f.centroid)) > max_residual_m) continue;
     planes->push_back({static_cast<uint32_t>(i), n, f.centroid});
   }
   for (size_t i = 0; i < edge_lidar.size(); ++i) {
@@ -111,7 +124,7 @@ void ScanMatcher::Associate(const std::vector<Eigen::Vector3d>& planar_lidar,
     if (f.eigenvalues(2) < config_.line_min_ratio * f.eigenvalues(1)) continue;
     const Eigen::Vector3d d = f.eigenvectors.col(2);
     const Eigen::Vector3d e = (x - f.centroid) - d * d.dot(x - f.centroid);
-    if (e.norm() > config_.max_residual_m) continue;
+    if (e.norm() > max_residual_m) continue;
     lines->push_back({static_cast<uint32_t>(i), d, f.centroid});
   }
 }
@@ -156,7 +169,8 @@ MatchResult ScanMatcher::Match(const std::vector<Eigen::Vector3d>& planar_lidar,
   Eigen::Isometry3d T_associated = T_init;
   std::vector<PlaneCorrespondence> planes;
   std::vector<LineCorrespondence> lines;
-  Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, &planes, &lines);
+  Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, config_.max_residual_m, &planes,
+            &lines);
   bool fresh = true;
   int associations = 1;
   Normal ne;
@@ -180,7 +194,8 @@ MatchResult ScanMatcher::Match(const std::vector<Eigen::Vector3d>& planar_lidar,
              Eigen::AngleAxisd(moved.linear()).angle() > config_.reassociate_rotation_rad ||
              delta.head<3>().norm() < config_.converged_translation_m);
     if (fresh) {
-      Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, &planes, &lines);
+      Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, config_.refined_max_residual_m,
+                &planes, &lines);
       T_associated = T;
       ++associations;
     }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "swlio/core/lie.h"
@@ -92,6 +93,54 @@ TEST(ScanMatcher, GroundOnlyIsDegenerateInThreeDirections) {
   EXPECT_GT(r.hessian_eigenvalues(3), 10.0 * r.hessian_eigenvalues(2));
   const Eigen::Isometry3d err = truth.inverse() * r.T_world_lidar;
   EXPECT_NEAR(err.translation().z(), 0.0, 0.01);  // the observable part is still recovered
+}
+
+// A 0.3 m wall inside the yard, mapped so far from the west: the map holds its west face
+// (x = 2). The sweep, from the east, sees its east face (x = 2.3), which the map does not have
+// yet. Paired with the west face, 0.3 m away, those points would pull the pose west.
+TEST(ScanMatcher, ANewFaceOfAThinWallIsNotPairedWithTheFaceSeenBefore) {
+  std::mt19937 rng(5);
+  Scene map_scene = MakeScene(0.15, &rng, 0.005);
+  Scene scan = MakeScene(0.4, &rng, 0.005);
+  for (double y = -3.0; y <= 3.0; y += 0.15) {
+    for (double z = 0.2; z <= 3.0; z += 0.15) map_scene.planes.emplace_back(2.0, y, z);
+  }
+  const size_t yard_points = scan.planes.size();
+  for (double y = -3.0; y <= 3.0; y += 0.2) {
+    for (double z = 0.6; z <= 3.0; z += 0.2) scan.planes.emplace_back(2.3, y, z);
+  }
+  VoxelMap planes, edges;
+  planes.Insert(map_scene.planes);
+  edges.Insert(map_scene.edges);
+  const Eigen::Isometry3d truth = Pose(5.0, 1.0, 0.7, 0, 0, 20 * kDeg);  // east of the wall
+  const auto planes_lidar = ToLidar(scan.planes, truth);
+  const auto edges_lidar = ToLidar(scan.edges, truth);
+
+  const auto far_face_pairs = [&](const ScanMatcher& matcher) {
+    std::vector<PlaneCorrespondence> paired;
+    std::vector<LineCorrespondence> lines;
+    matcher.Associate(planes_lidar, edges_lidar, planes, edges, truth, &paired, &lines);
+    return std::count_if(paired.begin(), paired.end(),
+                         [&](const PlaneCorrespondence& c) { return c.index >= yard_points; });
+  };
+  const auto far_points = static_cast<std::ptrdiff_t>(scan.planes.size() - yard_points);
+  EXPECT_LE(far_face_pairs(ScanMatcher()), far_points / 20);
+  EXPECT_GE(far_face_pairs(ScanMatcher({.refined_max_residual_m = 1.0})), far_points * 3 / 4);
+
+  std::vector<PlaneCorrespondence> paired;
+  std::vector<LineCorrespondence> lines;
+  ScanMatcher().Associate(planes_lidar, edges_lidar, planes, edges, truth, &paired, &lines);
+  EXPECT_GT(paired.size(), yard_points * 9 / 10);
+
+  // From a guess 0.25 m off, the first association (wide gate) still finds the yard.
+  const Eigen::Isometry3d guess = truth * Pose(0.2, -0.15, 0.0, 0, 0, 2 * kDeg);
+  const MatchResult r = ScanMatcher().Match(planes_lidar, edges_lidar, planes, edges, guess);
+  EXPECT_LT((truth.inverse() * r.T_world_lidar).translation().norm(), 0.005);
+
+  // With the wide gate throughout, the far face pulls the pose west.
+  const MatchResult wide = ScanMatcher({.refined_max_residual_m = 1.0})
+                               .Match(planes_lidar, edges_lidar, planes, edges, guess);
+  EXPECT_GT((truth.inverse() * wide.T_world_lidar).translation().norm(), 0.01);
 }
 
 TEST(ScanMatcher, TooFewCorrespondencesDoNotConverge) {

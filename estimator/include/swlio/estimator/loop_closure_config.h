@@ -39,10 +39,12 @@ struct LoopClosureConfig {
   /// Its voxels are twice the local map's: the k-NN search covers the 27 voxels around a
   /// point, so 1 m voxels let a feature find its surface up to ~1.5 m away (the drift).
   VoxelMapConfig submap = {.voxel_m = 1.0, .max_points_per_voxel = 20};
-  /// First registration from the graph's guess: wide neighbour search for the drift.
+  /// First registration from the graph's guess: wide neighbour search and gates for the drift
+  /// (its later associations too: the guess can be a metre off).
   ScanMatcherConfig coarse = {.max_neighbor_distance_m = 3.0,
                               .huber_m = 0.3,
                               .max_residual_m = 2.0,
+                              .refined_max_residual_m = 2.0,
                               .max_iterations = 30,
                               .max_associations = 8};
   /// Then from the coarse result with the odometry's matcher settings.
