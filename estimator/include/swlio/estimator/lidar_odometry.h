@@ -96,7 +96,6 @@ class LidarOdometry {
   LidarOdometryConfig config_;
   NowNsFn now_ns_;
   StaticInitializer initializer_;
-  bool initialized_ = false;
   ImuPropagator propagator_;
   std::deque<ImuSample> pending_imu_;  ///< samples after the last propagated time
   FrontEnd front_end_;
@@ -108,6 +107,7 @@ class LidarOdometry {
   VoxelMap plane_map_;
   VoxelMap edge_map_;
   ScanMatcher matcher_;
+  bool initialized_ = false;
   bool have_keyframe_ = false;
   Eigen::Isometry3d T_world_last_keyframe_ = Eigen::Isometry3d::Identity();
 };
