@@ -10,6 +10,7 @@ Usage: lint_select.py BUILD DB_OUT [CHANGED_LIST OURS_LIST]
   `ninja -t deps`. A batch's dependency list does not say which member read a header, so
   those members are preprocessed on their own (`-MM`) to find out.
 """
+import concurrent.futures
 import json
 import os
 import re
@@ -69,6 +70,7 @@ def reads(entry):
 def select(build, entries, changed, ours):
     by_file = {e["file"]: e for e in entries}
     hit = set()
+    to_check = []  # (member of a batch, the changed headers its batch read)
     for deps in ninja_deps(build):
         members = [d for d in deps if d in ours]
         changed_headers = {d for d in deps if d in changed and d not in ours}
@@ -78,9 +80,10 @@ def select(build, entries, changed, ours):
         if len(members) <= 1:
             hit.update(members)
             continue
-        for m in members:
-            if m in by_file and reads(by_file[m]) & changed_headers:
-                hit.add(m)
+        to_check += [(m, changed_headers) for m in members if m in by_file]
+    with concurrent.futures.ThreadPoolExecutor(os.cpu_count()) as pool:
+        found = pool.map(lambda c: reads(by_file[c[0]]) & c[1], to_check)
+        hit.update(m for (m, _), read in zip(to_check, found) if read)
     return hit
 
 
