@@ -33,7 +33,7 @@ def expand(entries):
 
 
 def ninja_deps(build):
-    """(object's first dependency = its source, [every dependency]) per object."""
+    """Every object's dependency list from ninja (its source first)."""
     text = subprocess.run(["ninja", "-C", build, "-t", "deps"], capture_output=True,
                           text=True, check=False).stdout
     blocks, deps = [], []
