@@ -5,6 +5,29 @@
 
 namespace swlio::daemon {
 
+namespace {
+
+// The UDP ports of DDS domain d, from the default port mapping of OMG DDSI-RTPS (§9.6.1 in 2.3:
+// PB 7400, DG 250, offsets 0, 10, 1, 11, PG 2), with the 50 participant indices that
+// config/cyclonedds-loopback.xml allows: 7400 + 250·d + 0..111. With unicast discovery every
+// participant of the domain sends its SPDP datagrams to each even port 7410..7510 of the band
+// (measured: one swlio-echo, 3 in 3 s to each), so a LiDAR port there receives them.
+constexpr int64_t kDdsPortBase = 7400;
+constexpr int64_t kDdsDomainGain = 250;
+constexpr int64_t kDdsBandPorts = 112;
+
+void CheckOutsideDdsBand(ConfigIssues& issues, const std::string& key, uint16_t port,
+                         int64_t domain_id) {
+  const int64_t first = kDdsPortBase + kDdsDomainGain * domain_id;
+  const int64_t last = first + kDdsBandPorts - 1;
+  CheckThat(issues, port < first || port > last, key,
+            "is one of DDS domain " + std::to_string(domain_id) + "'s ports (" +
+                std::to_string(first) + "–" + std::to_string(last) +
+                "): DDS discovery datagrams would arrive as bad LiDAR packets");
+}
+
+}  // namespace
+
 bool IsLogLevelName(const std::string& level) {
   constexpr std::array<const char*, 7> kLevels = {"trace", "debug",    "info", "warn",
                                                   "error", "critical", "off"};
@@ -62,6 +85,8 @@ ConfigIssues DaemonConfig::Validate() const {
             "this build reads version " + std::to_string(kConfigVersion) + ", got " +
                 std::to_string(config_version));
   AppendWithPrefix(issues, "lidar", lidar.Validate());
+  CheckOutsideDdsBand(issues, "lidar.msop_port", lidar.msop_port, ipc.domain_id);
+  CheckOutsideDdsBand(issues, "lidar.difop_port", lidar.difop_port, ipc.domain_id);
   AppendWithPrefix(issues, "imu", imu.Validate());
   AppendWithPrefix(issues, "can", can.Validate());
   AppendWithPrefix(issues, "estimator", estimator.Validate());

@@ -166,6 +166,28 @@ logging:
   EXPECT_EQ(loaded.errors[4].line, 10);
 }
 
+TEST(ConfigLoader, LidarPortsAmongTheDdsDomainsPortsAreRefused) {
+  // Domain 2's ports are 7900–8011 (7400 + 250·2 + 0..111): DDS discovery would arrive there.
+  const LoadedConfig clash = Load(R"(config_version: 1
+lidar:
+  msop_port: 7910
+  difop_port: 8011
+ipc:
+  domain_id: 2
+)");
+  ASSERT_EQ(clash.errors.size(), 2u) << clash.ErrorReport();
+  EXPECT_EQ(clash.errors[0].key, "lidar.msop_port");
+  EXPECT_EQ(clash.errors[0].line, 3);
+  EXPECT_THAT(clash.errors[0].reason, HasSubstr("DDS domain 2's ports (7900–8011)"));
+  EXPECT_EQ(clash.errors[1].key, "lidar.difop_port");
+  // The same ports with domain 0 (7400–7511), and the factory ports 6699 / 7788 with domain 1
+  // (7650–7761), are fine.
+  EXPECT_TRUE(Load("config_version: 1\nlidar:\n  msop_port: 7910\n  difop_port: 8011\n").ok());
+  EXPECT_TRUE(Load("config_version: 1\nipc:\n  domain_id: 1\n").ok());
+  EXPECT_FALSE(Load("config_version: 1\nlidar:\n  msop_port: 7400\n").ok());
+  EXPECT_TRUE(Load("config_version: 1\nlidar:\n  msop_port: 7512\n").ok());
+}
+
 TEST(ConfigLoader, DuplicateKeyIsAnError) {
   const LoadedConfig loaded = Load("config_version: 1\nimu:\n  baud: 9600\n  baud: 115200\n");
   ASSERT_FALSE(loaded.ok());

@@ -22,6 +22,7 @@
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/subscriber.h"
 #include "test_data.h"
+#include "udp_port.h"
 
 namespace swlio::daemon::test {
 
@@ -125,8 +126,9 @@ struct LiveDriveResult {
 inline DaemonConfig LiveDriveConfig(const std::filesystem::path& dir, uint32_t domain) {
   DaemonConfig config;
   config.lidar.bind_address = "127.0.0.1";
-  config.lidar.msop_port = 0;  // any free port; told to the simulator
-  config.lidar.difop_port = 0;
+  // Free ports no DDS participant sends to (udp_port.h); told to the simulator.
+  config.lidar.msop_port = ::swlio::test::QuietUdpPort();
+  config.lidar.difop_port = ::swlio::test::QuietUdpPort();
   config.imu.device = (dir / "imu.pty").string();
   config.imu.configure_on_start = false;
   config.ipc.domain_id = domain;

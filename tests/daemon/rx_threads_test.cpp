@@ -20,6 +20,7 @@
 #include "swlio/daemon/imu_rx.h"
 #include "swlio/daemon/lidar_rx.h"
 #include "test_data.h"
+#include "udp_port.h"
 
 namespace swlio::daemon {
 namespace {
@@ -51,8 +52,8 @@ size_t PopN(SpscQueue<T>& q, size_t n, std::vector<T>* out = nullptr) {
 TEST(LidarRx, QueuesEveryDatagramWithoutAllocating) {
   drivers::LidarConfig config;
   config.bind_address = "127.0.0.1";
-  config.msop_port = 0;
-  config.difop_port = 0;
+  config.msop_port = test::QuietUdpPort();
+  config.difop_port = test::QuietUdpPort();
   SpscQueue<LidarPacket> q("lidar_packets", "lidar_rx", "test", 4096);
   std::string error;
   auto rx = LidarRx::Open(config, &q, &error);

@@ -1,6 +1,7 @@
 // swliod as systemd runs it: a bad configuration exits with EX_CONFIG (not restarted), a good
 // one runs until SIGTERM and stops cleanly with its status in the log.
 
+#include <fcntl.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -8,17 +9,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <arpa/inet.h>
-#include <fcntl.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-
 #include <chrono>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
 #include "test_data.h"
+#include "udp_port.h"
 
 extern char** environ;
 
@@ -47,19 +44,6 @@ int WaitExit(pid_t pid) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-/// A UDP port that was free a moment ago on 127.0.0.1.
-uint16_t FreeUdpPort() {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
-  socklen_t len = sizeof a;
-  getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
-  close(fd);
-  return ntohs(a.sin_port);
-}
-
 std::string ReadAll(const std::filesystem::path& p) {
   std::ifstream in(p);
   std::stringstream s;
@@ -78,8 +62,8 @@ TEST(SwliodCommand, ABadConfigurationExitsWithExConfig) {
 TEST(SwliodCommand, RunsUntilSigtermAndStopsCleanly) {
   const auto dir = test::MakeTempDir("swliod_run");
   std::ofstream(dir / "swlio.yaml")
-      << "config_version: 1\nlidar:\n  bind_address: 127.0.0.1\n  msop_port: " << FreeUdpPort()
-      << "\n  difop_port: " << FreeUdpPort()
+      << "config_version: 1\nlidar:\n  bind_address: 127.0.0.1\n  msop_port: "
+      << test::QuietUdpPort() << "\n  difop_port: " << test::QuietUdpPort()
       << "\nimu:\n  device: " << (dir / "absent-tty").string()
       << "\n  configure_on_start: false\nipc:\n  dds_config_file: "
       << (test::SourceDir() / "config" / "cyclonedds-loopback.xml").string()

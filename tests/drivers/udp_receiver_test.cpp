@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "swlio/drivers/rx_timestamp.h"
+#include "udp_port.h"
 
 namespace swlio::drivers {
 namespace {
@@ -34,7 +35,7 @@ class LoopbackSender {
 UdpReceiver OpenLoopback(size_t batch, size_t max_bytes, int64_t rcvbuf = 1 << 20) {
   UdpReceiverOptions o;
   o.bind_address = "127.0.0.1";
-  o.port = 0;
+  o.port = test::QuietUdpPort();
   o.batch_size = batch;
   o.max_datagram_bytes = max_bytes;
   o.rcvbuf_bytes = rcvbuf;

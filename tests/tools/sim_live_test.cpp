@@ -12,6 +12,7 @@
 #include "sim_recording.h"
 #include "swlio/drivers/udp_receiver.h"
 #include "test_data.h"
+#include "udp_port.h"
 
 namespace swlio::sim {
 namespace {
@@ -23,7 +24,9 @@ void ExpectEveryPacketAndFrameArrives(bool precast) {
   std::string error;
   drivers::UdpReceiverOptions uo;
   uo.bind_address = "127.0.0.1";
+  uo.port = test::QuietUdpPort();
   auto msop = drivers::UdpReceiver::Open(uo, &error);
+  uo.port = test::QuietUdpPort();
   auto difop = drivers::UdpReceiver::Open(uo, &error);
   ASSERT_TRUE(msop && difop) << error;
 
