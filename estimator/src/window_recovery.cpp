@@ -51,6 +51,7 @@ void WindowEstimator::Reinitialize() {
   init_sigma_velocity_mps_ = config_.init_sigma_velocity_mps;
   init_sigma_tilt_rad_ = config_.init_sigma_rotation_rad;
   init_sigma_bias_acc_mps2_ = config_.init_sigma_bias_acc_mps2;
+  init_sigma_bias_gyro_radps_.setConstant(config_.init_sigma_bias_gyro_radps);
   initializer_.Reset();
   bootstrap_.Reset();
   initialized_ = false;

@@ -195,6 +195,7 @@ class WindowEstimator {
   StaticInitializer initializer_;
   DynamicBootstrap bootstrap_;
   double init_sigma_velocity_mps_, init_sigma_tilt_rad_, init_sigma_bias_acc_mps2_;
+  Eigen::Vector3d init_sigma_bias_gyro_radps_;  ///< per axis (StaticGyroBiasSigma)
   State init_state_;
   /// Re-initialized: the next initialization is placed at this state (AnchorFor).
   std::optional<State> anchor_;
