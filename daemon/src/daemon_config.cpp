@@ -16,7 +16,9 @@ constexpr int64_t kDdsPortBase = 7400;
 constexpr int64_t kDdsDomainGain = 250;
 constexpr int64_t kDdsBandPorts = 112;
 
-void CheckOutsideDdsBand(ConfigIssues& issues, const std::string& key, uint16_t port,
+void CheckOutsideDdsBand(ConfigIssues& issues,
+                         const std::string& key,
+                         uint16_t port,
                          int64_t domain_id) {
   const int64_t first = kDdsPortBase + kDdsDomainGain * domain_id;
   const int64_t last = first + kDdsBandPorts - 1;
