@@ -94,7 +94,13 @@ void Preintegrator::Reset(int64_t t_ns, const Vec3& bias_gyro, const Vec3& bias_
 // i.e. δ_{k+1} = A δ_k + B η with the 9×9 A and 9×6 B below. Then
 //   covariance:     Σ_{k+1} = A Σ_k Aᵀ + B Q Bᵀ, Q = diag(σ_g² I, σ_a² I), σ² = density²/Δt
 //                   (the discrete noise of a sample averaged over Δt, Forster §IV: Cov(η_d) =
-//                   Cov(η)/Δt);
+//                   Cov(η)/Δt), plus σ_a² Δt³/12 I on δp: white acceleration noise integrated
+//                   exactly over the step gives Cov(δp) = σ_a² Δt³/3 where B Q Bᵀ gives
+//                   σ_a² Δt³/4 (Cov(δp, δv) = σ_a² Δt²/2 and Cov(δv) = σ_a² Δt agree). The
+//                   difference is ~1/(4N²) of an N-step interval's δp covariance, but without
+//                   it a one-step interval's δp and δv are perfectly correlated and Σ is
+//                   singular: a sweep inside an IMU gap, bridged by one interpolated step, got
+//                   no IMU factor, and its velocity and biases fell to the bias prior's zero;
 //   bias Jacobians: a bias change δb acts like η = −δb, so J_{k+1} = A J_k − B.
 void Preintegrator::IntegrateStep(const ImuSample& a, const ImuSample& b) {
   if (options_.keep_samples) {
@@ -139,6 +145,7 @@ void Preintegrator::Propagate(const ImuSample& a, const ImuSample& b) {
   cov.transposeInPlace();
   ApplyA(Et, M, N, dt, cov);
   cov.noalias() += B * q.asDiagonal() * B.transpose();
+  cov.block<3, 3>(kRowP, kRowP).diagonal().array() += na * na * dt2 * dt / 12.0;
   cov = 0.5 * (cov + cov.transpose()).eval();
   ApplyA(Et, M, N, dt, pim_.jacobian_bias);
   pim_.jacobian_bias -= B;

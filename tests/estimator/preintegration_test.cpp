@@ -5,12 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <iostream>
 
 #include "sim_imu_util.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
+#include "swlio/estimator/imu_factor.h"
 #include "swlio/estimator/imu_residual.h"
 
 namespace swlio::estimator {
@@ -178,6 +180,33 @@ TEST(Preintegration, ReportsUncoveredAndBadIntervals) {
   EXPECT_EQ(pre.result().dt_s, 0.0);
   std::swap(s[0], s[1]);
   EXPECT_EQ(pre.Integrate(s, 150, 250), PreintegrationStatus::kUnsortedTime);
+}
+
+// An IMU gap can leave one sample before a sweep's interval and the next after it: the
+// interval is then one interpolated step. White acceleration noise integrated over that step
+// gives Cov(δp) = σ_a² Δt³/3, Cov(δp, δv) = σ_a² Δt²/2, Cov(δv) = σ_a² Δt: full rank, so the
+// interval still gets an IMU factor. (With Δp's noise at σ_a² Δt³/4, as the sample-averaged
+// discrete noise alone gives, δp and δv were perfectly correlated, Σ singular and
+// ImuFactor::Create refused the interval: the sweep's velocity and biases were left free.)
+TEST(Preintegration, OneStepAcrossAnImuGapHasAFullRankCovariance) {
+  std::vector<ImuSample> s(2);  // zero rate and specific force: no attitude coupling
+  s[0].t_ns = 0;
+  s[1].t_ns = 200'000'000;  // 200 ms without samples
+  const ImuNoiseConfig noise;
+  Preintegrator pre(noise, Vec3::Zero(), Vec3::Zero());
+  ASSERT_EQ(pre.Integrate(s, 50'000'000, 150'000'000), PreintegrationStatus::kOk);
+  const double dt = 0.1;
+  const double q =
+      noise.acc_noise_density_mps2_per_sqrthz * noise.acc_noise_density_mps2_per_sqrthz;
+  const Eigen::Matrix<double, 9, 9>& cov = pre.result().covariance;
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(cov(kRowP + i, kRowP + i), q * dt * dt * dt / 3.0, 1e-9 * q) << "δp, axis " << i;
+    EXPECT_NEAR(cov(kRowP + i, kRowV + i), q * dt * dt / 2.0, 1e-9 * q) << "δp δv, axis " << i;
+    EXPECT_NEAR(cov(kRowV + i, kRowV + i), q * dt, 1e-9 * q) << "δv, axis " << i;
+  }
+  using Llt = Eigen::LLT<Eigen::Matrix<double, 9, 9>>;
+  EXPECT_EQ(Llt(cov).info(), Eigen::Success);
+  EXPECT_NE(ImuFactor::Create(pre.result(), noise, kG), nullptr);
 }
 
 // Bounds interpolation: rate and specific force along z are linear in time, ω_z = 0.2 + t,
