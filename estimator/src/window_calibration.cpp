@@ -40,7 +40,7 @@ bool WindowEstimator::ApplyCalibration(const ExtrinsicCalibration& calibration) 
   f.lidar_linear.reset();
   f.imu.reset();
   f.pre.reset();
-  SetInitialPrior(&f);
+  SetRestartPrior(&f);
   return true;
 }
 

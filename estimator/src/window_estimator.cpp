@@ -282,6 +282,11 @@ void WindowEstimator::SetInitialPrior(Frame* f) {
   prior_.rank = n + n_tilt;
 }
 
+void WindowEstimator::SetRestartPrior(Frame* f) {
+  init_sigma_bias_gyro_radps_.setConstant(config_.init_sigma_bias_gyro_radps);
+  SetInitialPrior(f);
+}
+
 double WindowEstimator::DiagonalTiltSigma() const {
   // With the map's tilt estimated, that block carries the ambiguity (SetInitialPrior) and the
   // first frame's tilt is the map's gauge.

@@ -166,7 +166,7 @@ void WindowEstimator::Marginalize() {
     prior_ = std::move(next);
   } else {
     ++marginalization_failures_;
-    SetInitialPrior(&f1);  // nothing carried over: restart from frame 1 as it stands
+    SetRestartPrior(&f1);  // nothing carried over: restart from frame 1 as it stands
   }
   frames_.pop_front();
 }

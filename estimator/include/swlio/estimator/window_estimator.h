@@ -126,6 +126,10 @@ class WindowEstimator {
   /// features matched.
   bool Prealign(Frame* frame);
   void SetInitialPrior(Frame* frame);
+  /// The prior of a restart from a running frame (a failed marginalization, a calibration):
+  /// SetInitialPrior with the configured gyro-bias σ. A standing start's σ (StaticGyroBiasSigma)
+  /// is what the still window told of the bias then, not what the window knows of it now.
+  void SetRestartPrior(Frame* frame);
   /// Roll/pitch σ of the diagonal first-frame prior (StaticStartTiltSigma after a standing
   /// start, unless estimate_gravity_tilt gives the ambiguity its own block).
   double DiagonalTiltSigma() const;

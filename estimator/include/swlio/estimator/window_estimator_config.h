@@ -65,8 +65,10 @@ struct WindowEstimatorConfig {
   double init_sigma_rotation_rad = 1e-3;
   double init_sigma_velocity_mps = 0.05;
   double init_sigma_bias_acc_mps2 = 0.05;
-  /// After a moving start; a standing start (also the one after a recovery) takes the static
-  /// initializer's standard error of the mean rate instead (StaticInitResult::bias_gyro_std).
+  /// After a moving start, and when the window restarts from a running frame (a failed
+  /// marginalization, an online calibration); a standing start (also the one after a recovery)
+  /// takes the static initializer's standard error of the mean rate instead
+  /// (StaticInitResult::bias_gyro_std).
   double init_sigma_bias_gyro_radps = 0.005;
   /// Weak absolute prior (about zero) on every window frame's biases, not marginalized: keeps
   /// b_a from absorbing a tilt of the local map (measured on `aggressive` without it: b_a
