@@ -12,6 +12,20 @@ StateCovarianceMatrix ToWorldRotationAxes(const StateCovarianceMatrix& C_tangent
   return 0.5 * (P + P.transpose());
 }
 
+Eigen::Matrix3d GravityAttitudeCovariance(const Eigen::Matrix2d& C_tilt,
+                                          const Eigen::Matrix<double, 2, 3>& C_tilt_phi,
+                                          const Eigen::Matrix3d& C_phi,
+                                          const Eigen::Vector2d& tilt_rad,
+                                          const Eigen::Matrix3d& R_map_imu) {
+  const Eigen::Vector3d a(tilt_rad.x(), tilt_rad.y(), 0.0);
+  Eigen::Matrix<double, 3, 5> J;
+  J << lie::LeftJacobian(a).leftCols<2>(), lie::Exp(a) * R_map_imu;
+  Eigen::Matrix<double, 5, 5> S;
+  S << C_tilt, C_tilt_phi, C_tilt_phi.transpose(), C_phi;
+  const Eigen::Matrix3d P = J * S * J.transpose();
+  return 0.5 * (P + P.transpose());
+}
+
 Eigen::Matrix3d VelocityImuCovariance(const StateCovarianceMatrix& P,
                                       const Eigen::Matrix3d& R_world_imu,
                                       const Eigen::Vector3d& vel_world_mps) {

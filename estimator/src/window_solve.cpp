@@ -106,12 +106,27 @@ StateCovariance WindowEstimator::NewestCovariance() {
   const Eigen::MatrixXd H = J.transpose() * J;
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(H);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return out;
+  // Columns of H⁻¹: the newest frame's 15, then the map tilt's (its block comes after the
+  // extrinsic's, first in eo).
   const Eigen::Index n = H.rows();
-  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(n, kStateCovSize);
-  E.bottomRows(kStateCovSize).setIdentity();
-  const StateCovarianceMatrix C = ldlt.solve(E).bottomRows(kStateCovSize);
-  out.P = ToWorldRotationAxes(C, PoseFromParameters(frames_.back()->pose.data()).linear());
-  out.valid = out.P.allFinite() && out.P.diagonal().minCoeff() > 0.0;
+  const Eigen::Index n_tilt = config_.estimate_gravity_tilt ? kGravityTiltSize : 0;
+  const Eigen::Index tilt_at = config_.estimate_extrinsic ? kPoseTangentSize : 0;
+  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(n, kStateCovSize + n_tilt);
+  E.bottomLeftCorner(kStateCovSize, kStateCovSize).setIdentity();
+  E.block(tilt_at, kStateCovSize, n_tilt, n_tilt).setIdentity();
+  const Eigen::MatrixXd X = ldlt.solve(E);
+  const StateCovarianceMatrix C = X.bottomLeftCorner(kStateCovSize, kStateCovSize);
+  const Eigen::Matrix3d R = PoseFromParameters(frames_.back()->pose.data()).linear();
+  out.P = ToWorldRotationAxes(C, R);
+  out.rot_gravity = out.P.block<3, 3>(kCovRot, kCovRot);
+  if (n_tilt > 0) {
+    const Eigen::Matrix2d C_tilt = X.block(tilt_at, kStateCovSize, n_tilt, n_tilt);
+    const Eigen::Matrix<double, 2, 3> C_tilt_phi = X.block(tilt_at, kCovRot, n_tilt, 3);
+    out.rot_gravity =
+        GravityAttitudeCovariance(C_tilt, C_tilt_phi, C.block<3, 3>(kCovRot, kCovRot),
+                                  Eigen::Vector2d(gravity_tilt_[0], gravity_tilt_[1]), R);
+  }
+  out.valid = out.P.allFinite() && out.P.diagonal().minCoeff() > 0.0 && out.rot_gravity.allFinite();
   return out;
 }
 

@@ -65,5 +65,57 @@ TEST(StateCovariance, MatchesSampledErrors) {
   EXPECT_LT((S_v - P_v_imu).norm(), 0.02 * P_v_imu.norm());
 }
 
+// Without a map tilt, the attitude against gravity is the world-axes rotation of P.
+TEST(StateCovariance, GravityAttitudeWithoutTiltIsTheWorldRotationBlock) {
+  Eigen::Matrix3d C_phi;
+  C_phi << 4e-6, 1e-6, 0, 1e-6, 2e-6, 0, 0, 0, 9e-6;
+  const Eigen::Matrix3d R = Yaw(0.9);
+  const Eigen::Matrix3d P =
+      GravityAttitudeCovariance(Eigen::Matrix2d::Zero(), Eigen::Matrix<double, 2, 3>::Zero(), C_phi,
+                                Eigen::Vector2d::Zero(), R);
+  EXPECT_TRUE(P.isApprox(R * C_phi * R.transpose(), 1e-12));
+}
+
+// Monte Carlo: sample the tilt and the frame's rotation error jointly (correlated, as the
+// window leaves them), apply them as the optimizer does (θ additive, R ← R Exp(δφ)), and
+// compare the sample covariance of the rotation error of Q·R with the first-order formula.
+TEST(StateCovariance, GravityAttitudeMatchesSampledErrors) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> n01;
+  Eigen::Matrix<double, 5, 5> A;
+  for (int i = 0; i < A.size(); ++i) A.data()[i] = n01(rng);
+  const Eigen::Matrix<double, 5, 5> S = 1e-5 * (A * A.transpose() / 5.0);
+  const Eigen::Vector2d tilt(0.004, -0.006);
+  const Eigen::Matrix3d R =
+      Yaw(-1.1) * Eigen::AngleAxisd(0.1, Eigen::Vector3d(0, 1, 1).normalized()).matrix();
+  const Eigen::Matrix3d P = GravityAttitudeCovariance(
+      S.topLeftCorner<2, 2>(), S.topRightCorner<2, 3>(), S.bottomRightCorner<3, 3>(), tilt, R);
+  // The tilt's part alone is not negligible against the frame's (else the test could not tell).
+  const double tilt_var = S.topLeftCorner<2, 2>().trace();
+  const double phi_var = S.bottomRightCorner<3, 3>().trace();
+  EXPECT_GT(tilt_var, 0.2 * phi_var);
+
+  const Eigen::LLT<Eigen::Matrix<double, 5, 5>> llt(S);
+  const Eigen::Matrix3d R_g = lie::Exp(Eigen::Vector3d(tilt.x(), tilt.y(), 0.0)) * R;
+  const int n = 200000;
+  Eigen::Matrix3d S_rot = Eigen::Matrix3d::Zero();
+  for (int k = 0; k < n; ++k) {
+    Eigen::Matrix<double, 5, 1> z;
+    for (int i = 0; i < 5; ++i) z(i) = n01(rng);
+    const Eigen::Matrix<double, 5, 1> d = llt.matrixL() * z;
+    const Eigen::Vector3d tilt_s(tilt.x() + d(0), tilt.y() + d(1), 0.0);
+    const Eigen::Matrix3d R_g_s = lie::Exp(tilt_s) * R * lie::Exp(Eigen::Vector3d(d.tail<3>()));
+    const Eigen::Vector3d e = lie::Log(Eigen::Matrix3d(R_g_s * R_g.transpose()));
+    S_rot += e * e.transpose();
+  }
+  S_rot /= n;
+  EXPECT_LT((S_rot - P).norm(), 0.02 * P.norm());
+  // Leaving the cross covariance out is measurably wrong: the test sees the correlation.
+  const Eigen::Matrix3d P_uncorrelated =
+      GravityAttitudeCovariance(S.topLeftCorner<2, 2>(), Eigen::Matrix<double, 2, 3>::Zero(),
+                                S.bottomRightCorner<3, 3>(), tilt, R);
+  EXPECT_GT((S_rot - P_uncorrelated).norm(), 0.05 * P.norm());
+}
+
 }  // namespace
 }  // namespace swlio::estimator

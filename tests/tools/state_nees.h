@@ -1,7 +1,9 @@
 #pragma once
 // Normalized estimation error squared (NEES) of swlio-run's --covariance output against the
 // simulator's ground truth, for the states the IMU and LiDAR observe in the window: the tilt
-// (rotation about the world x and y axes, 2 dof) and the velocity in the IMU frame (3 dof).
+// against gravity (the attitude Q·R, Q the map's estimated tilt, identity unless estimated;
+// rotation about the gravity-aligned x and y axes, 2 dof) and the velocity in the IMU frame
+// (3 dof; Q does not change it).
 // For a consistent estimator each averages its degrees of freedom over a run (Bar-Shalom, Li,
 // Kirubarajan, "Estimation with Applications to Tracking and Navigation", §5.4). Position and
 // yaw are left out: the window does not observe them absolutely (they drift with the map).
@@ -33,7 +35,11 @@ struct CovarianceRow {
   Eigen::Matrix3d R_world_imu;
   Eigen::Vector3d vel_world;
   estimator::StateCovarianceMatrix P;
+  Eigen::Matrix3d R_gravity_imu;  ///< Q·R: the attitude against gravity
+  Eigen::Matrix3d P_rot_gravity;  ///< its covariance (StateCovariance::rot_gravity)
 };
+
+inline constexpr size_t kCovarianceCsvColumns = 11 + 120 + 2 + 6;
 
 inline std::vector<CovarianceRow> ReadCovarianceCsv(const std::filesystem::path& path) {
   std::vector<CovarianceRow> rows;
@@ -44,7 +50,7 @@ inline std::vector<CovarianceRow> ReadCovarianceCsv(const std::filesystem::path&
     std::vector<double> v;
     std::stringstream ss(line);
     for (std::string field; std::getline(ss, field, ',');) v.push_back(std::stod(field));
-    if (v.size() != 11 + 120) continue;
+    if (v.size() != kCovarianceCsvColumns) continue;
     CovarianceRow r;
     r.t_s = v[0] * 1e-9;
     r.R_world_imu = Eigen::Quaterniond(v[7], v[4], v[5], v[6]).normalized().toRotationMatrix();
@@ -52,6 +58,12 @@ inline std::vector<CovarianceRow> ReadCovarianceCsv(const std::filesystem::path&
     size_t k = 11;
     for (int i = 0; i < 15; ++i) {
       for (int j = i; j < 15; ++j) r.P(i, j) = r.P(j, i) = v[k++];
+    }
+    const Eigen::Vector3d tilt(v[k], v[k + 1], 0.0);
+    k += 2;
+    r.R_gravity_imu = lie::Exp(tilt) * r.R_world_imu;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = i; j < 3; ++j) r.P_rot_gravity(i, j) = r.P_rot_gravity(j, i) = v[k++];
     }
     rows.push_back(r);
   }
@@ -79,15 +91,15 @@ inline NeesSummary StateNees(const std::filesystem::path& groundtruth_tum,
     const size_t n = (r.t_s - t[i - 1] < t[i] - r.t_s) ? i - 1 : i;
     if (n < 1 || n + 1 >= t.size()) continue;
     if (!aligned) {
-      const double yaw = lie::Log(Eigen::Matrix3d(r.R_world_imu * rotation(n).transpose())).z();
+      const double yaw = lie::Log(Eigen::Matrix3d(r.R_gravity_imu * rotation(n).transpose())).z();
       R_yaw = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
       aligned = true;
     }
     if (r.t_s < rows.front().t_s + skip_s) continue;
     const Eigen::Matrix3d R_true = R_yaw * rotation(n);
-    const Eigen::Vector3d e_rot = lie::Log(Eigen::Matrix3d(r.R_world_imu * R_true.transpose()));
+    const Eigen::Vector3d e_rot = lie::Log(Eigen::Matrix3d(r.R_gravity_imu * R_true.transpose()));
     const Eigen::Vector2d e_tilt = e_rot.head<2>();
-    const Eigen::Matrix2d P_tilt = r.P.block<2, 2>(estimator::kCovRot, estimator::kCovRot);
+    const Eigen::Matrix2d P_tilt = r.P_rot_gravity.topLeftCorner<2, 2>();
     const Eigen::Vector3d e_vel =
         r.R_world_imu.transpose() * r.vel_world - rotation(n).transpose() * velocity(n);
     const Eigen::Matrix3d P_vel = estimator::VelocityImuCovariance(r.P, r.R_world_imu, r.vel_world);

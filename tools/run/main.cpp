@@ -95,7 +95,9 @@ void WriteDiagnostics(std::ostream& out, const OdometryResult& r, int64_t t_ns) 
 }
 
 /// Header of --covariance: the newest state and its marginal covariance P (state_covariance.h:
-/// [δp_world, δθ_world, δv_world, δb_a, δb_g]), upper triangle row by row.
+/// [δp_world, δθ_world, δv_world, δb_a, δb_g]), upper triangle row by row; then the map's tilt
+/// against gravity [θx, θy] (WindowResult::gravity_tilt_rad, zero unless estimated) and the
+/// covariance of the attitude against gravity (StateCovariance::rot_gravity), upper triangle.
 std::string CovarianceHeader() {
   std::string h = "t_ns,px,py,pz,qx,qy,qz,qw,vx,vy,vz";
   for (int i = 0; i < swlio::estimator::kStateCovSize; ++i) {
@@ -103,12 +105,17 @@ std::string CovarianceHeader() {
       h += ",P_" + std::to_string(i) + "_" + std::to_string(j);
     }
   }
+  h += ",tilt_x,tilt_y";
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i; j < 3; ++j) h += ",Pg_" + std::to_string(i) + "_" + std::to_string(j);
+  }
   return h;
 }
 
 void WriteCovariance(std::ostream& out,
                      const swlio::State& x,
-                     const swlio::estimator::StateCovariance& c) {
+                     const swlio::estimator::StateCovariance& c,
+                     const Eigen::Vector2d& gravity_tilt_rad) {
   const Eigen::Quaterniond q = swlio::lie::PositiveW(Eigen::Quaterniond(x.T_world_imu.linear()));
   const Eigen::Vector3d p = x.T_world_imu.translation();
   char field[64];
@@ -122,6 +129,14 @@ void WriteCovariance(std::ostream& out,
   for (int i = 0; i < swlio::estimator::kStateCovSize; ++i) {
     for (int j = i; j < swlio::estimator::kStateCovSize; ++j) {
       std::snprintf(field, sizeof field, ",%.6e", c.P(i, j));
+      out << field;
+    }
+  }
+  std::snprintf(field, sizeof field, ",%.9g,%.9g", gravity_tilt_rad.x(), gravity_tilt_rad.y());
+  out << field;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i; j < 3; ++j) {
+      std::snprintf(field, sizeof field, ",%.6e", c.rot_gravity(i, j));
       out << field;
     }
   }
@@ -383,7 +398,8 @@ int Run(const Options& opt) {
   }
   auto process = [&](const swlio::Scan& scan, const swlio::estimator::WindowResult& w) {
     const OdometryResult& r = w.odometry;
-    if (covariance && w.covariance.valid) WriteCovariance(covariance, host(r.state), w.covariance);
+    if (covariance && w.covariance.valid)
+      WriteCovariance(covariance, host(r.state), w.covariance, w.gravity_tilt_rad);
     summary.Add(r);
     summary.reinitializations = w.reinitializations;  // the estimator's count
     summary.wheel_factors = std::max(summary.wheel_factors, w.wheel_factors);
