@@ -403,6 +403,7 @@ void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   s.Get("reassociations", c.reassociations);
   s.Get("edge_threshold_m2", c.edge_threshold_m2);
   s.Get("max_edges_per_sector", c.max_edges_per_sector);
+  s.Get("local_map_radius_m", c.local_map_radius_m);
   s.Get("lidar_sigma_m", c.lidar_sigma_m);
   s.Get("huber_m", c.huber_m);
   s.Get("degenerate_eigenvalue", c.degenerate_eigenvalue);

@@ -26,6 +26,8 @@ ConfigIssues WindowEstimatorConfig::Validate() const {
     if (issue.key == "edge_threshold_m2" || issue.key == "max_edges_per_sector")
       issues.push_back(std::move(issue));
   }
+  // VoxelMapConfig's range; the LiDAR-only mode's key allows 10–500 m.
+  CheckInRange(issues, "local_map_radius_m", local_map_radius_m, 10.0, 500.0);
   CheckPositive(issues, "lidar_sigma_m", lidar_sigma_m);
   CheckPositive(issues, "huber_m", huber_m);
   CheckPositive(issues, "static_max_speed_mps", static_max_speed_mps);
@@ -50,6 +52,8 @@ ConfigIssues WindowEstimatorConfig::Validate() const {
 WindowEstimatorConfig WithWindowFeatures(WindowEstimatorConfig config) {
   config.odometry.front_end.features.edge_threshold_m2 = config.edge_threshold_m2;
   config.odometry.front_end.features.max_edges_per_sector = config.max_edges_per_sector;
+  config.odometry.plane_map.radius_m = config.local_map_radius_m;
+  config.odometry.edge_map.radius_m = config.local_map_radius_m;
   return config;
 }
 

@@ -31,6 +31,7 @@ void ExpectSameWindow(const WindowEstimatorConfig& a, const WindowEstimatorConfi
   EXPECT_EQ(a.reassociations, b.reassociations);
   EXPECT_EQ(a.edge_threshold_m2, b.edge_threshold_m2);
   EXPECT_EQ(a.max_edges_per_sector, b.max_edges_per_sector);
+  EXPECT_EQ(a.local_map_radius_m, b.local_map_radius_m);
   EXPECT_EQ(a.lidar_sigma_m, b.lidar_sigma_m);
   EXPECT_EQ(a.huber_m, b.huber_m);
   EXPECT_EQ(a.degenerate_eigenvalue, b.degenerate_eigenvalue);
@@ -107,6 +108,7 @@ estimator:
     reassociations: 2
     edge_threshold_m2: 0.15
     max_edges_per_sector: 40
+    local_map_radius_m: 120
     lidar_sigma_m: 0.04
     huber_m: 0.2
     degenerate_eigenvalue: 8
@@ -126,7 +128,7 @@ estimator:
     bias_prior_sigma_acc_mps2: 0.0
     bias_prior_sigma_gyro_radps: 0.01
     dynamic_init: false
-    estimate_gravity_tilt: true
+    estimate_gravity_tilt: false
     static_max_speed_mps: 0.1
     bootstrap:
       window_frames: 25
@@ -167,6 +169,7 @@ estimator:
   want.reassociations = 2;
   want.edge_threshold_m2 = 0.15;
   want.max_edges_per_sector = 40;
+  want.local_map_radius_m = 120;
   want.lidar_sigma_m = 0.04;
   want.huber_m = 0.2;
   want.degenerate_eigenvalue = 8;
@@ -186,7 +189,7 @@ estimator:
   want.bias_prior_sigma_acc_mps2 = 0.0;
   want.bias_prior_sigma_gyro_radps = 0.01;
   want.dynamic_init = false;
-  want.estimate_gravity_tilt = true;
+  want.estimate_gravity_tilt = false;
   want.static_max_speed_mps = 0.1;
   want.bootstrap.window_frames = 25;
   want.bootstrap.imu_buffer_s = 12;
@@ -234,8 +237,9 @@ estimator:
         rotation_sigma_rad: -0.1
     edge_threshold_m2: 0
     max_edges_per_sector: 1
+    local_map_radius_m: 5
 )");
-  ASSERT_EQ(loaded.errors.size(), 8u) << loaded.ErrorReport();
+  ASSERT_EQ(loaded.errors.size(), 9u) << loaded.ErrorReport();
   EXPECT_EQ(loaded.errors[0].ToString(),
             "test.yaml:4:5: estimator.window.window_size: must be in [2, 50], got 1");
   EXPECT_EQ(loaded.errors[1].ToString(),
@@ -256,6 +260,8 @@ estimator:
   // Fewer than the sharp edges (max_sharp_edges_per_sector, 2) it includes.
   EXPECT_EQ(loaded.errors[7].ToString(),
             "test.yaml:14:5: estimator.window.max_edges_per_sector: must be in [2, 10000], got 1");
+  EXPECT_EQ(loaded.errors[8].ToString(),
+            "test.yaml:15:5: estimator.window.local_map_radius_m: must be in [10, 500], got 5");
 }
 
 TEST(WindowConfig, StandstillRangesNameKeyLineAndColumn) {

@@ -40,6 +40,7 @@ WindowResult StandStill(const WindowEstimatorConfig& config) {
 TEST(WindowEstimator, StandingStillTheImuHoldsThePoseAndTheWindowSlides) {
   WindowEstimatorConfig config;
   config.window_size = 4;
+  config.estimate_gravity_tilt = false;  // the map frame is gravity-aligned by definition
   const WindowResult r = StandStill(config);
   EXPECT_EQ(r.window_frames, config.window_size);
   // After marginalization the prior spans the oldest kept frame's pose and speed/bias (15).
@@ -116,17 +117,25 @@ TEST(WindowEstimator, ABiasedGyroAtRestIsEstimatedNotIntegrated) {
 // empty): after this standing start the diagonal one gives the tilt b_a's σ / g (what the static
 // initialization cannot tell from a bias, StaticStartTiltSigma) without correlation; the
 // correlated one (init_tilt_follows_bias) ties it to b_a across the up axis (initial_prior.h).
+/// The first result after a 2 s standing start and one wall sweep.
+WindowResult FirstResult(const WindowEstimatorConfig& config) {
+  WindowEstimator estimator(config);
+  int64_t t = 0;
+  for (; t < 2 * kNsPerSec; t += 2'500'000) estimator.AddImu(LevelImu(t));
+  EXPECT_TRUE(estimator.initialized());
+  const int64_t t_end = t + 100 * kNsPerMs;
+  for (; t < t_end; t += 2'500'000) estimator.AddImu(LevelImu(t));
+  return estimator.AddScan(WallSweep(t_end - 100 * kNsPerMs));
+}
+
+// In a map frame that is gravity-aligned by definition, the first frame's own tilt carries the
+// standing start's ambiguity (diagonal, or correlated with b_a).
 TEST(WindowEstimator, FirstCovarianceIsTheInitialPrior) {
   for (const bool correlated : {false, true}) {
     WindowEstimatorConfig config;
+    config.estimate_gravity_tilt = false;
     config.init_tilt_follows_bias = correlated;
-    WindowEstimator estimator(config);
-    int64_t t = 0;
-    for (; t < 2 * kNsPerSec; t += 2'500'000) estimator.AddImu(LevelImu(t));
-    ASSERT_TRUE(estimator.initialized());
-    const int64_t t_end = t + 100 * kNsPerMs;
-    for (; t < t_end; t += 2'500'000) estimator.AddImu(LevelImu(t));
-    const WindowResult r = estimator.AddScan(WallSweep(t_end - 100 * kNsPerMs));
+    const WindowResult r = FirstResult(config);
     ASSERT_TRUE(r.covariance.valid) << "correlated " << correlated;
     const StateCovarianceMatrix& P = r.covariance.P;
     const double tilt_x = std::sqrt(P(kCovRot, kCovRot));
@@ -142,7 +151,25 @@ TEST(WindowEstimator, FirstCovarianceIsTheInitialPrior) {
       EXPECT_NEAR(tilt_x, StaticStartTiltSigma(config), 1e-4);
       EXPECT_LT(std::abs(rho), 0.05);
     }
+    // Q = I: the attitude against gravity is the map-frame attitude.
+    EXPECT_TRUE(r.covariance.rot_gravity.isApprox(P.block<3, 3>(kCovRot, kCovRot), 1e-12));
   }
+}
+
+// With the map's tilt estimated, the first frame's tilt is the map's gauge and the ambiguity
+// sits in the tilt block: the attitude against gravity has both.
+TEST(WindowEstimator, WithTheMapTiltTheAttitudeAgainstGravityCarriesTheStartsAmbiguity) {
+  WindowEstimatorConfig config;
+  config.estimate_gravity_tilt = true;
+  const WindowResult r = FirstResult(config);
+  ASSERT_TRUE(r.covariance.valid);
+  const double map_tilt_x = std::sqrt(r.covariance.P(kCovRot, kCovRot));
+  const double gravity_tilt_x = std::sqrt(r.covariance.rot_gravity(0, 0));
+  const double ambiguity = config.init_sigma_bias_acc_mps2 / 9.80665;
+  EXPECT_NEAR(map_tilt_x, config.init_sigma_rotation_rad, 1e-4);
+  EXPECT_NEAR(gravity_tilt_x, std::hypot(config.init_sigma_rotation_rad, ambiguity), 2e-4);
+  // Yaw is not tilted by Q.
+  EXPECT_NEAR(r.covariance.rot_gravity(2, 2), r.covariance.P(kCovRot + 2, kCovRot + 2), 1e-9);
 }
 
 /// The first result's gyro-bias σ per axis after a standing start on a gyro with white noise of

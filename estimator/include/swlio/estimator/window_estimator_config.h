@@ -33,6 +33,14 @@ struct WindowEstimatorConfig {
   /// both (0.724 / 0.537 / 0.766 m): the gain is not established by three runs.
   double edge_threshold_m2 = 0.3;
   int64_t max_edges_per_sector = 20;
+  /// Radius of the window's local maps (in place of odometry.estimator.local_map_radius_m, the
+  /// LiDAR-only mode's 80 m): voxels farther from the robot are dropped. A map that keeps the
+  /// whole site lets a revisited place match the surfaces first mapped there, and holds far
+  /// surfaces that steady the yaw (bench/README, "A local map of the whole site"): loop943 seeds
+  /// 1–3 without loop closure, APE 0.406 / 0.240 / 0.475 m at 80 m → 0.062 / 0.077 / 0.150 m,
+  /// end gap ≤ 0.02 m. LiDAR-only drifts too far for that (0.83 / 0.96 / 0.66 → 1.08 / 0.72 /
+  /// 0.94 m), so its mode keeps 80 m.
+  double local_map_radius_m = 250.0;
   double lidar_sigma_m = 0.05;  ///< point-to-plane / point-to-line standard deviation
   double huber_m = 0.1;         ///< Huber kernel width (metres of residual)
   /// When the newest state is not believable: re-initialize (divergence_monitor.h).
@@ -109,18 +117,21 @@ struct WindowEstimatorConfig {
   /// take the map's tilt against gravity as one more block (2 angles, prior σ
   /// init_sigma_bias_acc_mps2 / g: the horizontal bias a standing start cannot tell from tilt).
   /// The map and the output stay in the first frame's (slightly tilted) frame; the tilt is in
-  /// WindowResult. Without it, the tilt learned at the first turn is forced onto new frames
-  /// against the start's map (loop943_3 ended 1.07 m high; ARCHITECTURE.md). On: loop943 APE
-  /// 0.454 / 0.620 / 0.458 → 0.574 / 0.396 / 0.396 m, end gap 0.83 / 1.06 / 1.16 → 0.30 / 0.72 /
-  /// 0.48 m. Off by default for now: on the 25 s straight drive of run_command_test the tilt
-  /// swings by ~1σ while accelerating and the IMU-frame velocity NEES rises 5.3 → 10.8 (limit 9).
-  bool estimate_gravity_tilt = false;
+  /// WindowResult, the covariance of the attitude against gravity in
+  /// StateCovariance::rot_gravity. Without it, the tilt learned at the first turn is forced onto
+  /// new frames against the start's map (loop943_3 ended 1.07 m high; ARCHITECTURE.md).
+  /// With the 250 m local map, APE off → on (bench/README, "A local map of the whole site"):
+  /// degenerate seeds 1–3 0.026 / 0.025 / 0.132 → 0.013 / 0.015 / 0.021 m, loop943 0.062 /
+  /// 0.077 / 0.150 → 0.061 / 0.073 / 0.084 m; on run_command_test's drive the tilt NEES
+  /// against gravity is 2.95 (off: 5.58, limit 6) and the velocity NEES 1.97.
+  bool estimate_gravity_tilt = true;
 
   ConfigIssues Validate() const;
 };
 
 /// `config` with its edge settings (edge_threshold_m2, max_edges_per_sector) put into
-/// odometry.front_end.features, where the front end reads them.
+/// odometry.front_end.features, where the front end reads them, and its local_map_radius_m
+/// into odometry.plane_map and edge_map.
 WindowEstimatorConfig WithWindowFeatures(WindowEstimatorConfig config);
 
 /// The first frame's roll/pitch σ after a standing start: the static initialization reads the
