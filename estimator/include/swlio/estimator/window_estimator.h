@@ -69,22 +69,23 @@ struct WindowResult {
   /// Tilt [θx, θy] (rad) of the map frame against gravity: Exp([θx, θy, 0]) rotates map
   /// vectors into the gravity-aligned frame (zero unless `estimate_gravity_tilt`).
   Eigen::Vector2d gravity_tilt_rad = Eigen::Vector2d::Zero();
-  /// The online extrinsic calibration finished with this sweep and the window restarted on it.
-  bool extrinsic_calibrated = false;
   /// The sweep's registration moved the IMU prediction by this much (negative: not registered).
   double prediction_error_m = -1.0;
   double prediction_error_rad = -1.0;
+  size_t reinitializations = 0;  ///< so far, including this sweep's
+  /// Wheel odometry (WheelFactorConfig): frames so far with a velocity factor, and measurements
+  /// the slip gate refused.
+  size_t wheel_factors = 0;
+  size_t wheel_rejected = 0;
+  size_t standstill_frames = 0;  ///< frames so far that got a zero-velocity factor
+  // The small fields together (no padding between them).
   /// Not kNone: this sweep's state was not believable (divergence_monitor.h), so the window
   /// re-initialized; the result is kInitializing and the state is not to be used.
   DivergenceReason diverged = DivergenceReason::kNone;
-  size_t reinitializations = 0;  ///< so far, including this sweep's
-  /// Wheel odometry (WheelFactorConfig): the newest frame got a velocity factor; frames so
-  /// far with one, and measurements the slip gate refused.
-  bool wheel_factor = false;
-  size_t wheel_factors = 0;
-  size_t wheel_rejected = 0;
-  bool standstill = false;       ///< this sweep's frame got a zero-velocity factor
-  size_t standstill_frames = 0;  ///< so far
+  /// The online extrinsic calibration finished with this sweep and the window restarted on it.
+  bool extrinsic_calibrated = false;
+  bool wheel_factor = false;  ///< the newest frame got a wheel velocity factor
+  bool standstill = false;    ///< this sweep's frame got a zero-velocity factor
   /// This sweep became a keyframe of the local map: its features and pose (for loop closure
   /// and map saving); null otherwise.
   std::shared_ptr<const KeyframeCloud> keyframe;
