@@ -38,8 +38,8 @@ struct WindowEstimatorConfig {
   /// whole site lets a revisited place match the surfaces first mapped there, and holds far
   /// surfaces that steady the yaw (bench/README, "A local map of the whole site"): loop943 seeds
   /// 1–3 without loop closure, APE 0.406 / 0.240 / 0.475 m at 80 m → 0.062 / 0.077 / 0.150 m,
-  /// end gap ≤ 0.02 m. LiDAR-only drifts too far for that (0.83 / 0.96 / 0.66 → 1.08 / 0.72 /
-  /// 0.94 m), so its mode keeps 80 m.
+  /// end gap ≤ 0.02 m. LiDAR-only has drifted too far when it comes back and gains nothing
+  /// (0.83 / 0.96 / 0.66 → 1.08 / 0.72 / 0.94 m), so its mode keeps 80 m.
   double local_map_radius_m = 250.0;
   double lidar_sigma_m = 0.05;  ///< point-to-plane / point-to-line standard deviation
   double huber_m = 0.1;         ///< Huber kernel width (metres of residual)
