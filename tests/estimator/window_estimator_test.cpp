@@ -19,15 +19,15 @@ namespace {
 using test::LevelImu;
 using test::WallSweep;
 
-/// 2 s level and still at 400 Hz (the static initialization), then 12 sweeps of a wall at
+/// 2 s level and still at 400 Hz (the static initialization), then `sweeps` sweeps of a wall at
 /// 10 Hz standing still; the last result. Every sweep must be tracked within the window size.
-WindowResult StandStill(const WindowEstimatorConfig& config) {
+WindowResult StandStill(const WindowEstimatorConfig& config, int sweeps = 12) {
   WindowEstimator estimator(config);
   int64_t t = 0;
   for (; t < 2 * kNsPerSec; t += 2'500'000) estimator.AddImu(LevelImu(t));
   EXPECT_TRUE(estimator.initialized());
   WindowResult r;
-  for (int sweep = 0; sweep < 12; ++sweep) {
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
     const int64_t t_end = t + 100 * kNsPerMs;
     for (; t < t_end; t += 2'500'000) estimator.AddImu(LevelImu(t));
     r = estimator.AddScan(WallSweep(t_end - 100 * kNsPerMs));
@@ -117,25 +117,13 @@ TEST(WindowEstimator, ABiasedGyroAtRestIsEstimatedNotIntegrated) {
 // empty): after this standing start the diagonal one gives the tilt b_a's σ / g (what the static
 // initialization cannot tell from a bias, StaticStartTiltSigma) without correlation; the
 // correlated one (init_tilt_follows_bias) ties it to b_a across the up axis (initial_prior.h).
-/// The first result after a 2 s standing start and one wall sweep.
-WindowResult FirstResult(const WindowEstimatorConfig& config) {
-  WindowEstimator estimator(config);
-  int64_t t = 0;
-  for (; t < 2 * kNsPerSec; t += 2'500'000) estimator.AddImu(LevelImu(t));
-  EXPECT_TRUE(estimator.initialized());
-  const int64_t t_end = t + 100 * kNsPerMs;
-  for (; t < t_end; t += 2'500'000) estimator.AddImu(LevelImu(t));
-  return estimator.AddScan(WallSweep(t_end - 100 * kNsPerMs));
-}
-
-// In a map frame that is gravity-aligned by definition, the first frame's own tilt carries the
-// standing start's ambiguity (diagonal, or correlated with b_a).
+// That is in a map frame gravity-aligned by definition (estimate_gravity_tilt off).
 TEST(WindowEstimator, FirstCovarianceIsTheInitialPrior) {
   for (const bool correlated : {false, true}) {
     WindowEstimatorConfig config;
     config.estimate_gravity_tilt = false;
     config.init_tilt_follows_bias = correlated;
-    const WindowResult r = FirstResult(config);
+    const WindowResult r = StandStill(config, 1);
     ASSERT_TRUE(r.covariance.valid) << "correlated " << correlated;
     const StateCovarianceMatrix& P = r.covariance.P;
     const double tilt_x = std::sqrt(P(kCovRot, kCovRot));
@@ -161,11 +149,11 @@ TEST(WindowEstimator, FirstCovarianceIsTheInitialPrior) {
 TEST(WindowEstimator, WithTheMapTiltTheAttitudeAgainstGravityCarriesTheStartsAmbiguity) {
   WindowEstimatorConfig config;
   config.estimate_gravity_tilt = true;
-  const WindowResult r = FirstResult(config);
+  const WindowResult r = StandStill(config, 1);
   ASSERT_TRUE(r.covariance.valid);
   const double map_tilt_x = std::sqrt(r.covariance.P(kCovRot, kCovRot));
   const double gravity_tilt_x = std::sqrt(r.covariance.rot_gravity(0, 0));
-  const double ambiguity = config.init_sigma_bias_acc_mps2 / 9.80665;
+  const double ambiguity = config.init_sigma_bias_acc_mps2 / config.odometry.estimator.gravity_mps2;
   EXPECT_NEAR(map_tilt_x, config.init_sigma_rotation_rad, 1e-4);
   EXPECT_NEAR(gravity_tilt_x, std::hypot(config.init_sigma_rotation_rad, ambiguity), 2e-4);
   // Yaw is not tilted by Q.
