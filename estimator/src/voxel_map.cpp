@@ -29,14 +29,15 @@ size_t VoxelMap::Insert(const std::vector<Eigen::Vector3d>& points_world) {
   const double min_sq = config_.min_point_spacing_m * config_.min_point_spacing_m;
   size_t stored = 0;
   for (const Eigen::Vector3d& p : points_world) {
-    std::vector<Eigen::Vector3d>& voxel = FindOrAdd(KeyOf(p)).points;
-    if (voxel.size() >= config_.max_points_per_voxel) continue;
-    const bool crowded = std::any_of(voxel.begin(), voxel.end(), [&](const Eigen::Vector3d& q) {
+    const uint32_t v = FindOrAdd(KeyOf(p));
+    uint32_t& count = voxels_[v].count;
+    if (count >= config_.max_points_per_voxel) continue;
+    const auto begin = pool_.begin() + static_cast<std::ptrdiff_t>(Begin(v));
+    const bool crowded = std::any_of(begin, begin + count, [&](const Eigen::Vector3d& q) {
       return (q - p).squaredNorm() < min_sq;
     });
     if (crowded) continue;
-    if (voxel.capacity() == 0) voxel.reserve(config_.max_points_per_voxel);
-    voxel.push_back(p);
+    begin[count++] = p;
     ++stored;
   }
   points_ += stored;
@@ -96,9 +97,11 @@ size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
     if (box_sq >= bound_sq) continue;  // cannot hold a closer point
     const std::array<int, 3>& o = kSearchOrder[cell];
     const Key key{c.x + o[0], c.y + o[1], c.z + o[2]};
-    const Voxel* voxel = Find(key);
-    if (voxel == nullptr) continue;
-    for (const Eigen::Vector3d& p : voxel->points) {
+    const uint32_t v = Find(key);
+    if (v == kNoVoxel) continue;
+    const Eigen::Vector3d* points = &pool_[Begin(v)];
+    for (uint32_t j = 0; j < voxels_[v].count; ++j) {
+      const Eigen::Vector3d& p = points[j];
       const double d2 = (p - query).squaredNorm();
       if (d2 >= bound_sq) continue;
       size_t i = n;
@@ -118,31 +121,44 @@ size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
 std::vector<Eigen::Vector3d> VoxelMap::Points() const {
   std::vector<Eigen::Vector3d> out;
   out.reserve(points_);
-  for (const Voxel& v : voxels_) out.insert(out.end(), v.points.begin(), v.points.end());
+  for (uint32_t v = 0; v < voxels_.size(); ++v) {
+    const auto begin = pool_.begin() + static_cast<std::ptrdiff_t>(Begin(v));
+    out.insert(out.end(), begin, begin + voxels_[v].count);
+  }
   return out;
 }
 
 size_t VoxelMap::RemoveFar(const Eigen::Vector3d& center_world) {
   const double r2 = config_.radius_m * config_.radius_m;
   size_t removed = 0;
-  // Compacts in place, keeping the survivors' order, then rebuilds the index.
-  const auto far = [&](const Voxel& v) {
+  // Compacts voxels and their points in place, keeping the survivors' order, then rebuilds
+  // the index.
+  uint32_t kept = 0;
+  for (uint32_t v = 0; v < voxels_.size(); ++v) {
+    const Voxel& voxel = voxels_[v];
     const Eigen::Vector3d centre =
-        (Eigen::Vector3d(v.key.x, v.key.y, v.key.z) + Eigen::Vector3d::Constant(0.5)) *
+        (Eigen::Vector3d(voxel.key.x, voxel.key.y, voxel.key.z) + Eigen::Vector3d::Constant(0.5)) *
         config_.voxel_m;
-    if ((centre - center_world).squaredNorm() <= r2) return false;
-    removed += v.points.size();
-    return true;
-  };
-  const auto end = std::remove_if(voxels_.begin(), voxels_.end(), far);
-  if (end == voxels_.end()) return 0;
-  voxels_.erase(end, voxels_.end());
+    if ((centre - center_world).squaredNorm() > r2) {
+      removed += voxel.count;
+      continue;
+    }
+    if (kept != v) {
+      const auto from = pool_.begin() + static_cast<std::ptrdiff_t>(Begin(v));
+      std::copy(from, from + voxel.count, pool_.begin() + static_cast<std::ptrdiff_t>(Begin(kept)));
+      voxels_[kept] = voxel;
+    }
+    ++kept;
+  }
+  if (kept == voxels_.size()) return 0;
+  voxels_.resize(kept);
+  pool_.resize(Begin(kept));
   Reindex(slots_.size());
   points_ -= removed;
   return removed;
 }
 
-size_t VoxelMap::Slot(const Key& key) const {
+size_t VoxelMap::Home(const Key& key) const {
   // The classic spatial hash (Teschner et al., 2003), then Fibonacci hashing: its top bits
   // index the power-of-two table.
   const uint64_t h = (uint64_t{static_cast<uint32_t>(key.x)} * 73856093u) ^
@@ -151,36 +167,37 @@ size_t VoxelMap::Slot(const Key& key) const {
   return static_cast<size_t>((h * 0x9E3779B97F4A7C15ull) >> (64 - slot_bits_));
 }
 
-inline const VoxelMap::Voxel* VoxelMap::Find(const Key& key) const {
-  if (slots_.empty()) return nullptr;
+inline uint32_t VoxelMap::Find(const Key& key) const {
+  if (slots_.empty()) return kNoVoxel;
   const size_t mask = slots_.size() - 1;
-  for (size_t s = Slot(key);; s = (s + 1) & mask) {
-    const uint32_t i = slots_[s];
-    if (i == kNoVoxel) return nullptr;
-    if (voxels_[i].key == key) return &voxels_[i];
+  for (size_t s = Home(key);; s = (s + 1) & mask) {
+    const Slot& slot = slots_[s];
+    if (slot.voxel == kNoVoxel || slot.key == key) return slot.voxel;
   }
 }
 
-VoxelMap::Voxel& VoxelMap::FindOrAdd(const Key& key) {
+uint32_t VoxelMap::FindOrAdd(const Key& key) {
   if (2 * (voxels_.size() + 1) > slots_.size()) Reindex(std::max<size_t>(64, 2 * slots_.size()));
   const size_t mask = slots_.size() - 1;
-  size_t s = Slot(key);
-  for (; slots_[s] != kNoVoxel; s = (s + 1) & mask) {
-    if (voxels_[slots_[s]].key == key) return voxels_[slots_[s]];
+  size_t s = Home(key);
+  for (; slots_[s].voxel != kNoVoxel; s = (s + 1) & mask) {
+    if (slots_[s].key == key) return slots_[s].voxel;
   }
-  slots_[s] = static_cast<uint32_t>(voxels_.size());
-  voxels_.push_back({key, {}});
-  return voxels_.back();
+  const auto v = static_cast<uint32_t>(voxels_.size());
+  slots_[s] = {key, v};
+  voxels_.push_back({key, 0});
+  pool_.resize(Begin(v + 1));
+  return v;
 }
 
 void VoxelMap::Reindex(size_t slot_count) {
   slot_bits_ = std::countr_zero(slot_count);  // slot_count is a power of two
-  slots_.assign(slot_count, kNoVoxel);
+  slots_.assign(slot_count, {});
   const size_t mask = slot_count - 1;
-  for (size_t i = 0; i < voxels_.size(); ++i) {
-    size_t s = Slot(voxels_[i].key);
-    while (slots_[s] != kNoVoxel) s = (s + 1) & mask;
-    slots_[s] = static_cast<uint32_t>(i);
+  for (uint32_t v = 0; v < voxels_.size(); ++v) {
+    size_t s = Home(voxels_[v].key);
+    while (slots_[s].voxel != kNoVoxel) s = (s + 1) & mask;
+    slots_[s] = {voxels_[v].key, v};
   }
 }
 

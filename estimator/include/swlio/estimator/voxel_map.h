@@ -58,24 +58,34 @@ class VoxelMap {
     int32_t x, y, z;
     bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
   };
+  static constexpr uint32_t kNoVoxel = UINT32_MAX;
+  /// An entry of the index: the key beside its voxel, so that probing past other keys and
+  /// missing an empty cell (most of a query's 27) never touch the voxels themselves.
+  struct Slot {
+    Key key;
+    uint32_t voxel = kNoVoxel;  ///< index into voxels_, or kNoVoxel when empty
+  };
   struct Voxel {
     Key key;
-    std::vector<Eigen::Vector3d> points;  ///< in insertion order
+    uint32_t count = 0;  ///< its points: pool_[Begin(v)], …, pool_[Begin(v) + count − 1]
   };
-  static constexpr uint32_t kNoVoxel = UINT32_MAX;
 
   Key KeyOf(const Eigen::Vector3d& p) const;
-  size_t Slot(const Key& key) const;  ///< first probe of `key` in slots_
-  const Voxel* Find(const Key& key) const;
-  Voxel& FindOrAdd(const Key& key);
+  size_t Home(const Key& key) const;  ///< first probe of `key` in slots_
+  uint32_t Find(const Key& key) const;  ///< voxel index, or kNoVoxel
+  uint32_t FindOrAdd(const Key& key);
   void Reindex(size_t slot_count);
+  size_t Begin(uint32_t voxel) const { return size_t{voxel} * config_.max_points_per_voxel; }
 
   VoxelMapConfig config_;
   // The voxels in a flat vector (in creation order) indexed by an open-addressing table with
   // linear probing (load ≤ 1/2): a query touches up to 27 cells, and std::unordered_map's
-  // modulo and node chasing per lookup had cost more than the distances themselves.
+  // modulo and node chasing per lookup had cost more than the distances themselves. Their
+  // points sit in one pool, max_points_per_voxel apiece (what each voxel's own vector used to
+  // reserve), so a voxel's points are one contiguous read with no pointer to follow.
   std::vector<Voxel> voxels_;
-  std::vector<uint32_t> slots_;  ///< index into voxels_ or kNoVoxel; size a power of two
+  std::vector<Eigen::Vector3d> pool_;
+  std::vector<Slot> slots_;  ///< size a power of two
   int slot_bits_ = 0;
   size_t points_ = 0;
 };
