@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "swlio/core/lie.h"
 
@@ -42,24 +43,14 @@ Mat36 PointJacobian(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
   return J;
 }
 
-/// The `config.neighbors` nearest map points of `x` and their fit; false when there are fewer.
-bool FitNeighbours(const VoxelMap& map,
-                   const Eigen::Vector3d& x,
-                   const ScanMatcherConfig& config,
-                   std::vector<Eigen::Vector3d>* nn,
-                   Fit* fit) {
-  if (map.Nearest(x, config.neighbors, config.max_neighbor_distance_m, nn) < config.neighbors) {
-    return false;
-  }
-  *fit = FitPoints(*nn);
-  return true;
-}
-
 }  // namespace
 
 ConfigIssues ScanMatcherConfig::Validate() const {
   ConfigIssues issues;
-  CheckInRange<size_t>(issues, "neighbors", neighbors, 3, 20);
+  constexpr size_t kMostNeighbours = 20;
+  // Surface searches one more (neighbour_cache.h).
+  static_assert(kMostNeighbours + 1 <= VoxelMap::kMaxNeighbours);
+  CheckInRange<size_t>(issues, "neighbors", neighbors, 3, kMostNeighbours);
   CheckInRange(issues, "max_neighbor_distance_m", max_neighbor_distance_m, 0.1, 10.0);
   CheckInRange(issues, "plane_max_distance_m", plane_max_distance_m, 0.001, 1.0);
   CheckInRange(issues, "plane_min_spread_ratio", plane_min_spread_ratio, 0.0, 1.0);
@@ -87,9 +78,55 @@ void ScanMatcher::Associate(const std::vector<Eigen::Vector3d>& planar_lidar,
                             const VoxelMap& edge_map,
                             const Eigen::Isometry3d& T,
                             std::vector<PlaneCorrespondence>* planes,
-                            std::vector<LineCorrespondence>* lines) const {
+                            std::vector<LineCorrespondence>* lines,
+                            NeighbourCache* cache) const {
+  NeighbourCache local;
   Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, config_.refined_max_residual_m,
-            planes, lines);
+            cache != nullptr ? *cache : local, planes, lines);
+}
+
+const CachedSurface& ScanMatcher::Surface(const VoxelMap& map,
+                                          const Eigen::Vector3d& x,
+                                          bool plane,
+                                          std::vector<Eigen::Vector3d>* nn,
+                                          CachedSurface* entry) const {
+  const Eigen::Vector3d moved = x - entry->query_world;
+  if (entry->margin_m >= 0.0 && moved.squaredNorm() < entry->margin_m * entry->margin_m &&
+      map.SameVoxel(x, entry->query_world)) {
+    return *entry;
+  }
+  *entry = CachedSurface{};
+  entry->query_world = x;
+  // One neighbour more than needed: its distance bounds how far the query may move before it
+  // could take the place of the k-th (neighbour_cache.h).
+  const size_t k = config_.neighbors;
+  const size_t found = map.Nearest(x, k + 1, config_.max_neighbor_distance_m, nn);
+  if (found < k) return *entry;  // no entry: searched again next time
+  const double kth_m = ((*nn)[k - 1] - x).norm();
+  const double next_m = found > k ? ((*nn)[k] - x).norm() : config_.max_neighbor_distance_m;
+  entry->margin_m = 0.5 * (next_m - kth_m) - 1e-9;  // less a rounding allowance
+  nn->resize(k);
+  // The fit of the set, whatever the order they were found in: a query moved within the
+  // margin may find them in another order, and must still get the same fit to the last bit.
+  std::sort(nn->begin(), nn->end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  const Fit f = FitPoints(*nn);
+  entry->centroid = f.centroid;
+  if (plane) {
+    // Neighbours along one scan line (a ring on the ground, a row on a wall) are collinear:
+    // their "plane" normal is arbitrary and would tie the sweep to the previous sensor position.
+    entry->axis = f.eigenvectors.col(0);
+    entry->valid = f.eigenvalues(1) >= config_.plane_min_spread_ratio * f.eigenvalues(2) &&
+                   std::all_of(nn->begin(), nn->end(), [&](const Eigen::Vector3d& q) {
+                     return std::abs(entry->axis.dot(q - f.centroid)) <=
+                            config_.plane_max_distance_m;
+                   });
+  } else {
+    entry->axis = f.eigenvectors.col(2);
+    entry->valid = f.eigenvalues(2) >= config_.line_min_ratio * f.eigenvalues(1);
+  }
+  return *entry;
 }
 
 void ScanMatcher::Associate(const std::vector<Eigen::Vector3d>& planar_lidar,
@@ -98,34 +135,28 @@ void ScanMatcher::Associate(const std::vector<Eigen::Vector3d>& planar_lidar,
                             const VoxelMap& edge_map,
                             const Eigen::Isometry3d& T,
                             double max_residual_m,
+                            NeighbourCache& cache,
                             std::vector<PlaneCorrespondence>* planes,
                             std::vector<LineCorrespondence>* lines) const {
   planes->clear();
   lines->clear();
   std::vector<Eigen::Vector3d> nn;
-  nn.reserve(config_.neighbors);
-  Fit f;
+  nn.reserve(config_.neighbors + 1);
+  std::vector<CachedSurface>& plane_entries = cache.planes.For(plane_map, planar_lidar.size());
   for (size_t i = 0; i < planar_lidar.size(); ++i) {
     const Eigen::Vector3d x = T * planar_lidar[i];
-    if (!FitNeighbours(plane_map, x, config_, &nn, &f)) continue;
-    // Neighbours along one scan line (a ring on the ground, a row on a wall) are collinear:
-    // their "plane" normal is arbitrary and would tie the sweep to the previous sensor position.
-    if (f.eigenvalues(1) < config_.plane_min_spread_ratio * f.eigenvalues(2)) continue;
-    const Eigen::Vector3d n = f.eigenvectors.col(0);
-    const bool planar = std::all_of(nn.begin(), nn.end(), [&](const Eigen::Vector3d& q) {
-      return std::abs(n.dot(q - f.centroid)) <= config_.plane_max_distance_m;
-    });
-    if (!planar || std::abs(n.dot(x - f.centroid)) > max_residual_m) continue;
-    planes->push_back({static_cast<uint32_t>(i), n, f.centroid});
+    const CachedSurface& s = Surface(plane_map, x, true, &nn, &plane_entries[i]);
+    if (!s.valid || std::abs(s.axis.dot(x - s.centroid)) > max_residual_m) continue;
+    planes->push_back({static_cast<uint32_t>(i), s.axis, s.centroid});
   }
+  std::vector<CachedSurface>& edge_entries = cache.edges.For(edge_map, edge_lidar.size());
   for (size_t i = 0; i < edge_lidar.size(); ++i) {
     const Eigen::Vector3d x = T * edge_lidar[i];
-    if (!FitNeighbours(edge_map, x, config_, &nn, &f)) continue;
-    if (f.eigenvalues(2) < config_.line_min_ratio * f.eigenvalues(1)) continue;
-    const Eigen::Vector3d d = f.eigenvectors.col(2);
-    const Eigen::Vector3d e = (x - f.centroid) - d * d.dot(x - f.centroid);
+    const CachedSurface& s = Surface(edge_map, x, false, &nn, &edge_entries[i]);
+    if (!s.valid) continue;
+    const Eigen::Vector3d e = (x - s.centroid) - s.axis * s.axis.dot(x - s.centroid);
     if (e.norm() > max_residual_m) continue;
-    lines->push_back({static_cast<uint32_t>(i), d, f.centroid});
+    lines->push_back({static_cast<uint32_t>(i), s.axis, s.centroid});
   }
 }
 
@@ -163,14 +194,17 @@ MatchResult ScanMatcher::Match(const std::vector<Eigen::Vector3d>& planar_lidar,
                                const std::vector<Eigen::Vector3d>& edge_lidar,
                                const VoxelMap& plane_map,
                                const VoxelMap& edge_map,
-                               const Eigen::Isometry3d& T_init) const {
+                               const Eigen::Isometry3d& T_init,
+                               NeighbourCache* cache) const {
+  NeighbourCache local;
+  NeighbourCache& searches = cache != nullptr ? *cache : local;
   MatchResult result;
   Eigen::Isometry3d T = T_init;
   Eigen::Isometry3d T_associated = T_init;
   std::vector<PlaneCorrespondence> planes;
   std::vector<LineCorrespondence> lines;
-  Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, config_.max_residual_m, &planes,
-            &lines);
+  Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, config_.max_residual_m, searches,
+            &planes, &lines);
   bool fresh = true;
   int associations = 1;
   Normal ne;
@@ -195,7 +229,7 @@ MatchResult ScanMatcher::Match(const std::vector<Eigen::Vector3d>& planar_lidar,
              delta.head<3>().norm() < config_.converged_translation_m);
     if (fresh) {
       Associate(planar_lidar, edge_lidar, plane_map, edge_map, T, config_.refined_max_residual_m,
-                &planes, &lines);
+                searches, &planes, &lines);
       T_associated = T;
       ++associations;
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <utility>
@@ -17,7 +18,16 @@ ConfigIssues VoxelMapConfig::Validate() const {
   return issues;
 }
 
-VoxelMap::VoxelMap(const VoxelMapConfig& config) : config_(config) {}
+namespace {
+
+uint64_t NextRevision() {
+  static std::atomic<uint64_t> last{0};
+  return last.fetch_add(1, std::memory_order_relaxed) + 1;
+}
+
+}  // namespace
+
+VoxelMap::VoxelMap(const VoxelMapConfig& config) : config_(config), revision_(NextRevision()) {}
 
 VoxelMap::Key VoxelMap::KeyOf(const Eigen::Vector3d& p) const {
   const Eigen::Vector3d v = p / config_.voxel_m;
@@ -41,6 +51,7 @@ size_t VoxelMap::Insert(const std::vector<Eigen::Vector3d>& points_world) {
     ++stored;
   }
   points_ += stored;
+  if (stored > 0) revision_ = NextRevision();
   return stored;
 }
 
@@ -155,6 +166,7 @@ size_t VoxelMap::RemoveFar(const Eigen::Vector3d& center_world) {
   pool_.resize(Begin(kept));
   Reindex(slots_.size());
   points_ -= removed;
+  revision_ = NextRevision();
   return removed;
 }
 

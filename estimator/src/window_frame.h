@@ -13,6 +13,7 @@
 #include "swlio/estimator/gravity_tilt_imu_factor.h"
 #include "swlio/estimator/imu_factor.h"
 #include "swlio/estimator/marginalization_prior.h"
+#include "swlio/estimator/neighbour_cache.h"
 #include "swlio/estimator/pose_manifold.h"
 #include "swlio/estimator/preintegration.h"
 #include "swlio/estimator/standstill.h"
@@ -26,6 +27,7 @@ struct WindowEstimator::Frame {
   std::array<double, kPoseSize> pose{};
   std::array<double, kSpeedBiasSize> speed_bias{};
   std::vector<Eigen::Vector3d> planes_lidar, edges_lidar;
+  NeighbourCache neighbours;  ///< the features' map searches, from one association to the next
   /// Its point-to-plane/line factors against the local map, linearized at the newest-frame
   /// registration (≤ 6 rows, or ≤ 12 with the extrinsic); null without LiDAR information.
   std::unique_ptr<MarginalizationPrior> lidar_linear;

@@ -14,7 +14,8 @@ namespace swlio::estimator {
 
 void WindowEstimator::Associate(Frame* f) {
   const Eigen::Isometry3d T = PoseFromParameters(f->pose.data()) * T_imu_lidar();
-  matcher_.Associate(f->planes_lidar, f->edges_lidar, plane_map_, edge_map_, T, &planes_, &lines_);
+  matcher_.Associate(f->planes_lidar, f->edges_lidar, plane_map_, edge_map_, T, &planes_, &lines_,
+                     &f->neighbours);
 }
 
 void WindowEstimator::BuildFactors(Frame* f) {
@@ -35,7 +36,7 @@ void WindowEstimator::BuildFactors(Frame* f) {
 bool WindowEstimator::Prealign(Frame* f) {
   const Eigen::Isometry3d T_il = T_imu_lidar();
   const MatchResult m = matcher_.Match(f->planes_lidar, f->edges_lidar, plane_map_, edge_map_,
-                                       PoseFromParameters(f->pose.data()) * T_il);
+                                       PoseFromParameters(f->pose.data()) * T_il, &f->neighbours);
   if (m.plane_inliers + m.edge_inliers < config_.odometry.min_inliers) return false;
   PoseToParameters(m.T_world_lidar * T_il.inverse(), f->pose.data());
   return true;

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "swlio/core/config_issue.h"
+#include "swlio/estimator/neighbour_cache.h"
 #include "swlio/estimator/voxel_map.h"
 
 namespace swlio::estimator {
@@ -88,22 +89,26 @@ class ScanMatcher {
   explicit ScanMatcher(const ScanMatcherConfig& config = {});
 
   /// Registers LiDAR-frame features against the maps (either may be empty) from `T_init`.
+  /// `cache` (optional, for these features): searches kept from an earlier call and for a
+  /// later one; the result is the same with or without it (neighbour_cache.h).
   MatchResult Match(const std::vector<Eigen::Vector3d>& planar_lidar,
                     const std::vector<Eigen::Vector3d>& edge_lidar,
                     const VoxelMap& plane_map,
                     const VoxelMap& edge_map,
-                    const Eigen::Isometry3d& T_init) const;
+                    const Eigen::Isometry3d& T_init,
+                    NeighbourCache* cache = nullptr) const;
 
   /// Pairs every feature, placed at `T_world_lidar` (a registered pose: the gate is
   /// `refined_max_residual_m`), with the plane or line its map neighbours form (validity checks
-  /// as above); features without one are left out.
+  /// as above); features without one are left out. `cache` as for Match.
   void Associate(const std::vector<Eigen::Vector3d>& planar_lidar,
                  const std::vector<Eigen::Vector3d>& edge_lidar,
                  const VoxelMap& plane_map,
                  const VoxelMap& edge_map,
                  const Eigen::Isometry3d& T_world_lidar,
                  std::vector<PlaneCorrespondence>* planes,
-                 std::vector<LineCorrespondence>* lines) const;
+                 std::vector<LineCorrespondence>* lines,
+                 NeighbourCache* cache = nullptr) const;
 
  private:
   void Associate(const std::vector<Eigen::Vector3d>& planar_lidar,
@@ -112,8 +117,16 @@ class ScanMatcher {
                  const VoxelMap& edge_map,
                  const Eigen::Isometry3d& T_world_lidar,
                  double max_residual_m,
+                 NeighbourCache& cache,
                  std::vector<PlaneCorrespondence>* planes,
                  std::vector<LineCorrespondence>* lines) const;
+  /// The surface the neighbours of `x` form, from `entry` when it still holds, else searched
+  /// and fitted into it.
+  const CachedSurface& Surface(const VoxelMap& map,
+                               const Eigen::Vector3d& x,
+                               bool plane,
+                               std::vector<Eigen::Vector3d>* nn,
+                               CachedSurface* entry) const;
   struct Normal {  ///< accumulated Gauss–Newton system
     Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
     Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();

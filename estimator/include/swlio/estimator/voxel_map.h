@@ -50,6 +50,15 @@ class VoxelMap {
   /// Every stored point, voxel by voxel in creation order (to carry a map into another frame).
   std::vector<Eigen::Vector3d> Points() const;
 
+  /// Changes whenever the stored points do (Insert, RemoveFar), and differs between maps: a
+  /// value unique in the process (NeighbourCache tells a changed map by it).
+  uint64_t revision() const { return revision_; }
+
+  /// Whether both points fall into the same voxel.
+  bool SameVoxel(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
+    return KeyOf(a) == KeyOf(b);
+  }
+
   size_t size() const { return points_; }
   size_t voxels() const { return voxels_.size(); }
 
@@ -88,6 +97,7 @@ class VoxelMap {
   std::vector<Slot> slots_;  ///< size a power of two
   int slot_bits_ = 0;
   size_t points_ = 0;
+  uint64_t revision_;
 };
 
 }  // namespace swlio::estimator
