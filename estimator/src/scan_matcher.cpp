@@ -117,11 +117,11 @@ const CachedSurface& ScanMatcher::Surface(const VoxelMap& map,
     // Neighbours along one scan line (a ring on the ground, a row on a wall) are collinear:
     // their "plane" normal is arbitrary and would tie the sweep to the previous sensor position.
     entry->axis = f.eigenvectors.col(0);
-    entry->valid = f.eigenvalues(1) >= config_.plane_min_spread_ratio * f.eigenvalues(2) &&
-                   std::all_of(nn->begin(), nn->end(), [&](const Eigen::Vector3d& q) {
-                     return std::abs(entry->axis.dot(q - f.centroid)) <=
-                            config_.plane_max_distance_m;
-                   });
+    entry->valid =
+        f.eigenvalues(1) >= config_.plane_min_spread_ratio * f.eigenvalues(2) &&
+        std::all_of(nn->begin(), nn->end(), [&](const Eigen::Vector3d& q) {
+          return std::abs(entry->axis.dot(q - f.centroid)) <= config_.plane_max_distance_m;
+        });
   } else {
     entry->axis = f.eigenvectors.col(2);
     entry->valid = f.eigenvalues(2) >= config_.line_min_ratio * f.eigenvalues(1);

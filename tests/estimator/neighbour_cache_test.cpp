@@ -146,8 +146,8 @@ TEST_F(NeighbourCacheTest, MatchLeavesItsSearchesForTheNextAssociation) {
   std::mt19937 rng(5);
   const Eigen::Isometry3d guess = Step(&rng, 0.1, 0.02);
   NeighbourCache cache;
-  const MatchResult with = matcher_.Match(scan_.planes, scan_.edges, plane_map_, edge_map_, guess,
-                                          &cache);
+  const MatchResult with =
+      matcher_.Match(scan_.planes, scan_.edges, plane_map_, edge_map_, guess, &cache);
   const MatchResult without =
       matcher_.Match(scan_.planes, scan_.edges, plane_map_, edge_map_, guess);
   EXPECT_EQ(with.T_world_lidar.matrix(), without.T_world_lidar.matrix());

@@ -80,7 +80,7 @@ class VoxelMap {
   };
 
   Key KeyOf(const Eigen::Vector3d& p) const;
-  size_t Home(const Key& key) const;  ///< first probe of `key` in slots_
+  size_t Home(const Key& key) const;    ///< first probe of `key` in slots_
   uint32_t Find(const Key& key) const;  ///< voxel index, or kNoVoxel
   uint32_t FindOrAdd(const Key& key);
   void Reindex(size_t slot_count);
