@@ -1,9 +1,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "scenarios.h"
+#include "sim_setup.h"
 #include "substation.h"
 #include "swlio/core/lie.h"
 
@@ -103,6 +107,34 @@ TEST(SimRoutes, DerivativesAreConsistentAndContinuous) {
     prev_a = a;
   }
   EXPECT_LT(max_jump, 0.2) << "acceleration must be continuous (C2 path)";
+}
+
+/// RMS of the body's roll and pitch rates over the first `span_s` of a scenario's drive, in the
+/// world its setup builds (the calibration course's covers included).
+Eigen::Vector2d TiltRateRms(const std::string& scenario, double span_s) {
+  const std::optional<SimSetup> setup = MakeSimSetup(scenario, 1);
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  int n = 0;
+  for (double t = 0.0; t < span_s; t += 0.01, ++n) {
+    sum += setup->trajectory->At(t).omega_body.head<2>().cwiseAbs2();
+  }
+  return (sum / n).cwiseSqrt();
+}
+
+TEST(SimRoutes, TheCalibrationCourseTipsTheRobotAboutBothHorizontalAxes) {
+  const Eigen::Vector2d plain = TiltRateRms("aggressive", 32.0);
+  const Eigen::Vector2d course = TiltRateRms("calibration", 32.0);
+  std::printf(
+      "roll/pitch rate RMS, first 32 s: aggressive %.2f / %.2f °/s, calibration %.2f / %.2f °/s\n",
+      plain.x() * 180 / M_PI, plain.y() * 180 / M_PI, course.x() * 180 / M_PI,
+      course.y() * 180 / M_PI);
+  EXPECT_GT(course.x(), 5.0 * plain.x()) << "roll";
+  EXPECT_GT(course.y(), 5.0 * plain.y()) << "pitch";
+  // The covers are the course's own: the substation of every other scenario has none of them.
+  const std::optional<SimSetup> calibration = MakeSimSetup("calibration", 1);
+  const std::optional<SimSetup> aggressive = MakeSimSetup("aggressive", 1);
+  EXPECT_EQ(calibration->world->terrain.bumps.size(), aggressive->world->terrain.bumps.size() + 5);
+  EXPECT_EQ(aggressive->world->terrain.bumps.size(), GenerateSubstation(1).terrain.bumps.size());
 }
 
 }  // namespace

@@ -173,7 +173,8 @@ int Run(int argc, char** argv) {
   bool live = false, list = false;
   std::string dump_dir;
   swlio::sim::LiveOptions live_opts;
-  app.add_option("--scenario", scenario, "short | loop943 | degenerate | aggressive | revisit");
+  app.add_option("--scenario", scenario,
+                 "short | loop943 | degenerate | aggressive | revisit | calibration");
   app.add_option("--seed", seed, "world and noise seed");
   app.add_option("--world-seed", world_seed,
                  "draw the substation from this seed instead (a second drive in a mapped world)");

@@ -19,7 +19,7 @@ RouteSpec Base(double cruise_mps, double radius_m, const std::vector<Eigen::Vect
 }
 
 Scenario Short() {
-  Scenario s{"short", "about 60 s: along the south road, a left turn onto the east road", {}};
+  Scenario s{"short", "about 60 s: along the south road, a left turn onto the east road", {}, {}};
   s.route =
       Base(1.2, 4.0, {{150.0, L::kRoadSouth}, {L::kRoadEast, L::kRoadSouth}, {L::kRoadEast, 35.0}});
   return s;
@@ -29,6 +29,7 @@ Scenario Loop943() {
   Scenario s{"loop943",
              "a 943 m patrol: ring and middle roads, then a loop through the open yard, back to "
              "the start; revisits the east and south roads",
+             {},
              {}};
   s.route = Base(1.0, 4.0,
                  {{60.0, L::kRoadSouth},
@@ -50,6 +51,7 @@ Scenario Loop943() {
 Scenario Degenerate() {
   Scenario s{"degenerate",
              "a long stretch across the open yard, then along the west and south fences",
+             {},
              {}};
   s.route = Base(1.2, 4.0, {{20.0, 0.0}, {20.0, 85.0}, {-7.0, 85.0}, {-7.0, -3.0}, {35.0, -3.0}});
   return s;
@@ -58,6 +60,7 @@ Scenario Degenerate() {
 Scenario Aggressive() {
   Scenario s{"aggressive",
              "fast (1.5 m/s) slalom with yaw rates near 60 °/s, over road bumps, sharp corners",
+             {},
              {}};
   std::vector<Eigen::Vector2d> pts = {{60.0, L::kRoadSouth}};
   for (int i = 1; i <= 8; ++i) {  // slalom across the south road, over the bump at x = 120
@@ -71,6 +74,25 @@ Scenario Aggressive() {
   s.route.max_yaw_rate_radps = 60.0 * std::numbers::pi / 180.0 * 1.05;
   s.route.max_lateral_acc_mps2 = 2.0;
   s.route.mean_acc_mps2 = 0.6;
+  return s;
+}
+
+/// `aggressive`'s slalom and corners over a calibration course: five cable covers laid at 45°
+/// across the south road where the slalom crosses its centre line, so that each one tips the
+/// robot about both horizontal axes. A drive that only yaws leaves the vertical lever arm of
+/// the IMU-LiDAR extrinsic unobservable (bench/README, "Online extrinsic"); this one is for
+/// `--calibrate-extrinsic` in its first 30 s.
+Scenario Calibration() {
+  Scenario s = Aggressive();
+  s.name = "calibration";
+  s.description =
+      "aggressive's slalom over five cable covers laid at 45° (roll and pitch as well as yaw): "
+      "a drive for the extrinsic calibration";
+  const Eigen::Vector2d diagonal = Eigen::Vector2d(1.0, 1.0).normalized();
+  for (int i = 0; i < 5; ++i) {  // between slalom waypoints i + 1 and i + 2
+    const Eigen::Vector2d centre(60.0 + 9.0 * (i + 1.5), L::kRoadSouth);
+    s.extra_bumps.push_back({centre, diagonal, 0.5, 3.5, 0.05});
+  }
   return s;
 }
 
@@ -116,6 +138,7 @@ Scenario Revisit(uint64_t seed) {
   Scenario s{"revisit",
              "200 m along the substation roads from a start drawn from the seed (either "
              "direction): a second drive for relocalization in a map made on loop943",
+             {},
              {}};
   const std::vector<Eigen::Vector2d> roads = PatrolRoads();
   double total_m = 0.0;
@@ -132,7 +155,7 @@ Scenario Revisit(uint64_t seed) {
 }  // namespace
 
 std::vector<std::string> ScenarioNames() {
-  return {"short", "loop943", "degenerate", "aggressive", "revisit"};
+  return {"short", "loop943", "degenerate", "aggressive", "revisit", "calibration"};
 }
 
 std::optional<Scenario> MakeScenario(const std::string& name, uint64_t seed) {
@@ -141,6 +164,7 @@ std::optional<Scenario> MakeScenario(const std::string& name, uint64_t seed) {
   if (name == "loop943") return Loop943();
   if (name == "degenerate") return Degenerate();
   if (name == "aggressive") return Aggressive();
+  if (name == "calibration") return Calibration();
   return std::nullopt;
 }
 

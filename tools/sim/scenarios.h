@@ -15,9 +15,13 @@ struct Scenario {
   std::string name;
   std::string description;
   RouteSpec route;
+  /// Added to the substation's own (this scenario's course; the other scenarios' world is the
+  /// same for every one of them).
+  std::vector<Bump> extra_bumps;
 };
 
-/// Names of the built-in scenarios: short, loop943, degenerate, aggressive, revisit.
+/// Names of the built-in scenarios: short, loop943, degenerate, aggressive, revisit,
+/// calibration.
 std::vector<std::string> ScenarioNames();
 
 /// The scenario called `name`, or nothing when there is none. Only `revisit` depends on the

@@ -50,6 +50,7 @@ std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
   setup.seed = seed;
   setup.world_seed = world_seed.value_or(seed);
   setup.world = std::make_unique<World>(GenerateSubstation(setup.world_seed));
+  for (const Bump& b : s->extra_bumps) setup.world->terrain.bumps.push_back(b);
   if (stand_start_s) s->route.stand_start_s = *stand_start_s;
   setup.trajectory = std::make_unique<Trajectory>(s->route, &setup.world->terrain);
   Rng rng(seed ^ 0xC10C4ull);
