@@ -8,8 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include "sim_imu_util.h"
 #include "swlio/core/lie.h"
@@ -28,10 +30,14 @@ struct SimDrive {
 };
 
 /// Poses every 0.1 s over [t0, t0 + seconds] with the given noise, in a tilted, shifted world.
-SimDrive MakeDrive(
-    uint64_t seed, double t0_s, double seconds, double position_m, double rotation_rad) {
+SimDrive MakeDrive(uint64_t seed,
+                   double t0_s,
+                   double seconds,
+                   double position_m,
+                   double rotation_rad,
+                   const std::string& scenario = "aggressive") {
   SimDrive r;
-  r.setup = sim::MakeSimSetup("aggressive", seed, t0_s + seconds + 1.0);
+  r.setup = sim::MakeSimSetup(scenario, seed, t0_s + seconds + 1.0);
   r.imu = test::ToImuSamples(sim::SimulateImu(*r.setup->trajectory, r.setup->imu, seed));
   Eigen::Isometry3d T_w0_world = Eigen::Isometry3d::Identity();
   T_w0_world.linear() = lie::QuatFromRpy(0.2, -0.15, 1.0).toRotationMatrix();
@@ -115,6 +121,29 @@ TEST(ExtrinsicCalibrator, PlanarDriveLeavesTheVerticalLeverArmAtItsPrior) {
   const double sigma_x = std::sqrt(c.covariance(0, 0));
   EXPECT_GT(sigma_z, 0.5 * o.extrinsic_prior_sigma_m) << "σ x " << sigma_x;
   EXPECT_LT(sigma_x, 0.2 * sigma_z);
+}
+
+// The calibration course (roll and pitch over cable covers) shows the vertical lever arm too.
+TEST(ExtrinsicCalibrator, TheCalibrationCourseRecoversTheVerticalLeverArm) {
+  for (const uint64_t seed : {1, 2, 3}) {
+    const SimDrive run = MakeDrive(seed, 2.0, 30.0, 0.01, 0.1 * kDeg, "calibration");
+    const Eigen::Isometry3d& truth = run.setup->lidar.T_imu_lidar;
+    Eigen::Isometry3d guess = Perturbed(truth, 0.0289, 0.0289);
+    guess.translation().z() += 0.0289;  // 5 cm and 2° off
+    ExtrinsicCalibratorOptions o;
+    o.position_sigma_m = 0.01;
+    o.rotation_sigma_rad = 0.1 * kDeg;
+    const ExtrinsicCalibration c =
+        CalibrateExtrinsic(EstimatorConfig{}, run.poses, run.imu, guess, o);
+    ASSERT_TRUE(c.ok) << c.message;
+    const Error e = Compare(c.T_imu_lidar, truth);
+    std::printf("seed %d: %.3f deg, xy %.4f m, z %.4f m (sigma z %.4f m)\n", static_cast<int>(seed),
+                e.rotation_deg, e.translation_xy_m, e.translation_z_m,
+                std::sqrt(c.covariance(2, 2)));
+    EXPECT_EQ(c.translation_directions, 3);
+    EXPECT_LT(e.rotation_deg, 0.3);
+    EXPECT_LT(std::hypot(e.translation_xy_m, e.translation_z_m), 0.02);
+  }
 }
 
 TEST(ExtrinsicCalibrator, TooFewPosesIsReportedNotSolved) {

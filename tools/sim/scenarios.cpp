@@ -77,21 +77,26 @@ Scenario Aggressive() {
   return s;
 }
 
-/// `aggressive`'s slalom and corners over a calibration course: five cable covers laid at 45°
-/// across the south road where the slalom crosses its centre line, so that each one tips the
-/// robot about both horizontal axes. A drive that only yaws leaves the vertical lever arm of
-/// the IMU-LiDAR extrinsic unobservable (bench/README, "Online extrinsic"); this one is for
-/// `--calibrate-extrinsic` in its first 30 s.
+/// `aggressive`'s slalom and corners over a calibration course: cable covers laid at ±45°
+/// across the south road, at each of the slalom's first ten turns and centre-line crossings,
+/// so that each one tips the robot about both horizontal axes. A drive that only yaws leaves
+/// the vertical lever arm of the IMU-LiDAR extrinsic unobservable (bench/README, "Online
+/// extrinsic"); this one is for `--calibrate-extrinsic` in its first 30 s.
 Scenario Calibration() {
   Scenario s = Aggressive();
   s.name = "calibration";
   s.description =
-      "aggressive's slalom over five cable covers laid at 45° (roll and pitch as well as yaw): "
+      "aggressive's slalom over ten cable covers laid at 45° (roll and pitch as well as yaw): "
       "a drive for the extrinsic calibration";
-  const Eigen::Vector2d diagonal = Eigen::Vector2d(1.0, 1.0).normalized();
-  for (int i = 0; i < 5; ++i) {  // between slalom waypoints i + 1 and i + 2
-    const Eigen::Vector2d centre(60.0 + 9.0 * (i + 1.5), L::kRoadSouth);
-    s.extra_bumps.push_back({centre, diagonal, 0.5, 3.5, 0.05});
+  for (int i = 0; i < 10; ++i) {
+    // Waypoint k = i / 2 + 1 of the slalom (60 + 9k, south road ± 2.5 m), or the crossing
+    // half-way to the next one; parallel neighbours are 1.4 m apart, their profiles 1 m long.
+    const int k = i / 2 + 1;
+    const bool crossing = i % 2 == 1;
+    const double side_m = crossing ? 0.0 : (k % 2 == 1 ? 2.5 : -2.5);
+    const Eigen::Vector2d centre(60.0 + 9.0 * (k + (crossing ? 0.5 : 0.0)), L::kRoadSouth + side_m);
+    const Eigen::Vector2d along = Eigen::Vector2d(1.0, k % 2 == 1 ? 1.0 : -1.0).normalized();
+    s.extra_bumps.push_back({centre, along, 0.5, 3.5, 0.05});
   }
   return s;
 }
