@@ -81,15 +81,21 @@ Error Compare(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth)
           dt.head<2>().norm(), std::abs(dt.z())};
 }
 
+/// The options for MakeDrive's 1 cm / 0.1° pose noise.
+ExtrinsicCalibratorOptions PoseNoiseOptions() {
+  ExtrinsicCalibratorOptions o;
+  o.position_sigma_m = 0.01;
+  o.rotation_sigma_rad = 0.1 * kDeg;
+  return o;
+}
+
 // 30 s of driving from 2 s on (the robot sets off at about 1.2 s): 1 cm / 0.1° pose noise.
 TEST(ExtrinsicCalibrator, ThirtySecondsOfDrivingRecoverTheExtrinsic) {
   const SimDrive run = MakeDrive(1, 2.0, 30.0, 0.01, 0.1 * kDeg);
   const Eigen::Isometry3d& truth = run.setup->lidar.T_imu_lidar;
   const Eigen::Isometry3d guess = Perturbed(truth, 0.035, -0.035);  // 5 cm
   ASSERT_GT(Compare(guess, truth).rotation_deg, 1.99);
-  ExtrinsicCalibratorOptions o;
-  o.position_sigma_m = 0.01;
-  o.rotation_sigma_rad = 0.1 * kDeg;
+  const ExtrinsicCalibratorOptions o = PoseNoiseOptions();
   const ExtrinsicCalibration c =
       CalibrateExtrinsic(EstimatorConfig{}, run.poses, run.imu, guess, o);
   ASSERT_TRUE(c.ok) << c.message;
@@ -110,9 +116,7 @@ TEST(ExtrinsicCalibrator, ThirtySecondsOfDrivingRecoverTheExtrinsic) {
 TEST(ExtrinsicCalibrator, PlanarDriveLeavesTheVerticalLeverArmAtItsPrior) {
   const SimDrive run = MakeDrive(2, 2.0, 30.0, 0.01, 0.1 * kDeg);
   const Eigen::Isometry3d& truth = run.setup->lidar.T_imu_lidar;
-  ExtrinsicCalibratorOptions o;
-  o.position_sigma_m = 0.01;
-  o.rotation_sigma_rad = 0.1 * kDeg;
+  const ExtrinsicCalibratorOptions o = PoseNoiseOptions();
   const ExtrinsicCalibration c =
       CalibrateExtrinsic(EstimatorConfig{}, run.poses, run.imu, Perturbed(truth, 0.0, 0.0), o);
   ASSERT_TRUE(c.ok) << c.message;
@@ -130,11 +134,8 @@ TEST(ExtrinsicCalibrator, TheCalibrationCourseRecoversTheVerticalLeverArm) {
     const Eigen::Isometry3d& truth = run.setup->lidar.T_imu_lidar;
     Eigen::Isometry3d guess = Perturbed(truth, 0.0289, 0.0289);
     guess.translation().z() += 0.0289;  // 5 cm and 2° off
-    ExtrinsicCalibratorOptions o;
-    o.position_sigma_m = 0.01;
-    o.rotation_sigma_rad = 0.1 * kDeg;
     const ExtrinsicCalibration c =
-        CalibrateExtrinsic(EstimatorConfig{}, run.poses, run.imu, guess, o);
+        CalibrateExtrinsic(EstimatorConfig{}, run.poses, run.imu, guess, PoseNoiseOptions());
     ASSERT_TRUE(c.ok) << c.message;
     const Error e = Compare(c.T_imu_lidar, truth);
     std::printf("seed %d: %.3f deg, xy %.4f m, z %.4f m (sigma z %.4f m)\n", static_cast<int>(seed),
