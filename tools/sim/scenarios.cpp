@@ -78,10 +78,10 @@ Scenario Aggressive() {
 }
 
 /// `aggressive`'s slalom and corners over a calibration course: cable covers laid at ±45°
-/// across the south road, at each of the slalom's first ten turns and centre-line crossings,
-/// so that each one tips the robot about both horizontal axes. A drive that only yaws leaves
-/// the vertical lever arm of the IMU-LiDAR extrinsic unobservable (bench/README, "Online
-/// extrinsic"); this one is for `--calibrate-extrinsic` in its first 30 s.
+/// across the south road, at the slalom's first five turns and the centre-line crossings after
+/// them, so that each one tips the robot about both horizontal axes. A drive that only yaws
+/// leaves the vertical lever arm of the IMU-LiDAR extrinsic unobservable (bench/README,
+/// "Online extrinsic"); this one is for `--calibrate-extrinsic` in its first 30 s.
 Scenario Calibration() {
   Scenario s = Aggressive();
   s.name = "calibration";

@@ -6,12 +6,13 @@
 /// features 2–4 times at poses millimetres apart, and the window associates them once more.
 ///
 /// When it holds (exact, so the matcher's output does not change). A search from query x found
-/// the k nearest points of the 27 voxels around x's voxel, at distances d_1 < … < d_k, and the
+/// the k nearest points of the 27 voxels around x's voxel, the farthest of them at d_k, and the
 /// next one at d_{k+1} (or none: then d_{k+1} is the search's distance bound). Moving the query
 /// by δ changes every distance by at most δ, so while x' stays in the same voxel (the same 27
-/// cells are searched) and |x' − x| < min_i (d_{i+1} − d_i) / 2, the same points come out in
-/// the same order, and their fit is the same. A map that changed (insertion, removal) or a
-/// feature set of another size forgets everything.
+/// cells are searched) and |x' − x| < (d_{k+1} − d_k) / 2, the same k points come out, perhaps
+/// in another order; the fit takes them in a fixed order, so it is the same to the last bit.
+/// A map that changed (insertion, removal), another map or a feature set of another size
+/// forgets everything.
 
 #include <Eigen/Core>
 #include <cstddef>
