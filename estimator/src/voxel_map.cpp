@@ -42,12 +42,12 @@ size_t VoxelMap::Insert(const std::vector<Eigen::Vector3d>& points_world) {
     const uint32_t v = FindOrAdd(KeyOf(p));
     uint32_t& count = voxels_[v].count;
     if (count >= config_.max_points_per_voxel) continue;
-    const auto begin = pool_.begin() + static_cast<std::ptrdiff_t>(Begin(v));
-    const bool crowded = std::any_of(begin, begin + count, [&](const Eigen::Vector3d& q) {
+    Eigen::Vector3d* points = pool_.data() + Begin(v);
+    const bool crowded = std::any_of(points, points + count, [&](const Eigen::Vector3d& q) {
       return (q - p).squaredNorm() < min_sq;
     });
     if (crowded) continue;
-    begin[count++] = p;
+    points[count++] = p;
     ++stored;
   }
   points_ += stored;
@@ -110,7 +110,7 @@ size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
     const Key key{c.x + o[0], c.y + o[1], c.z + o[2]};
     const uint32_t v = Find(key);
     if (v == kNoVoxel) continue;
-    const Eigen::Vector3d* points = &pool_[Begin(v)];
+    const Eigen::Vector3d* points = pool_.data() + Begin(v);
     for (uint32_t j = 0; j < voxels_[v].count; ++j) {
       const Eigen::Vector3d& p = points[j];
       const double d2 = (p - query).squaredNorm();
@@ -133,8 +133,8 @@ std::vector<Eigen::Vector3d> VoxelMap::Points() const {
   std::vector<Eigen::Vector3d> out;
   out.reserve(points_);
   for (uint32_t v = 0; v < voxels_.size(); ++v) {
-    const auto begin = pool_.begin() + static_cast<std::ptrdiff_t>(Begin(v));
-    out.insert(out.end(), begin, begin + voxels_[v].count);
+    const Eigen::Vector3d* points = pool_.data() + Begin(v);
+    out.insert(out.end(), points, points + voxels_[v].count);
   }
   return out;
 }
@@ -155,8 +155,9 @@ size_t VoxelMap::RemoveFar(const Eigen::Vector3d& center_world) {
       continue;
     }
     if (kept != v) {
-      const auto from = pool_.begin() + static_cast<std::ptrdiff_t>(Begin(v));
-      std::copy(from, from + voxel.count, pool_.begin() + static_cast<std::ptrdiff_t>(Begin(kept)));
+      const Eigen::Vector3d* from = pool_.data() + Begin(v);
+      std::copy(from, from + voxel.count,
+                pool_.data() + Begin(kept));  // kept < v: the target starts first
       voxels_[kept] = voxel;
     }
     ++kept;
