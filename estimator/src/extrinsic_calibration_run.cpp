@@ -21,7 +21,7 @@ void ExtrinsicCalibrationRun::AddScan(const Scan& scan) {
   const OdometryResult r = odometry_.AddScan(scan);
   if (r.status != OdometryStatus::kTracking) return;
   // The pose the odometry settled on, in its LiDAR frame (independent of the guess it used).
-  poses_.push_back({r.state.t_ns, r.state.T_world_imu * config_.T_imu_lidar});
+  poses_.push_back({r.state.t_ns, r.state.T_world_imu * config_.T_imu_lidar, r.match.hessian});
   if (next_try_ns_ == 0) next_try_ns_ = poses_.front().t_ns + window_ns_;
   DropOld();
 }

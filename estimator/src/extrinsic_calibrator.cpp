@@ -6,10 +6,12 @@
 
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/covariance.h>
+#include <ceres/loss_function.h>
 #include <ceres/problem.h>
 #include <ceres/rotation.h>
 #include <ceres/solver.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
@@ -26,6 +28,7 @@ namespace swlio::estimator {
 namespace {
 
 constexpr size_t kAlignmentPoses = 30;
+constexpr size_t kMaxCorrelationLag = 20;  ///< poses (2 s at 10 Hz)
 
 using Pose = std::array<double, kPoseSize>;
 using SpeedBias = std::array<double, kSpeedBiasSize>;
@@ -40,11 +43,13 @@ void RelativeRotationVector(const Eigen::Quaternion<T>& q_a,
   ceres::QuaternionToAngleAxis(wxyz, phi);
 }
 
-/// The LiDAR pose measured by the odometry against the IMU pose and the extrinsic.
+/// The LiDAR pose measured by the odometry against the IMU pose and the extrinsic, as the
+/// error in the measured pose's tangent (the registration's [ρ; φ], scan_matcher.h):
+/// δ = [R_measᵀ (p_est − p_meas); Log(R_measᵀ R_est)], whitened by U (Uᵀ U = information).
 struct LidarPoseResidual {
   Eigen::Quaterniond q_world0_lidar;  ///< T̄_world_w0 · T_w0_lidar, before the tilt
   Eigen::Vector3d p_world0_lidar;
-  double w_position, w_rotation;
+  Eigen::Matrix<double, 6, 6> sqrt_information;
 
   template <typename T>
   bool operator()(const T* pose, const T* extrinsic, const T* tilt, T* r) const {
@@ -61,9 +66,11 @@ struct LidarPoseResidual {
     const Eigen::Matrix<T, 3, 1> p_meas = q_tilt * p_world0_lidar.cast<T>();
     const Eigen::Quaternion<T> q_est = q_wi * q_il;
     const Eigen::Matrix<T, 3, 1> p_est = q_wi * t_il + p_wi;
-    for (int i = 0; i < 3; ++i) r[i] = T(w_position) * (p_est[i] - p_meas[i]);
-    RelativeRotationVector(q_est, q_meas, r + 3);
-    for (int i = 3; i < 6; ++i) r[i] *= T(w_rotation);
+    Eigen::Matrix<T, 6, 1> delta;
+    delta.template head<3>() = q_meas.conjugate() * (p_est - p_meas);
+    RelativeRotationVector(q_meas, q_est, delta.data() + 3);
+    Eigen::Map<Eigen::Matrix<T, 6, 1>> whitened(r);
+    whitened = sqrt_information.cast<T>() * delta;
     return true;
   }
 };
@@ -133,6 +140,36 @@ Blocks InitialBlocks(const DynamicInitResult& init,
   return b;
 }
 
+/// U with Uᵀ U = C⁻¹ for one LiDAR pose: C = σ_point² H⁻¹ + diag(floor²) from the
+/// registration's Hessian H (a direction its scan hardly constrains, such as along a corridor,
+/// gets the weight it earned), or diag(position_sigma_m², rotation_sigma_rad²) without one.
+Eigen::Matrix<double, 6, 6> PoseSqrtInformation(const Eigen::Matrix<double, 6, 6>& hessian,
+                                                const ExtrinsicCalibratorOptions& o) {
+  using Matrix6d = Eigen::Matrix<double, 6, 6>;
+  using Vector6d = Eigen::Matrix<double, 6, 1>;
+  Vector6d floor_variance;
+  Matrix6d covariance;
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(hessian);
+  const double lambda_max = eig.eigenvalues().maxCoeff();
+  if (o.hessian_point_sigma_m > 0.0 && eig.info() == Eigen::Success && lambda_max > 0.0 &&
+      std::isfinite(lambda_max)) {
+    const Vector6d lambda = eig.eigenvalues().cwiseMax(1e-9 * lambda_max);
+    covariance =
+        eig.eigenvectors() *
+        (o.hessian_point_sigma_m * o.hessian_point_sigma_m * lambda.cwiseInverse()).asDiagonal() *
+        eig.eigenvectors().transpose();
+    floor_variance << Eigen::Vector3d::Constant(o.hessian_floor_position_m *
+                                                o.hessian_floor_position_m),
+        Eigen::Vector3d::Constant(o.hessian_floor_rotation_rad * o.hessian_floor_rotation_rad);
+  } else {
+    covariance.setZero();
+    floor_variance << Eigen::Vector3d::Constant(o.position_sigma_m * o.position_sigma_m),
+        Eigen::Vector3d::Constant(o.rotation_sigma_rad * o.rotation_sigma_rad);
+  }
+  covariance.diagonal() += floor_variance;
+  return Eigen::LLT<Matrix6d>(covariance.inverse()).matrixU();
+}
+
 class Calibration {
  public:
   Calibration(const EstimatorConfig& config,
@@ -151,19 +188,18 @@ class Calibration {
   /// Builds and solves the problem at the blocks' biases, and with `covariance` computes the
   /// extrinsic's covariance at the solution; false when an IMU interval fails.
   bool Solve(Blocks* b, bool covariance, ceres::Solver::Summary* summary) {
-    ceres::Problem::Options po;
-    po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    ceres::Problem problem(po);
-    if (!AddImuFactors(b, &problem)) return false;
-    AddLidarPoses(b, &problem);
-    AddPriors(b, &problem);
+    ceres::Problem problem(ProblemOptions());
+    if (!Build(b, robust_, &problem)) return false;
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
     so.max_num_iterations = options_.max_iterations;
     so.num_threads = 1;
     ceres::Solve(so, &problem, summary);
     if (covariance && summary->IsSolutionUsable()) {
-      covariance_ok_ = ExtrinsicCovariance(b, &problem);
+      // The Gaussian covariance at the robust solution: the Cauchy loss's down-weighting of
+      // typical residuals would inflate it (and hide directions the motion determined).
+      ceres::Problem gaussian(ProblemOptions());
+      covariance_ok_ = Build(b, /*robust=*/false, &gaussian) && ExtrinsicCovariance(b, &gaussian);
     }
     return summary->IsSolutionUsable();
   }
@@ -171,7 +207,66 @@ class Calibration {
   const Eigen::Matrix<double, 6, 6>& covariance() const { return covariance_; }
   bool covariance_ok() const { return covariance_ok_; }
 
+  /// From the LiDAR pose residuals at `b`: the factor s on every pose's σ that makes their
+  /// median whitened squared norm that of χ²(6) (a robust variance-component estimate; the
+  /// Hessian's σ_point is only a nominal figure), and the Cauchy loss from then on.
+  void RescalePoseNoise(const Blocks& b) {
+    std::vector<double> squared_norms;
+    for (size_t k = 0; k < poses_.size(); ++k) {
+      Eigen::Matrix<double, 6, 1> r;
+      PoseResidual(k)(b.poses[k].data(), b.extrinsic.data(), b.tilt.data(), r.data());
+      squared_norms.push_back(r.squaredNorm());
+    }
+    if (squared_norms.empty()) return;
+    auto mid = squared_norms.begin() + static_cast<std::ptrdiff_t>(squared_norms.size() / 2);
+    std::nth_element(squared_norms.begin(), mid, squared_norms.end());
+    constexpr double kChi2Dof6Median = 5.348;
+    const double scale = pose_sigma_scale_ * std::sqrt(*mid / kChi2Dof6Median);
+    if (std::isfinite(scale) && scale > 0.0) pose_sigma_scale_ = scale;
+    robust_ = true;
+  }
+  double pose_sigma_scale() const { return pose_sigma_scale_; }
+
+  /// The integrated autocorrelation time of the whitened pose residuals at `b`, in poses (the
+  /// largest over their six components, each summed over lags while positive, up to
+  /// `max_lag`): odometry errors persist over several sweeps, so the poses carry about 1/τ of
+  /// the information the independent-noise covariance assumes.
+  double ResidualCorrelationTime(const Blocks& b, size_t max_lag) const {
+    std::vector<Eigen::Matrix<double, 6, 1>> r(poses_.size());
+    for (size_t k = 0; k < poses_.size(); ++k) {
+      PoseResidual(k)(b.poses[k].data(), b.extrinsic.data(), b.tilt.data(), r[k].data());
+    }
+    double tau = 1.0;
+    for (int c = 0; c < 6; ++c) {
+      double r0 = 0.0;
+      for (const auto& x : r) r0 += x(c) * x(c);
+      if (!(r0 > 0.0)) continue;
+      double tau_c = 1.0;
+      for (size_t lag = 1; lag <= max_lag && lag < r.size(); ++lag) {
+        double rl = 0.0;
+        for (size_t k = 0; k + lag < r.size(); ++k) rl += r[k](c) * r[k + lag](c);
+        if (rl <= 0.0) break;
+        tau_c += 2.0 * rl / r0;
+      }
+      tau = std::max(tau, tau_c);
+    }
+    return tau;
+  }
+
  private:
+  static ceres::Problem::Options ProblemOptions() {
+    ceres::Problem::Options po;
+    po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    return po;
+  }
+
+  bool Build(Blocks* b, bool robust, ceres::Problem* problem) {
+    if (!AddImuFactors(b, problem)) return false;
+    AddLidarPoses(b, robust, problem);
+    AddPriors(b, problem);
+    return true;
+  }
+
   bool AddImuFactors(Blocks* b, ceres::Problem* problem) {
     for (size_t k = 0; k + 1 < poses_.size(); ++k) {
       const SpeedBias& sb = b->speed_biases[k];
@@ -190,14 +285,19 @@ class Calibration {
     return true;
   }
 
-  void AddLidarPoses(Blocks* b, ceres::Problem* problem) {
+  LidarPoseResidual PoseResidual(size_t k) const {
+    const Eigen::Isometry3d T = T_world_w0_ * poses_[k].T_w0_lidar;
+    return {Eigen::Quaterniond(T.linear()), T.translation(),
+            PoseSqrtInformation(poses_[k].hessian, options_) / pose_sigma_scale_};
+  }
+
+  void AddLidarPoses(Blocks* b, bool robust, ceres::Problem* problem) {
     for (size_t k = 0; k < poses_.size(); ++k) {
-      const Eigen::Isometry3d T = T_world_w0_ * poses_[k].T_w0_lidar;
       auto* cost = new ceres::AutoDiffCostFunction<LidarPoseResidual, 6, kPoseSize, kPoseSize, 2>(
-          new LidarPoseResidual{Eigen::Quaterniond(T.linear()), T.translation(),
-                                1.0 / options_.position_sigma_m,
-                                1.0 / options_.rotation_sigma_rad});
-      problem->AddResidualBlock(cost, nullptr, b->poses[k].data(), b->extrinsic.data(),
+          new LidarPoseResidual(PoseResidual(k)));
+      ceres::LossFunction* loss =
+          robust ? new ceres::CauchyLoss(options_.pose_cauchy_scale) : nullptr;
+      problem->AddResidualBlock(cost, loss, b->poses[k].data(), b->extrinsic.data(),
                                 b->tilt.data());
     }
     problem->SetManifold(b->extrinsic.data(), &manifold_);
@@ -233,6 +333,8 @@ class Calibration {
   PoseManifold manifold_;
   Eigen::Matrix<double, 6, 6> covariance_ = Eigen::Matrix<double, 6, 6>::Zero();
   bool covariance_ok_ = false;
+  double pose_sigma_scale_ = 1.0;
+  bool robust_ = false;
 };
 
 /// RMS of the LiDAR pose residuals (unwhitened) at the solution.
@@ -307,17 +409,23 @@ ExtrinsicCalibration CalibrateExtrinsic(const EstimatorConfig& config,
       return out;
     }
     out.iterations += static_cast<int>(summary.iterations.size());
+    if (round == 0) calibration.RescalePoseNoise(blocks);
   }
   if (!calibration.covariance_ok()) {
     out.message = "the extrinsic's covariance is rank deficient";
     return out;
   }
-  out.covariance = calibration.covariance();
+  out.pose_sigma_scale = calibration.pose_sigma_scale();
+  out.correlation_poses = calibration.ResidualCorrelationTime(blocks, kMaxCorrelationLag);
+  out.covariance = calibration.covariance() * out.correlation_poses;
   PoseResiduals(blocks, poses, init.T_world_w0, &out);
+  // What the motion determines is judged on the independent-noise covariance (the gates'
+  // figures were set on it); the correlation only scales the accuracy reported.
+  const Eigen::Matrix<double, 6, 6>& determined = calibration.covariance();
   // Rotation about one axis only (a planar drive without turns) leaves the extrinsic's rotation
   // about the other two to the prior: refuse rather than report the wander (measured on the
   // straight `short` drive: 15° off with σ 4.9°).
-  const double sigma_rotation_rad = std::sqrt(out.covariance.diagonal().tail<3>().maxCoeff());
+  const double sigma_rotation_rad = std::sqrt(determined.diagonal().tail<3>().maxCoeff());
   if (sigma_rotation_rad > options.max_rotation_sigma_rad) {
     out.message = "the motion does not determine the rotation (σ " +
                   std::to_string(sigma_rotation_rad * 180.0 / 3.14159265358979323846) +
@@ -328,7 +436,7 @@ ExtrinsicCalibration CalibrateExtrinsic(const EstimatorConfig& config,
   out.T_imu_lidar = PoseFromParameters(blocks.extrinsic.data());
   out.T_imu_lidar.translation() =
       DeterminedTranslation(T_imu_lidar_guess.translation(), out.T_imu_lidar.translation(),
-                            out.covariance.topLeftCorner<3, 3>(), options.max_translation_sigma_m,
+                            determined.topLeftCorner<3, 3>(), options.max_translation_sigma_m,
                             &out.translation_directions);
   const SpeedBias& last = blocks.speed_biases.back();
   out.bias_acc = Eigen::Map<const Eigen::Vector3d>(&last[kSbBiasAcc]);

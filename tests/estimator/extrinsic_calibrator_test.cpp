@@ -147,6 +147,63 @@ TEST(ExtrinsicCalibrator, TheCalibrationCourseRecoversTheVerticalLeverArm) {
   }
 }
 
+/// The calibration course's poses with noise that the scans would leave: σ_along (m) along
+/// each pose's LiDAR y axis (a road between walls), 2 mm across it, 0.05°; every 25th pose
+/// 10 cm off along y (a registration gone wrong). With `hessian`, each pose carries the
+/// registration Hessian that noise corresponds to (σ_point 2 cm, the option's default).
+SimDrive CorridorDrive(uint64_t seed, double sigma_along_m, bool hessian) {
+  SimDrive run = MakeDrive(seed, 2.0, 30.0, 0.0, 0.0, "calibration");
+  std::mt19937 rng(static_cast<uint32_t>(seed) + 7u);
+  std::normal_distribution<double> n01;
+  const Eigen::Vector3d sigma_m(0.002, sigma_along_m, 0.002);
+  const double sigma_rad = 0.05 * kDeg;
+  for (size_t k = 0; k < run.poses.size(); ++k) {
+    StampedLidarPose& p = run.poses[k];
+    Vec3 rho(sigma_m.x() * n01(rng), sigma_m.y() * n01(rng), sigma_m.z() * n01(rng));
+    if (k % 25 == 12) rho.y() += 0.10;
+    const Vec3 phi(sigma_rad * n01(rng), sigma_rad * n01(rng), sigma_rad * n01(rng));
+    p.T_w0_lidar.translation() += p.T_w0_lidar.linear() * rho;
+    p.T_w0_lidar.linear() = p.T_w0_lidar.linear() * lie::Exp(phi);
+    if (!hessian) continue;
+    Eigen::Matrix<double, 6, 1> information;
+    information << sigma_m.cwiseInverse().cwiseAbs2(),
+        Vec3::Constant(1.0 / (sigma_rad * sigma_rad));
+    p.hessian = (0.02 * 0.02 * information).asDiagonal();
+  }
+  return run;
+}
+
+// Weighting each pose by its registration Hessian (and bounding a wrong one's pull) keeps the
+// 2 cm on poses whose error lies mostly along one axis; the same poses with one σ for all
+// directions do worse.
+TEST(ExtrinsicCalibrator, PosesAreWeighedByTheirRegistrationHessian) {
+  for (const uint64_t seed : {1, 2}) {
+    const SimDrive weighted = CorridorDrive(seed, 0.03, true);
+    const SimDrive plain = CorridorDrive(seed, 0.03, false);
+    const Eigen::Isometry3d& truth = weighted.setup->lidar.T_imu_lidar;
+    Eigen::Isometry3d guess = Perturbed(truth, 0.0289, -0.0289);
+    guess.translation().z() += 0.0289;  // 5 cm and 2° off
+    ExtrinsicCalibratorOptions o;
+    o.position_sigma_m = 0.03 / std::sqrt(3.0);  // the rms per axis, for the plain poses
+    o.rotation_sigma_rad = 0.05 * kDeg;
+    const ExtrinsicCalibration a =
+        CalibrateExtrinsic(EstimatorConfig{}, weighted.poses, weighted.imu, guess, o);
+    const ExtrinsicCalibration b =
+        CalibrateExtrinsic(EstimatorConfig{}, plain.poses, plain.imu, guess, o);
+    ASSERT_TRUE(a.ok) << a.message;
+    ASSERT_TRUE(b.ok) << b.message;
+    const Error ea = Compare(a.T_imu_lidar, truth), eb = Compare(b.T_imu_lidar, truth);
+    const double da = std::hypot(ea.translation_xy_m, ea.translation_z_m);
+    const double db = std::hypot(eb.translation_xy_m, eb.translation_z_m);
+    std::printf("seed %d: with Hessians %.4f m %.3f deg, without %.4f m %.3f deg\n",
+                static_cast<int>(seed), da, ea.rotation_deg, db, eb.rotation_deg);
+    EXPECT_EQ(a.translation_directions, 3);
+    EXPECT_LT(da, 0.02);
+    EXPECT_LT(ea.rotation_deg, 0.3);
+    EXPECT_LT(da, db);
+  }
+}
+
 TEST(ExtrinsicCalibrator, TooFewPosesIsReportedNotSolved) {
   const SimDrive run = MakeDrive(1, 2.0, 0.2, 0.01, 0.1 * kDeg);
   const ExtrinsicCalibration c =

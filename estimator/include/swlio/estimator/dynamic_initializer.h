@@ -60,6 +60,10 @@ namespace swlio::estimator {
 struct StampedLidarPose {
   int64_t t_ns = 0;
   Eigen::Isometry3d T_w0_lidar = Eigen::Isometry3d::Identity();
+  /// The registration's Gauss–Newton Hessian at this pose (MatchResult::hessian: unit-weight
+  /// residuals, right perturbation [ρ; φ]); zero when unknown. Only the extrinsic calibration
+  /// uses it, to weight each pose by what its scan determined.
+  Eigen::Matrix<double, 6, 6> hessian = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 enum class DynamicInitStatus {
