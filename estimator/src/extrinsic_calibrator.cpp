@@ -183,7 +183,11 @@ class Calibration {
         imu_(imu),
         guess_(guess),
         T_world_w0_(T_world_w0),
-        options_(options) {}
+        options_(options) {
+    for (const StampedLidarPose& p : poses_) {
+      nominal_sqrt_information_.push_back(PoseSqrtInformation(p.hessian, options_));
+    }
+  }
 
   /// Builds and solves the problem at the blocks' biases, and with `covariance` computes the
   /// extrinsic's covariance at the solution; false when an IMU interval fails.
@@ -212,9 +216,7 @@ class Calibration {
   /// Hessian's σ_point is only a nominal figure), and the Cauchy loss from then on.
   void RescalePoseNoise(const Blocks& b) {
     std::vector<double> squared_norms;
-    for (size_t k = 0; k < poses_.size(); ++k) {
-      Eigen::Matrix<double, 6, 1> r;
-      PoseResidual(k)(b.poses[k].data(), b.extrinsic.data(), b.tilt.data(), r.data());
+    for (const Eigen::Matrix<double, 6, 1>& r : WhitenedPoseResiduals(b)) {
       squared_norms.push_back(r.squaredNorm());
     }
     if (squared_norms.empty()) return;
@@ -232,10 +234,7 @@ class Calibration {
   /// `max_lag`): odometry errors persist over several sweeps, so the poses carry about 1/τ of
   /// the information the independent-noise covariance assumes.
   double ResidualCorrelationTime(const Blocks& b, size_t max_lag) const {
-    std::vector<Eigen::Matrix<double, 6, 1>> r(poses_.size());
-    for (size_t k = 0; k < poses_.size(); ++k) {
-      PoseResidual(k)(b.poses[k].data(), b.extrinsic.data(), b.tilt.data(), r[k].data());
-    }
+    const std::vector<Eigen::Matrix<double, 6, 1>> r = WhitenedPoseResiduals(b);
     double tau = 1.0;
     for (int c = 0; c < 6; ++c) {
       double r0 = 0.0;
@@ -288,7 +287,16 @@ class Calibration {
   LidarPoseResidual PoseResidual(size_t k) const {
     const Eigen::Isometry3d T = T_world_w0_ * poses_[k].T_w0_lidar;
     return {Eigen::Quaterniond(T.linear()), T.translation(),
-            PoseSqrtInformation(poses_[k].hessian, options_) / pose_sigma_scale_};
+            nominal_sqrt_information_[k] / pose_sigma_scale_};
+  }
+
+  /// Every LiDAR pose residual at `b`, whitened as in the problem.
+  std::vector<Eigen::Matrix<double, 6, 1>> WhitenedPoseResiduals(const Blocks& b) const {
+    std::vector<Eigen::Matrix<double, 6, 1>> r(poses_.size());
+    for (size_t k = 0; k < poses_.size(); ++k) {
+      PoseResidual(k)(b.poses[k].data(), b.extrinsic.data(), b.tilt.data(), r[k].data());
+    }
+    return r;
   }
 
   void AddLidarPoses(Blocks* b, bool robust, ceres::Problem* problem) {
@@ -331,9 +339,11 @@ class Calibration {
   Eigen::Isometry3d T_world_w0_;
   const ExtrinsicCalibratorOptions& options_;
   PoseManifold manifold_;
+  /// Per pose, PoseSqrtInformation before the rescaling by pose_sigma_scale_.
+  std::vector<Eigen::Matrix<double, 6, 6>> nominal_sqrt_information_;
   Eigen::Matrix<double, 6, 6> covariance_ = Eigen::Matrix<double, 6, 6>::Zero();
-  bool covariance_ok_ = false;
   double pose_sigma_scale_ = 1.0;
+  bool covariance_ok_ = false;
   bool robust_ = false;
 };
 

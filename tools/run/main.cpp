@@ -264,9 +264,8 @@ void PrintCalibration(const swlio::estimator::WindowEstimator& window,
   std::printf(
       "{\"extrinsic_calibration\": {\"ok\": true, \"sigma_translation_m\": [%.4f, %.4f, %.4f], "
       "\"sigma_rotation_deg\": [%.3f, %.3f, %.3f], \"pose_sigma_scale\": %.2f, "
-      "\"correlation_poses\": %.1f, \"position_rms_m\": "
-      "%.4f, "
-      "\"rotation_rms_deg\": %.3f}, \"from_given_translation_m\": %.4f, "
+      "\"correlation_poses\": %.1f, \"position_rms_m\": %.4f, \"rotation_rms_deg\": %.3f}, "
+      "\"from_given_translation_m\": %.4f, "
       "\"from_given_rotation_deg\": %.3f}\n",
       sigma(0), sigma(1), sigma(2), sigma(3) * kRadToDeg, sigma(4) * kRadToDeg,
       sigma(5) * kRadToDeg, c->pose_sigma_scale, c->correlation_poses, c->position_rms_m,
