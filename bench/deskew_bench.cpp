@@ -14,7 +14,7 @@
 #include "labelled_scan.h"
 #include "sim_setup.h"
 #include "swlio/core/time.h"
-#include "swlio/estimator/deskew.h"
+#include "swlio/estimator/frontend/deskew.h"
 
 namespace {
 

@@ -12,7 +12,7 @@
 #include "labelled_scan.h"
 #include "sim_setup.h"
 #include "swlio/core/time.h"
-#include "swlio/estimator/dynamic_bootstrap.h"
+#include "swlio/estimator/init/dynamic_bootstrap.h"
 
 namespace {
 

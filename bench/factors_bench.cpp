@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "swlio/core/lie.h"
-#include "swlio/estimator/imu_factor.h"
-#include "swlio/estimator/marginalization.h"
-#include "swlio/estimator/point_to_line_factor.h"
-#include "swlio/estimator/point_to_plane_factor.h"
-#include "swlio/estimator/pose_manifold.h"
+#include "swlio/estimator/common/pose_manifold.h"
+#include "swlio/estimator/imu/imu_factor.h"
+#include "swlio/estimator/registration/point_to_line_factor.h"
+#include "swlio/estimator/registration/point_to_plane_factor.h"
+#include "swlio/estimator/window/marginalization.h"
 
 namespace {
 

@@ -9,9 +9,9 @@
 
 #include "labelled_scan.h"
 #include "sim_setup.h"
-#include "swlio/estimator/feature_extractor.h"
-#include "swlio/estimator/segmentation.h"
-#include "swlio/estimator/voxel_filter.h"
+#include "swlio/estimator/frontend/feature_extractor.h"
+#include "swlio/estimator/frontend/segmentation.h"
+#include "swlio/estimator/frontend/voxel_filter.h"
 
 namespace {
 

@@ -50,8 +50,8 @@
 
 #include "recording_replay.h"
 #include "swlio/core/time.h"
-#include "swlio/estimator/imu_rate_propagator.h"
-#include "swlio/estimator/window_estimator.h"
+#include "swlio/estimator/imu/imu_rate_propagator.h"
+#include "swlio/estimator/window/window_estimator.h"
 
 namespace {
 

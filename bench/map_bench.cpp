@@ -19,8 +19,8 @@
 
 #include "labelled_scan.h"
 #include "sim_setup.h"
-#include "swlio/estimator/front_end.h"
-#include "swlio/estimator/voxel_map.h"
+#include "swlio/estimator/frontend/front_end.h"
+#include "swlio/estimator/registration/voxel_map.h"
 
 namespace {
 

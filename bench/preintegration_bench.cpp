@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
-#include "swlio/estimator/imu_residual.h"
-#include "swlio/estimator/preintegration.h"
+#include "swlio/estimator/imu/imu_residual.h"
+#include "swlio/estimator/imu/preintegration.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "swlio/core/time.h"
-#include "swlio/estimator/map_pcd.h"
+#include "swlio/estimator/map/map_pcd.h"
 
 namespace swlio::daemon {
 

@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "swlio/core/time.h"
-#include "swlio/estimator/map_pcd.h"
+#include "swlio/estimator/map/map_pcd.h"
 #include "swlio/ipc/point_cloud.h"
 
 namespace swlio::daemon {

@@ -8,7 +8,7 @@
 
 #include "swlio/core/time.h"
 #include "swlio/daemon/thread_setup.h"
-#include "swlio/estimator/saved_map.h"
+#include "swlio/estimator/map/saved_map.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
 

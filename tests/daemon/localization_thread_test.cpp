@@ -13,7 +13,7 @@
 #include "box_yard.h"
 #include "box_yard_map.h"
 #include "swlio/daemon/health.h"
-#include "swlio/estimator/keyframe_descriptor.h"
+#include "swlio/estimator/loop/keyframe_descriptor.h"
 
 namespace swlio::daemon {
 namespace {

@@ -1,6 +1,6 @@
 // CorrectionSlew: a new map correction reaches the output at a bounded rate, measured at the
 // robot (not at the map origin), and is followed to the end.
-#include "swlio/estimator/correction_slew.h"
+#include "swlio/estimator/loop/correction_slew.h"
 
 #include <gtest/gtest.h>
 

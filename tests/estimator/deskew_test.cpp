@@ -1,7 +1,7 @@
 // De-skew on simulated sweeps at 1.5 m/s and up to 60 °/s: with the poses at each point's own
 // time, the points land on the true surfaces; without de-skew they do not.
 
-#include "swlio/estimator/deskew.h"
+#include "swlio/estimator/frontend/deskew.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include "sim_imu_util.h"
 #include "sim_setup.h"
 #include "swlio/core/time.h"
-#include "swlio/estimator/imu_propagator.h"
+#include "swlio/estimator/imu/imu_propagator.h"
 
 namespace swlio::estimator {
 namespace {

@@ -1,7 +1,7 @@
 // DivergenceMonitor: each check trips on its own bound, the sweep counts need that many sweeps
 // in a row, and a believable state never trips.
 
-#include "swlio/estimator/divergence_monitor.h"
+#include "swlio/estimator/window/divergence_monitor.h"
 
 #include <gtest/gtest.h>
 

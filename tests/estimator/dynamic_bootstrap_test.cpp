@@ -3,7 +3,7 @@
 // bootstrap must become ready within 3 s of data with the gravity direction, the velocity and the
 // gyro bias of the truth; standing still it must never report a wrong answer.
 
-#include "swlio/estimator/dynamic_bootstrap.h"
+#include "swlio/estimator/init/dynamic_bootstrap.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // drive on flat ground. IMU at 400 Hz from the simulator (noise, biases); LiDAR-odometry poses
 // at 10 Hz from the true trajectory, moved into an arbitrary tilted frame w0, with noise.
 
-#include "swlio/estimator/dynamic_initializer.h"
+#include "swlio/estimator/init/dynamic_initializer.h"
 
 #include <gtest/gtest.h>
 

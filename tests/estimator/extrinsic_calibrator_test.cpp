@@ -3,7 +3,7 @@
 // at 10 Hz from the true trajectory in a tilted odometry world, with noise; the guess 2° and
 // 5 cm off the truth (the start).
 
-#include "swlio/estimator/extrinsic_calibrator.h"
+#include "swlio/estimator/calibration/extrinsic_calibrator.h"
 
 #include <gtest/gtest.h>
 

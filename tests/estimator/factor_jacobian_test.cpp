@@ -13,11 +13,11 @@
 #include "sim_imu_util.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
-#include "swlio/estimator/imu_factor.h"
-#include "swlio/estimator/imu_residual.h"
-#include "swlio/estimator/point_to_line_factor.h"
-#include "swlio/estimator/point_to_plane_factor.h"
-#include "swlio/estimator/pose_manifold.h"
+#include "swlio/estimator/common/pose_manifold.h"
+#include "swlio/estimator/imu/imu_factor.h"
+#include "swlio/estimator/imu/imu_residual.h"
+#include "swlio/estimator/registration/point_to_line_factor.h"
+#include "swlio/estimator/registration/point_to_plane_factor.h"
 
 namespace swlio::estimator {
 namespace {

@@ -1,5 +1,5 @@
 // LOAM features (paper §4) on simulated sweeps, checked statistically against the true classes.
-#include "swlio/estimator/feature_extractor.h"
+#include "swlio/estimator/frontend/feature_extractor.h"
 
 #include <gtest/gtest.h>
 

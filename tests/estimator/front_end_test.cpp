@@ -1,5 +1,5 @@
 // The front-end façade: the same as calling its stages by hand, in order.
-#include "swlio/estimator/front_end.h"
+#include "swlio/estimator/frontend/front_end.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // GNSS position factor (gnss_factor.h) and the map-to-ENU alignment fit (gnss_associator.h).
 
-#include "swlio/estimator/gnss_factor.h"
+#include "swlio/estimator/gnss/gnss_factor.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 
 #include "jacobian_check.h"
 #include "swlio/core/lie.h"
-#include "swlio/estimator/gnss_associator.h"
+#include "swlio/estimator/gnss/gnss_associator.h"
 
 namespace swlio::estimator {
 namespace {

@@ -10,8 +10,8 @@
 #include "swlio/core/geodetic.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
-#include "swlio/estimator/gnss_associator.h"
-#include "swlio/estimator/loop_closure.h"
+#include "swlio/estimator/gnss/gnss_associator.h"
+#include "swlio/estimator/loop/loop_closure.h"
 
 namespace swlio::estimator {
 namespace {

@@ -1,7 +1,7 @@
 // GravityTiltImuFactor: the ImuFactor in a map frame tilted against gravity by an estimated
 // rotation Q = Exp([θx, θy, 0]).
 
-#include "swlio/estimator/gravity_tilt_imu_factor.h"
+#include "swlio/estimator/imu/gravity_tilt_imu_factor.h"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@
 #include "sim_imu_util.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
-#include "swlio/estimator/imu_residual.h"
-#include "swlio/estimator/pose_manifold.h"
+#include "swlio/estimator/common/pose_manifold.h"
+#include "swlio/estimator/imu/imu_residual.h"
 
 namespace swlio::estimator {
 namespace {

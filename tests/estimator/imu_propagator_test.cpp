@@ -1,7 +1,7 @@
 // ImuPropagator against closed-form motions: a level turn on a circle at constant speed, and a
 // straight constant acceleration; plus bias handling and the recorded pose track.
 
-#include "swlio/estimator/imu_propagator.h"
+#include "swlio/estimator/imu/imu_propagator.h"
 
 #include <gtest/gtest.h>
 

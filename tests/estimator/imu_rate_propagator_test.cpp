@@ -2,7 +2,7 @@
 // (the same step function, so equal to the last bit), exact re-propagation after a corrected
 // state, the drop counters, and no heap allocation per sample or state.
 
-#include "swlio/estimator/imu_rate_propagator.h"
+#include "swlio/estimator/imu/imu_rate_propagator.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include "allocation_counter.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
-#include "swlio/estimator/imu_propagator.h"
+#include "swlio/estimator/imu/imu_propagator.h"
 
 namespace swlio::estimator {
 namespace {

@@ -1,7 +1,7 @@
 // The first state's covariance keeps the accelerometer's reading of gravity certain while the
 // tilt is only as certain as the accelerometer bias.
 
-#include "swlio/estimator/initial_prior.h"
+#include "swlio/estimator/init/initial_prior.h"
 
 #include <gtest/gtest.h>
 

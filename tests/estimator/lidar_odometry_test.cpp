@@ -1,7 +1,7 @@
 // LidarOdometry's contract around initialization and configuration; its accuracy on simulated
 // drives is tested end to end through swlio-run (tests/tools/run_command_test.cpp).
 
-#include "swlio/estimator/lidar_odometry.h"
+#include "swlio/estimator/registration/lidar_odometry.h"
 
 #include <gtest/gtest.h>
 

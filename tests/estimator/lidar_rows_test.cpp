@@ -1,4 +1,4 @@
-#include "swlio/estimator/lidar_rows.h"
+#include "swlio/estimator/registration/lidar_rows.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // clouds cut from it around the true pose, odometry poses that drift. Checks that the drifted
 // loop is found and corrected, that each accepted loop edge agrees with the truth, and that
 // the verifier refuses a wrong place and a corridor.
-#include "swlio/estimator/loop_closure.h"
+#include "swlio/estimator/loop/loop_closure.h"
 
 #include <gtest/gtest.h>
 

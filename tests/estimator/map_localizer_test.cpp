@@ -3,7 +3,7 @@
 // seen from the true poses. Checks relocalization without any guess, its accuracy, that a map
 // of another place never localizes, that tracking survives a changed scene, and that a lost
 // pose is found again.
-#include "swlio/estimator/map_localizer.h"
+#include "swlio/estimator/map/map_localizer.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 
 #include "box_yard.h"
 #include "box_yard_map.h"
-#include "swlio/estimator/keyframe_descriptor.h"
+#include "swlio/estimator/loop/keyframe_descriptor.h"
 
 namespace swlio::estimator {
 namespace {

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "ceres_test_util.h"
-#include "swlio/estimator/marginalization.h"
+#include "swlio/estimator/window/marginalization.h"
 
 namespace swlio::estimator {
 namespace {

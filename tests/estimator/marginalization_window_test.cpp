@@ -11,9 +11,9 @@
 #include "ceres_test_util.h"
 #include "jacobian_check.h"
 #include "swlio/core/lie.h"
-#include "swlio/estimator/imu_factor.h"
-#include "swlio/estimator/marginalization.h"
-#include "swlio/estimator/pose_manifold.h"
+#include "swlio/estimator/common/pose_manifold.h"
+#include "swlio/estimator/imu/imu_factor.h"
+#include "swlio/estimator/window/marginalization.h"
 #include "window_scenario.h"
 
 namespace swlio::estimator {

@@ -1,11 +1,11 @@
-#include "swlio/estimator/neighbour_cache.h"
+#include "swlio/estimator/registration/neighbour_cache.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "swlio/core/lie.h"
-#include "swlio/estimator/scan_matcher.h"
+#include "swlio/estimator/registration/scan_matcher.h"
 
 namespace swlio::estimator {
 namespace {

@@ -1,6 +1,6 @@
 // Pose graph (issue 8): the relative-pose factor's residual and analytic Jacobians, and a
 // drifted loop pulled back onto the truth by one loop edge.
-#include "swlio/estimator/pose_graph.h"
+#include "swlio/estimator/loop/pose_graph.h"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 
 #include "jacobian_check.h"
 #include "swlio/core/lie.h"
-#include "swlio/estimator/pose_manifold.h"
-#include "swlio/estimator/relative_pose_factor.h"
+#include "swlio/estimator/common/pose_manifold.h"
+#include "swlio/estimator/loop/relative_pose_factor.h"
 
 namespace swlio::estimator {
 namespace {

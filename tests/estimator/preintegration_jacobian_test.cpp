@@ -9,8 +9,8 @@
 #include "sim_imu_util.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
-#include "swlio/estimator/imu_residual.h"
-#include "swlio/estimator/preintegration.h"
+#include "swlio/estimator/imu/imu_residual.h"
+#include "swlio/estimator/imu/preintegration.h"
 
 namespace swlio::estimator {
 namespace {

@@ -1,7 +1,7 @@
 // Pre-integration against the simulator's true motion, direct integration, its own noise
 // model and central differences.
 
-#include "swlio/estimator/preintegration.h"
+#include "swlio/estimator/imu/preintegration.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include "sim_imu_util.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
-#include "swlio/estimator/imu_factor.h"
-#include "swlio/estimator/imu_residual.h"
+#include "swlio/estimator/imu/imu_factor.h"
+#include "swlio/estimator/imu/imu_residual.h"
 
 namespace swlio::estimator {
 namespace {

@@ -1,5 +1,5 @@
 // Range image projection: columns from azimuth, rejects, collisions.
-#include "swlio/estimator/range_image.h"
+#include "swlio/estimator/frontend/range_image.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Saved map format (saved_map.h, estimator/map-format.md): round trip, the documented layout, and
 // a clear refusal of every malformation; the merged PCD for viewers (map_pcd.h).
-#include "swlio/estimator/saved_map.h"
+#include "swlio/estimator/map/saved_map.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -17,7 +17,7 @@
 #include <random>
 #include <sstream>
 
-#include "swlio/estimator/map_pcd.h"
+#include "swlio/estimator/map/map_pcd.h"
 
 namespace swlio::estimator {
 namespace {

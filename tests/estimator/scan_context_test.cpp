@@ -1,6 +1,6 @@
 // Scan Context descriptor (Kim & Kim, IROS 2018): binning, yaw convention, distances, ring
 // key, gravity alignment, database search and config validation.
-#include "swlio/estimator/scan_context.h"
+#include "swlio/estimator/loop/scan_context.h"
 
 #include <gtest/gtest.h>
 

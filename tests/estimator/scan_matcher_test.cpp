@@ -1,4 +1,4 @@
-#include "swlio/estimator/scan_matcher.h"
+#include "swlio/estimator/registration/scan_matcher.h"
 
 #include <gtest/gtest.h>
 

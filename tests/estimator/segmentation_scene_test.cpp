@@ -5,7 +5,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "swlio/estimator/segmentation.h"
+#include "swlio/estimator/frontend/segmentation.h"
 #include "synthetic_scan.h"
 
 namespace swlio::estimator {

@@ -1,5 +1,5 @@
 // Segmentation (paper §4.1) against the simulator's true surface classes.
-#include "swlio/estimator/segmentation.h"
+#include "swlio/estimator/frontend/segmentation.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Standstill detection and the zero-velocity factor (standstill.h): what counts as rest, the
 // factor's Jacobian, and a window at rest where the LiDAR sees too little to hold the pose.
 
-#include "swlio/estimator/standstill.h"
+#include "swlio/estimator/window/standstill.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include "jacobian_check.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
-#include "swlio/estimator/window_estimator.h"
+#include "swlio/estimator/window/window_estimator.h"
 #include "synthetic_scan.h"
 #include "wall_sweep.h"
 

@@ -1,7 +1,7 @@
 // The reported covariance's frames: the optimizer's body-frame rotation tangent becomes
 // rotation about the world axes, and the velocity covariance in the IMU frame follows v_imu.
 
-#include "swlio/estimator/state_covariance.h"
+#include "swlio/estimator/window/state_covariance.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Static initialization on the simulator's standing starts (every route stands 2 s first).
 
-#include "swlio/estimator/static_initializer.h"
+#include "swlio/estimator/init/static_initializer.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Voxel filter of paper eqs. (14)–(16) and its fixed-cell variant.
-#include "swlio/estimator/voxel_filter.h"
+#include "swlio/estimator/frontend/voxel_filter.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <numeric>
 #include <random>
 
-#include "swlio/estimator/feature_extractor.h"
+#include "swlio/estimator/frontend/feature_extractor.h"
 
 namespace swlio::estimator {
 namespace {

@@ -1,4 +1,4 @@
-#include "swlio/estimator/voxel_map.h"
+#include "swlio/estimator/registration/voxel_map.h"
 
 #include <gtest/gtest.h>
 

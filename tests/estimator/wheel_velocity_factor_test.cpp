@@ -1,7 +1,7 @@
 // Wheel-odometry velocity factor (wheel_velocity_factor.h): residual at a known state, analytic
 // Jacobians against central differences, refusal of bad input.
 
-#include "swlio/estimator/wheel_velocity_factor.h"
+#include "swlio/estimator/wheel/wheel_velocity_factor.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // configuration. Its accuracy on simulated drives is tested end to end through swlio-run
 // (tests/tools/run_command_test.cpp).
 
-#include "swlio/estimator/window_estimator.h"
+#include "swlio/estimator/window/window_estimator.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <random>
 
 #include "swlio/core/time.h"
-#include "swlio/estimator/gravity_tilt_imu_factor.h"
+#include "swlio/estimator/imu/gravity_tilt_imu_factor.h"
 #include "wall_sweep.h"
 
 namespace swlio::estimator {

@@ -22,7 +22,7 @@
 #include <sstream>
 #include <string>
 
-#include "swlio/estimator/saved_map.h"
+#include "swlio/estimator/map/saved_map.h"
 
 namespace {
 

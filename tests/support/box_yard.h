@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "swlio/core/lie.h"
-#include "swlio/estimator/keyframe_cloud.h"
+#include "swlio/estimator/common/keyframe_cloud.h"
 
 namespace swlio::test {
 

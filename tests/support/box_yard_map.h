@@ -5,8 +5,8 @@
 /// k × `t_step_ns` (the localization and map tests).
 
 #include "box_yard.h"
-#include "swlio/estimator/keyframe_descriptor.h"
-#include "swlio/estimator/saved_map.h"
+#include "swlio/estimator/loop/keyframe_descriptor.h"
+#include "swlio/estimator/map/saved_map.h"
 
 namespace swlio::test {
 

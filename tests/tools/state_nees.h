@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "swlio/core/lie.h"
-#include "swlio/estimator/state_covariance.h"
+#include "swlio/estimator/window/state_covariance.h"
 #include "swlio/eval/trajectory.h"
 
 namespace swlio::test {

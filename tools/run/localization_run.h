@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// swlio-run's localization in a saved map (`--map FILE --localize`): every keyframe of the
-/// odometry goes through MapLocalizer (estimator/map_localizer.h); a sweep is written to the
+/// odometry goes through MapLocalizer (estimator/map/map_localizer.h); a sweep is written to the
 /// trajectory (in the map's frame) once the pose is localized, with the correction known at
 /// its time. The summary tells when it was localized, counted from the recording's start.
 
@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "swlio/core/types.h"
-#include "swlio/estimator/map_localizer.h"
-#include "swlio/estimator/stage_timer.h"
+#include "swlio/estimator/common/stage_timer.h"
+#include "swlio/estimator/map/map_localizer.h"
 
 namespace swlio::tools {
 

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// swlio-run's loop closure (`--loop-closure on`): every tracked sweep's pose goes through
-/// LoopClosure (estimator/loop_closure.h), keyframes become graph nodes, and the trajectory is
+/// LoopClosure (estimator/loop/loop_closure.h), keyframes become graph nodes, and the trajectory is
 /// written twice: as it would have been published (each sweep with the correction known at
 /// its time: `--out`) and after the run with the final graph (`--out-optimized`; its nodes alone:
 /// `--out-path`). The loop attempts can be written as CSV (`--loops`). With GNSS (`--gnss on`) the
@@ -15,9 +15,9 @@
 
 #include "swlio/core/types.h"
 #include "swlio/daemon/time_scale.h"
-#include "swlio/estimator/loop_closure.h"
-#include "swlio/estimator/map_pcd.h"
-#include "swlio/estimator/stage_timer.h"
+#include "swlio/estimator/common/stage_timer.h"
+#include "swlio/estimator/loop/loop_closure.h"
+#include "swlio/estimator/map/map_pcd.h"
 
 namespace swlio::tools {
 

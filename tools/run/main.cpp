@@ -24,8 +24,8 @@
 #include "swlio/daemon/recording_reader.h"
 #include "swlio/daemon/tum_output.h"
 #include "swlio/daemon/watchdog.h"
-#include "swlio/estimator/lidar_odometry.h"
-#include "swlio/estimator/window_estimator.h"
+#include "swlio/estimator/registration/lidar_odometry.h"
+#include "swlio/estimator/window/window_estimator.h"
 
 namespace {
 

@@ -11,10 +11,10 @@
 #include "swlio/drivers/can_config.h"
 #include "swlio/drivers/imu_config.h"
 #include "swlio/drivers/lidar_config.h"
-#include "swlio/estimator/estimator_config.h"
-#include "swlio/estimator/localization_config.h"
-#include "swlio/estimator/loop_closure_config.h"
-#include "swlio/estimator/window_estimator_config.h"
+#include "swlio/estimator/common/estimator_config.h"
+#include "swlio/estimator/loop/loop_closure_config.h"
+#include "swlio/estimator/map/localization_config.h"
+#include "swlio/estimator/window/window_estimator_config.h"
 #include "swlio/ipc/ipc_config.h"
 
 namespace swlio::daemon {

@@ -18,8 +18,8 @@
 
 #include "swlio/core/config_issue.h"
 #include "swlio/core/types.h"
-#include "swlio/estimator/lidar_odometry.h"
-#include "swlio/estimator/window_estimator.h"
+#include "swlio/estimator/registration/lidar_odometry.h"
+#include "swlio/estimator/window/window_estimator.h"
 
 namespace swlio::daemon {
 

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "swlio/core/types.h"
-#include "swlio/estimator/keyframe_cloud.h"
-#include "swlio/estimator/lidar_odometry.h"
-#include "swlio/estimator/state_covariance.h"
+#include "swlio/estimator/common/keyframe_cloud.h"
+#include "swlio/estimator/registration/lidar_odometry.h"
+#include "swlio/estimator/window/state_covariance.h"
 #include "swlio/ipc/messages.h"
 
 namespace swlio::daemon {
@@ -51,7 +51,7 @@ struct SweepEstimate {
 using KeyframePtr = std::shared_ptr<const estimator::KeyframeCloud>;
 
 /// A new map correction from the loop-closure thread to the publisher, which follows it at a
-/// bounded rate (estimator/correction_slew.h).
+/// bounded rate (estimator/loop/correction_slew.h).
 struct MapCorrection {
   int64_t t_ns = 0;  ///< sweep end of the keyframe whose loop produced it (daemon time)
   Eigen::Isometry3d T_map_odom = Eigen::Isometry3d::Identity();

@@ -2,7 +2,7 @@
 /// @file
 /// The localization thread (issue 8; `swliod --map FILE --localize`): in place of the
 /// loop-closure thread, it takes the optimizer's keyframes, runs MapLocalizer
-/// (estimator/map_localizer.h: relocalization from place descriptors, then tracking against
+/// (estimator/map/map_localizer.h: relocalization from place descriptors, then tracking against
 /// the fixed map) and hands every new T_map_odom to the publisher. The first one jumps (the
 /// publisher holds every pose until then); later ones, a relocalization after the pose was
 /// lost included, are followed at the bounded rate (the planner never sees a teleport once it
@@ -16,7 +16,7 @@
 #include "swlio/daemon/loop_closure_thread.h"
 #include "swlio/daemon/spsc_queue.h"
 #include "swlio/daemon/watchdog.h"
-#include "swlio/estimator/map_localizer.h"
+#include "swlio/estimator/map/map_localizer.h"
 
 namespace swlio::daemon {
 

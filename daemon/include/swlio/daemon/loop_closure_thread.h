@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The loop-closure thread (design.md; issue 8): takes the optimizer's keyframes, runs
-/// LoopClosure (estimator/loop_closure.h: graph nodes, candidate verification, pose-graph
+/// LoopClosure (estimator/loop/loop_closure.h: graph nodes, candidate verification, pose-graph
 /// solves) and hands every new map correction to the publisher, which follows it at a bounded
 /// rate. It never blocks the optimizer or the IMU-rate output: they share only queues, and a
 /// keyframe that finds the queue full is dropped and counted (the graph then has a longer
@@ -19,7 +19,7 @@
 #include "swlio/daemon/map_publisher.h"
 #include "swlio/daemon/spsc_queue.h"
 #include "swlio/daemon/watchdog.h"
-#include "swlio/estimator/loop_closure.h"
+#include "swlio/estimator/loop/loop_closure.h"
 
 namespace swlio::daemon {
 

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "swlio/daemon/watchdog.h"
-#include "swlio/estimator/saved_map.h"
+#include "swlio/estimator/map/saved_map.h"
 #include "swlio/ipc/messages.h"
 #include "swlio/ipc/publisher.h"
 

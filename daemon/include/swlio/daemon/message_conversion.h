@@ -11,7 +11,7 @@
 #include <string>
 
 #include "swlio/core/types.h"
-#include "swlio/estimator/state_covariance.h"
+#include "swlio/estimator/window/state_covariance.h"
 #include "swlio/ipc/messages.h"
 
 namespace swlio::daemon {

@@ -18,7 +18,7 @@
 #include "swlio/daemon/spsc_queue.h"
 #include "swlio/daemon/time_scale.h"
 #include "swlio/daemon/watchdog.h"
-#include "swlio/estimator/imu_rate_propagator.h"
+#include "swlio/estimator/imu/imu_rate_propagator.h"
 
 namespace swlio::daemon {
 

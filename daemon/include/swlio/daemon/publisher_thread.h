@@ -24,7 +24,7 @@
 #include "swlio/daemon/spsc_queue.h"
 #include "swlio/daemon/time_scale.h"
 #include "swlio/daemon/watchdog.h"
-#include "swlio/estimator/correction_slew.h"
+#include "swlio/estimator/loop/correction_slew.h"
 #include "swlio/ipc/publisher.h"
 
 namespace swlio::daemon {

@@ -1,0 +1,152 @@
+#pragma once
+/// @file
+/// IMU pre-integration on the manifold between two times (Forster, Carlone, Dellaert,
+/// Scaramuzza, "On-Manifold Preintegration for Real-Time Visual-Inertial Odometry", IEEE TRO
+/// 2017; equation numbers below refer to that paper).
+///
+/// Relative motion terms (§V-A), expressed in the IMU frame at the interval start i:
+///   ΔR_ij = Π_k Exp((ω̃_k − b_g) Δt)
+///   Δv_ij = Σ_k ΔR_ik (ã_k − b_a) Δt
+///   Δp_ij = Σ_k [Δv_ik Δt + ½ ΔR_ik (ã_k − b_a) Δt²]
+/// They depend only on the measurements and the linearization bias b̄ = (b̄_g, b̄_a).
+///
+/// Integration scheme (stated once): MIDPOINT. Between two consecutive samples k, k+1 the
+/// measurements are averaged, ω̄ = ½(ω̃_k + ω̃_{k+1}), ā = ½(ã_k + ã_{k+1}) (the rate and
+/// specific force at the step's middle time), and the specific force is rotated with the
+/// attitude at the step's middle, ΔR_mid = ΔR_ik Exp(½ θ_k), θ_k = (ω̄ − b_g) Δt. This is
+/// second-order accurate, where the sums above (forward Euler with ΔR_ik) are first order;
+/// the noise and bias Jacobian recursions (derived in preintegration.cpp) are the exact
+/// linearization of this scheme, checked against central differences in the tests.
+///
+/// Error state (9): [δφ; δv; δp] with ΔR̃ = ΔR Exp(δφ), Δṽ = Δv + δv, Δp̃ = Δp + δp (§V-B).
+/// Bias Jacobian J (9×6): rows [φ; v; p], columns [b_g; b_a]; first-order bias update (eq. (44)):
+///   ΔR(b) = ΔR(b̄) Exp(J_R_bg δb_g),  Δv(b) = Δv(b̄) + J_v_bg δb_g + J_v_ba δb_a,
+///   Δp(b) = Δp(b̄) + J_p_bg δb_g + J_p_ba δb_a.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "swlio/core/types.h"
+#include "swlio/estimator/common/estimator_config.h"
+
+namespace swlio::estimator {
+
+using Mat9 = Eigen::Matrix<double, 9, 9>;
+using Mat96 = Eigen::Matrix<double, 9, 6>;
+using Vec9 = Eigen::Matrix<double, 9, 1>;
+
+/// Rows of the 9-dimensional error state and of the residual.
+inline constexpr int kRowR = 0;
+inline constexpr int kRowV = 3;
+inline constexpr int kRowP = 6;
+/// Columns of the bias Jacobian.
+inline constexpr int kColBg = 0;
+inline constexpr int kColBa = 3;
+
+/// Pre-integrated measurement between t_start_ns and t_end_ns.
+struct PreintegratedImu {
+  int64_t t_start_ns = 0;
+  int64_t t_end_ns = 0;
+  double dt_s = 0.0;  ///< Δt_ij
+  Eigen::Matrix3d delta_R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d delta_v = Eigen::Vector3d::Zero();
+  Eigen::Vector3d delta_p = Eigen::Vector3d::Zero();
+  Mat9 covariance = Mat9::Zero();  ///< of [δφ; δv; δp], from the measurement white noise
+  Mat96 jacobian_bias = Mat96::Zero();
+  Eigen::Vector3d bias_gyro_lin = Eigen::Vector3d::Zero();  ///< b̄_g used to integrate
+  Eigen::Vector3d bias_acc_lin = Eigen::Vector3d::Zero();   ///< b̄_a used to integrate
+
+  Eigen::Matrix3d J_R_bg() const { return jacobian_bias.block<3, 3>(kRowR, kColBg); }
+  Eigen::Matrix3d J_v_bg() const { return jacobian_bias.block<3, 3>(kRowV, kColBg); }
+  Eigen::Matrix3d J_v_ba() const { return jacobian_bias.block<3, 3>(kRowV, kColBa); }
+  Eigen::Matrix3d J_p_bg() const { return jacobian_bias.block<3, 3>(kRowP, kColBg); }
+  Eigen::Matrix3d J_p_ba() const { return jacobian_bias.block<3, 3>(kRowP, kColBa); }
+};
+
+/// The three relative-motion terms after a first-order bias update.
+struct CorrectedDeltas {
+  Eigen::Matrix3d delta_R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d delta_v = Eigen::Vector3d::Zero();
+  Eigen::Vector3d delta_p = Eigen::Vector3d::Zero();
+};
+
+/// First-order bias update, eq. (44): the terms for the biases (bias_gyro, bias_acc) without
+/// re-integration.
+CorrectedDeltas Corrected(const PreintegratedImu& pim,
+                          const Eigen::Vector3d& bias_gyro,
+                          const Eigen::Vector3d& bias_acc);
+
+/// Covariance (6×6, [b_g; b_a]) of the bias random walk over the interval (Forster §V, bias model):
+/// diag(σ_bg² Δt I, σ_ba² Δt I) with σ the continuous random-walk densities.
+Eigen::Matrix<double, 6, 6> BiasWalkCovariance(const ImuNoiseConfig& noise, double dt_s);
+
+enum class PreintegrationStatus {
+  kOk,
+  kNotCovered,    ///< the samples do not span [t_start_ns, t_end_ns]
+  kBadInterval,   ///< t_end_ns < t_start_ns
+  kUnsortedTime,  ///< sample times go backwards
+};
+
+/// Accumulates samples into a PreintegratedImu. Not thread-safe; cheap to copy.
+class Preintegrator {
+ public:
+  struct Options {
+    /// Re-integrate (rather than correct to first order) when |δb_g| exceeds this (rad/s)…
+    double reintegrate_gyro_bias_radps = 0.01;
+    /// …or |δb_a| exceeds this (m/s²).
+    double reintegrate_acc_bias_mps2 = 0.2;
+    /// Keep the integrated samples so that Reintegrate() works (costs a copy).
+    bool keep_samples = true;
+  };
+
+  Preintegrator(const ImuNoiseConfig& noise,
+                const Eigen::Vector3d& bias_gyro,
+                const Eigen::Vector3d& bias_acc);
+  Preintegrator(const ImuNoiseConfig& noise,
+                const Eigen::Vector3d& bias_gyro,
+                const Eigen::Vector3d& bias_acc,
+                const Options& options);
+
+  /// Starts an empty interval at t_ns with new linearization biases.
+  void Reset(int64_t t_ns, const Eigen::Vector3d& bias_gyro, const Eigen::Vector3d& bias_acc);
+
+  /// Integrates one midpoint step from sample a to sample b (b.t_ns ≥ a.t_ns; a.t_ns should be
+  /// the current end of the interval). Streaming use: call with consecutive samples.
+  void IntegrateStep(const ImuSample& a, const ImuSample& b);
+
+  /// Resets at t_start_ns and integrates `samples` (sorted by time) over [t_start, t_end]. The
+  /// samples must bracket both bounds; the first and last are replaced by samples linearly
+  /// interpolated to t_start_ns and t_end_ns.
+  PreintegrationStatus Integrate(std::span<const ImuSample> samples,
+                                 int64_t t_start_ns,
+                                 int64_t t_end_ns);
+
+  /// True when the bias change from the linearization point is too large for eq. (44).
+  bool NeedsReintegration(const Eigen::Vector3d& bias_gyro, const Eigen::Vector3d& bias_acc) const;
+
+  /// Integrates the kept samples again with new biases (requires Options::keep_samples; works
+  /// after Integrate() and after streaming IntegrateStep() calls).
+  void Reintegrate(const Eigen::Vector3d& bias_gyro, const Eigen::Vector3d& bias_acc);
+
+  /// The terms for new biases: first-order correction, or re-integration if the change is
+  /// large (NeedsReintegration), in which case the stored result is replaced.
+  CorrectedDeltas UpdateBias(const Eigen::Vector3d& bias_gyro, const Eigen::Vector3d& bias_acc);
+
+  const PreintegratedImu& result() const { return pim_; }
+  const ImuNoiseConfig& noise() const { return noise_; }
+
+ private:
+  void Propagate(const ImuSample& a, const ImuSample& b);  ///< the maths of one step
+
+  ImuNoiseConfig noise_;
+  Options options_;
+  PreintegratedImu pim_;
+  std::vector<ImuSample> samples_;  ///< bounds-interpolated samples of the interval
+};
+
+/// Linear interpolation of two samples at t_ns (a.t_ns ≤ t_ns ≤ b.t_ns; a if they coincide).
+ImuSample InterpolateSample(const ImuSample& a, const ImuSample& b, int64_t t_ns);
+
+}  // namespace swlio::estimator
