@@ -26,8 +26,8 @@
 #include "imu_sim.h"
 #include "sim_live.h"
 #include "sim_setup.h"
-#include "swlio/daemon/config_loader.h"
-#include "swlio/daemon/runtime.h"
+#include "swlio/daemon/config/config_loader.h"
+#include "swlio/daemon/runtime/runtime.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/subscriber.h"
 

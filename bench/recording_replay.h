@@ -20,8 +20,8 @@
 #include "sim_recording.h"
 #include "sim_setup.h"
 #include "swlio/core/types.h"
-#include "swlio/daemon/daemon_config.h"
-#include "swlio/daemon/recording_reader.h"
+#include "swlio/daemon/config/daemon_config.h"
+#include "swlio/daemon/recording/recording_reader.h"
 
 namespace swlio::bench {
 

@@ -24,7 +24,7 @@ if(_swlio_san)
     add_compile_options(-Wno-maybe-uninitialized)
     if(SWLIO_SANITIZE STREQUAL "thread")
       # GCC warns that TSan does not model std::atomic_thread_fence, which Debian's
-      # readerwriterqueue (the daemon's SPSC queues) uses; daemon/include/swlio/daemon/
+      # readerwriterqueue (the daemon's SPSC queues) uses; daemon/include/swlio/daemon/pipeline/
       # spsc_queue.h gives TSan the queue's happens-before edges as annotations instead.
       add_compile_options(-Wno-tsan)
     endif()

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "swlio/daemon/config_files.h"
-#include "swlio/daemon/config_loader.h"
-#include "swlio/daemon/daemon_main.h"
-#include "swlio/daemon/logging.h"
+#include "swlio/daemon/config/config_files.h"
+#include "swlio/daemon/config/config_loader.h"
+#include "swlio/daemon/runtime/daemon_main.h"
+#include "swlio/daemon/runtime/logging.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <regex>
 #include <sstream>
 
-#include "swlio/daemon/config_loader.h"
+#include "swlio/daemon/config/config_loader.h"
 #include "test_data.h"
 
 namespace swlio::daemon {

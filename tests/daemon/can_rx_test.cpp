@@ -2,7 +2,7 @@
 // odometry decoded (and sent to the optimizer), bad records counted, and the recorder writes
 // them in candump format.
 
-#include "swlio/daemon/can_rx.h"
+#include "swlio/daemon/sensors/can_rx.h"
 
 #include <gtest/gtest.h>
 #include <sys/socket.h>
@@ -12,7 +12,7 @@
 #include <fstream>
 #include <thread>
 
-#include "swlio/daemon/recorder.h"
+#include "swlio/daemon/recording/recorder.h"
 #include "swlio/drivers/candump_log.h"
 #include "test_data.h"
 

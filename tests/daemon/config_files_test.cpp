@@ -1,10 +1,10 @@
-#include "swlio/daemon/config_files.h"
+#include "swlio/daemon/config/config_files.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 
-#include "swlio/daemon/config_loader.h"
+#include "swlio/daemon/config/config_loader.h"
 #include "test_data.h"
 
 namespace swlio::daemon {

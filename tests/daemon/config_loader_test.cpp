@@ -1,4 +1,4 @@
-#include "swlio/daemon/config_loader.h"
+#include "swlio/daemon/config/config_loader.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

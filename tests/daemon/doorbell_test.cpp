@@ -1,13 +1,13 @@
 // Doorbell: a consumer with several input queues wakes for whichever gets data first, and one
 // wake-up serves every ring before it.
 
-#include "swlio/daemon/doorbell.h"
+#include "swlio/daemon/pipeline/doorbell.h"
 
 #include <gtest/gtest.h>
 
 #include <thread>
 
-#include "swlio/daemon/spsc_queue.h"
+#include "swlio/daemon/pipeline/spsc_queue.h"
 
 namespace swlio::daemon {
 namespace {

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "shared_sim_recording.h"
-#include "swlio/daemon/daemon_config.h"
-#include "swlio/daemon/estimator_runner.h"
-#include "swlio/daemon/recording_reader.h"
+#include "swlio/daemon/config/daemon_config.h"
+#include "swlio/daemon/pipeline/estimator_runner.h"
+#include "swlio/daemon/recording/recording_reader.h"
 #include "test_data.h"
 
 namespace swlio::daemon {

@@ -1,13 +1,13 @@
 // EstimatorRunner's sync rule: a sweep is processed once an IMU sample past its end has arrived
 // — at once when one already has, else with that sample — in order, and never twice.
 
-#include "swlio/daemon/estimator_runner.h"
+#include "swlio/daemon/pipeline/estimator_runner.h"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "swlio/daemon/daemon_config.h"
+#include "swlio/daemon/config/daemon_config.h"
 
 namespace swlio::daemon {
 namespace {

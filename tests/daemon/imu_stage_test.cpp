@@ -1,6 +1,6 @@
 // ImuStage: SampleTimeFine → host time through the clock model, drops counted by cause.
 
-#include "swlio/daemon/imu_stage.h"
+#include "swlio/daemon/sensors/imu_stage.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // LidarStage: RS16 datagrams with host receive times → sweeps on the host clock.
 
-#include "swlio/daemon/lidar_stage.h"
+#include "swlio/daemon/sensors/lidar_stage.h"
 
 #include <gtest/gtest.h>
 

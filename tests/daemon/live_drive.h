@@ -17,8 +17,8 @@
 
 #include "sim_live.h"
 #include "sim_setup.h"
-#include "swlio/daemon/runtime.h"
-#include "swlio/daemon/watchdog.h"
+#include "swlio/daemon/runtime/runtime.h"
+#include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/subscriber.h"
 #include "test_data.h"

@@ -2,7 +2,7 @@
 // drive whose odometry has its own frame go in through the optimizer's queue; the first
 // correction out jumps (the relocalization), the later ones are to be followed; the counters
 // and the health entry say so. And the loop-closure thread's graph saved as a map loads back.
-#include "swlio/daemon/localization_thread.h"
+#include "swlio/daemon/pipeline/localization_thread.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -12,7 +12,7 @@
 
 #include "box_yard.h"
 #include "box_yard_map.h"
-#include "swlio/daemon/health.h"
+#include "swlio/daemon/runtime/health.h"
 #include "swlio/estimator/loop/keyframe_descriptor.h"
 
 namespace swlio::daemon {

@@ -1,4 +1,4 @@
-#include "swlio/daemon/logging.h"
+#include "swlio/daemon/runtime/logging.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The loop-closure thread: keyframes of a drifted drive around the synthetic box yard go in
 // through the optimizer's queue; the loop is found and the correction comes out for the
 // publisher; its counters say so.
-#include "swlio/daemon/loop_closure_thread.h"
+#include "swlio/daemon/pipeline/loop_closure_thread.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // coarser voxel (then by thinning), published after a loop correction at most once per
 // period, and — localizing — the saved map once at start, received over DDS on loopback
 // (domain 155) with every point on the scene. The health's "swlio: map" entry.
-#include "swlio/daemon/map_publisher.h"
+#include "swlio/daemon/output/map_publisher.h"
 
 #include <gtest/gtest.h>
 
@@ -14,9 +14,9 @@
 #include "box_yard.h"
 #include "box_yard_map.h"
 #include "swlio/core/time.h"
-#include "swlio/daemon/health.h"
-#include "swlio/daemon/localization_thread.h"
-#include "swlio/daemon/loop_closure_thread.h"
+#include "swlio/daemon/pipeline/localization_thread.h"
+#include "swlio/daemon/pipeline/loop_closure_thread.h"
+#include "swlio/daemon/runtime/health.h"
 #include "swlio/estimator/loop/keyframe_descriptor.h"
 #include "swlio/estimator/map/map_pcd.h"
 #include "swlio/ipc/participant.h"

@@ -1,13 +1,13 @@
 // Estimator values → ROS 2-shaped messages: pose, body-frame twist, covariance order.
 
-#include "swlio/daemon/message_conversion.h"
+#include "swlio/daemon/output/message_conversion.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "swlio/daemon/health.h"
-#include "swlio/daemon/propagator_thread.h"
+#include "swlio/daemon/pipeline/propagator_thread.h"
+#include "swlio/daemon/runtime/health.h"
 
 namespace swlio::daemon {
 namespace {

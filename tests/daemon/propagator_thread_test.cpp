@@ -1,7 +1,7 @@
 // PropagatorThread: no IMU-rate pose without an optimized state; a reset from the optimizer
 // (its estimator re-initialized after a divergence) stops the output until the next state.
 
-#include "swlio/daemon/propagator_thread.h"
+#include "swlio/daemon/pipeline/propagator_thread.h"
 
 #include <gtest/gtest.h>
 

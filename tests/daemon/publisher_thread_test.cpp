@@ -2,7 +2,7 @@
 // order (without a bound it grew with every lap of a soak); non-finite states never published;
 // map corrections followed at a bounded rate.
 
-#include "swlio/daemon/publisher_thread.h"
+#include "swlio/daemon/output/publisher_thread.h"
 
 #include <gtest/gtest.h>
 

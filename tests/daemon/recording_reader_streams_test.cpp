@@ -12,7 +12,7 @@
 #include "sim_recording.h"
 #include "sim_setup.h"
 #include "swlio/core/time.h"
-#include "swlio/daemon/recording_reader.h"
+#include "swlio/daemon/recording/recording_reader.h"
 #include "test_data.h"
 #include "wheel_sim.h"
 

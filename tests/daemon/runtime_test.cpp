@@ -1,14 +1,14 @@
 // The daemon's threads end to end: the simulator streams a drive live (UDP to 127.0.0.1, Xbus on
 // a pseudo-terminal) into a Runtime, which publishes over DDS (loopback XML) to a subscriber.
 
-#include "swlio/daemon/runtime.h"
+#include "swlio/daemon/runtime/runtime.h"
 
 #include <gtest/gtest.h>
 
 #include <iostream>
 
 #include "live_drive.h"
-#include "swlio/daemon/recording_reader.h"
+#include "swlio/daemon/recording/recording_reader.h"
 #include "test_data.h"
 
 namespace swlio::daemon {

@@ -17,8 +17,8 @@
 
 #include "allocation_counter.h"
 #include "sim_recording.h"
-#include "swlio/daemon/imu_rx.h"
-#include "swlio/daemon/lidar_rx.h"
+#include "swlio/daemon/sensors/imu_rx.h"
+#include "swlio/daemon/sensors/lidar_rx.h"
 #include "test_data.h"
 #include "udp_port.h"
 

@@ -1,6 +1,6 @@
 // SpscQueue: bounded, counts what it drops, and hands elements across two threads in order.
 
-#include "swlio/daemon/spsc_queue.h"
+#include "swlio/daemon/pipeline/spsc_queue.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "swlio/daemon/sweep_shedding.h"
+#include "swlio/daemon/pipeline/sweep_shedding.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The `realtime` configuration section: loading, validation, and applying it to a thread.
 
-#include "swlio/daemon/thread_setup.h"
+#include "swlio/daemon/runtime/thread_setup.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 
 #include <thread>
 
-#include "swlio/daemon/config_loader.h"
+#include "swlio/daemon/config/config_loader.h"
 
 namespace swlio::daemon {
 namespace {

@@ -1,4 +1,4 @@
-#include "swlio/daemon/time_scale.h"
+#include "swlio/daemon/pipeline/time_scale.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "swlio/daemon/watchdog.h"
+#include "swlio/daemon/runtime/watchdog.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "swlio/daemon/config_loader.h"
+#include "swlio/daemon/config/config_loader.h"
 #include "test_data.h"
 
 namespace swlio::daemon {

@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <string>
 
-#include "swlio/daemon/config_loader.h"
+#include "swlio/daemon/config/config_loader.h"
 
 namespace {
 

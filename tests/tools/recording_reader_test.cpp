@@ -1,7 +1,7 @@
 // RecordingReader on a simulated recording: the decoders, assembler and clock models give IMU
 // samples and scans on the host clock, in processing order, close to the simulator's truth.
 
-#include "swlio/daemon/recording_reader.h"
+#include "swlio/daemon/recording/recording_reader.h"
 
 #include <gtest/gtest.h>
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "decode_command.h"
-#include "swlio/daemon/config_loader.h"
+#include "swlio/daemon/config/config_loader.h"
 #include "swlio/drivers/candump_log.h"
 #include "swlio/drivers/wheel_odom_decoder.h"
 

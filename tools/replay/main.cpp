@@ -16,12 +16,12 @@
 #include <string>
 #include <thread>
 
-#include "swlio/daemon/config_loader.h"
-#include "swlio/daemon/estimator_runner.h"
-#include "swlio/daemon/message_conversion.h"
-#include "swlio/daemon/recording_reader.h"
-#include "swlio/daemon/tum_output.h"
-#include "swlio/daemon/watchdog.h"
+#include "swlio/daemon/config/config_loader.h"
+#include "swlio/daemon/output/message_conversion.h"
+#include "swlio/daemon/output/tum_output.h"
+#include "swlio/daemon/pipeline/estimator_runner.h"
+#include "swlio/daemon/recording/recording_reader.h"
+#include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
 

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <string>
 
-#include "swlio/daemon/daemon_config.h"
-#include "swlio/daemon/recording_reader.h"
+#include "swlio/daemon/config/daemon_config.h"
+#include "swlio/daemon/recording/recording_reader.h"
 
 namespace swlio::tools {
 

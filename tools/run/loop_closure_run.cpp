@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "spread.h"
-#include "swlio/daemon/tum_output.h"
+#include "swlio/daemon/output/tum_output.h"
 
 namespace swlio::tools {
 

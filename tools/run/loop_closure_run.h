@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "swlio/core/types.h"
-#include "swlio/daemon/time_scale.h"
+#include "swlio/daemon/pipeline/time_scale.h"
 #include "swlio/estimator/common/stage_timer.h"
 #include "swlio/estimator/loop/loop_closure.h"
 #include "swlio/estimator/map/map_pcd.h"

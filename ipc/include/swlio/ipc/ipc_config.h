@@ -26,7 +26,7 @@ struct IpcConfig {
   /// on a robot that patrols for days (a soak saw the whole path grow with every lap).
   int64_t path_max_poses = 5000;
   /// The published map cloud holds at most this many points (12 bytes each): the voxel is
-  /// coarsened until it fits (daemon/map_publisher.h), bounding the sample's size.
+  /// coarsened until it fits (daemon/output/map_publisher.h), bounding the sample's size.
   int64_t map_max_points = 500'000;
   /// Mapping: the map cloud is rebuilt and published as the map grows and after loop
   /// corrections, at most once per this period (s). Localizing: the saved map is published

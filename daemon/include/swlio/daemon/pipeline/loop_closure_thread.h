@@ -1,0 +1,88 @@
+#pragma once
+/// @file
+/// The loop-closure thread (design.md; issue 8): takes the optimizer's keyframes, runs
+/// LoopClosure (estimator/loop/loop_closure.h: graph nodes, candidate verification, pose-graph
+/// solves) and hands every new map correction to the publisher, which follows it at a bounded
+/// rate. It never blocks the optimizer or the IMU-rate output: they share only queues, and a
+/// keyframe that finds the queue full is dropped and counted (the graph then has a longer
+/// odometry edge, nothing worse). With a MapPublisher, the corrected map cloud is rebuilt and
+/// published here after a correction, at most once per its period (map_publisher.h).
+/// GNSS (estimator.loop_closure.gnss): the propagator's fixes go into the graph too
+/// (LoopClosure::AddGnss); their corrections reach the publisher the same way. With loop
+/// detection off (`enabled: false`) the thread runs for GNSS alone.
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+
+#include "swlio/daemon/output/map_publisher.h"
+#include "swlio/daemon/pipeline/live_types.h"
+#include "swlio/daemon/pipeline/spsc_queue.h"
+#include "swlio/daemon/runtime/watchdog.h"
+#include "swlio/estimator/loop/loop_closure.h"
+
+namespace swlio::daemon {
+
+struct LoopClosureQueues {
+  SpscQueue<KeyframePtr>* keyframes_in = nullptr;       ///< optimizer → loop_closure
+  SpscQueue<MapCorrection>* corrections_out = nullptr;  ///< loop_closure → publisher
+  SpscQueue<GnssFix>* gnss_in = nullptr;                ///< propagator → loop_closure (optional)
+};
+
+struct LoopClosureCounters {
+  bool enabled = false;
+  uint64_t keyframes = 0;  ///< taken from the optimizer
+  uint64_t nodes = 0;
+  uint64_t attempts = 0;
+  uint64_t accepted = 0;
+  uint64_t rejected = 0;
+  uint64_t loops_switched_off = 0;  ///< by the pose graph's consistency check
+  double last_attempt_ms = 0.0;     ///< wall time of the last verification (+ graph solve)
+  double max_attempt_ms = 0.0;
+  /// The current correction's size (|translation| and rotation angle of T_map_odom).
+  double correction_m = 0.0;
+  double correction_rad = 0.0;
+  bool gnss = false;               ///< GNSS factors configured
+  uint64_t gnss_fixes = 0;         ///< taken from the propagator
+  uint64_t gnss_edges = 0;         ///< in the graph
+  uint64_t gnss_switched_off = 0;  ///< outliers (multipath) switched off
+  uint64_t gnss_rejected = 0;      ///< fix type, accuracy, rate, no odometry around it, innovation
+  bool gnss_aligned = false;       ///< the map-to-ENU alignment is estimated
+  double enu_yaw_rad = 0.0;        ///< of the map frame in ENU
+};
+
+class LoopClosureThread {
+ public:
+  LoopClosureThread(const estimator::LoopClosureConfig& config, const LoopClosureQueues& queues);
+  /// Publish the map cloud through `map` (not owned; null: no map cloud). Call before Run.
+  void PublishMapTo(MapPublisher* map) { map_ = map; }
+  void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
+  /// Relaxed copies (any thread).
+  LoopClosureCounters counters() const;
+  /// The graph as a saved map at `path`, its merged cloud at `pcd_path` (saved_map.h,
+  /// map_pcd.h); call only after Run returned. Returns the node count; *error set on failure.
+  size_t SaveMap(const std::string& path, const std::string& pcd_path, std::string* error) const;
+
+ private:
+  void Handle(const estimator::KeyframeCloud& keyframe);
+  /// The fixes queued by the propagator into the graph.
+  void DrainGnss();
+  /// A solved graph's new correction to the publisher (and the map cloud).
+  void ApplyCorrection(const estimator::LoopClosureUpdate& u, int64_t t_ns);
+  void PublishGnssCounters();
+  /// Publishes the corrected map when a correction is pending and the period is over.
+  void PublishMapIfDue(const Watchdog::Handle& beat);
+
+  estimator::LoopClosure closure_;
+  LoopClosureQueues q_;
+  MapPublisher* map_ = nullptr;
+  std::atomic<uint64_t> keyframes_{0}, nodes_{0}, attempts_{0}, accepted_{0}, rejected_{0},
+      switched_off_{0};
+  std::atomic<double> last_ms_{0.0}, max_ms_{0.0}, correction_m_{0.0}, correction_rad_{0.0};
+  std::atomic<uint64_t> gnss_fixes_{0}, gnss_edges_{0}, gnss_switched_off_{0}, gnss_rejected_{0};
+  std::atomic<bool> gnss_aligned_{false};
+  std::atomic<double> enu_yaw_rad_{0.0};
+  const bool gnss_;
+};
+
+}  // namespace swlio::daemon

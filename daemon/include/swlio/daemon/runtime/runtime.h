@@ -1,0 +1,126 @@
+#pragma once
+/// @file
+/// The running daemon: the threads of design.md wired by their SPSC queues.
+///
+///   lidar_rx ──packets──► optimizer ──states──► propagator ◄──raw IMU── imu_rx
+///                            ▲  └──odometry──► publisher ◄──poses──┘  │
+///                            └───────────── IMU samples ──────────────┘
+///
+/// With --record, a recorder thread takes copies from both rx threads.
+/// Each thread registers with the Watchdog and beats every loop (≤ 100 ms apart when idle).
+/// Stop() stops and joins in stages, upstream first: the rx threads; the propagator; the
+/// optimizer; the publisher and the recorder. Each finishes what is queued for it, so the
+/// estimator, the outputs and the recording see everything that was received.
+/// No allocation on the rx threads after Create().
+
+#include <Eigen/Geometry>
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "swlio/daemon/config/daemon_config.h"
+#include "swlio/daemon/output/map_publisher.h"
+#include "swlio/daemon/pipeline/estimator_runner.h"
+#include "swlio/daemon/pipeline/time_scale.h"
+#include "swlio/daemon/recording/recorder.h"
+#include "swlio/daemon/runtime/health.h"
+#include "swlio/daemon/runtime/watchdog.h"
+#include "swlio/daemon/sensors/can_rx.h"
+
+namespace swlio::ipc {
+class Participant;
+class Publisher;
+}  // namespace swlio::ipc
+
+namespace swlio::daemon {
+
+struct RuntimeOptions {
+  bool dds = true;  ///< false: run without DDS (publisher thread counts but writes nothing)
+  int64_t stall_timeout_ns = 2'000'000'000;  ///< Watchdog: a thread silent this long is stalled
+  /// Sensor seconds per host second (time_scale.h): 1 except for a simulator at N× speed.
+  double time_scale = 1.0;
+  /// Replaces the configuration's extrinsic (e.g. a simulator's or recording's rig).
+  std::optional<Eigen::Isometry3d> T_imu_lidar;
+  /// Record the raw sensor bytes into this folder (recorder.h); empty: no recording.
+  std::filesystem::path record_dir;
+  /// With `can.enabled`: read CAN frames from this fd instead of opening `can.interface` (tests
+  /// use a socketpair; not owned). −1: open the interface.
+  int can_fd = -1;
+};
+
+class Runtime {
+ public:
+  /// Opens the UDP sockets and the DDS participant; the serial device is opened (and
+  /// re-opened) by the imu_rx thread. Nullptr with `error` filled on failure.
+  static std::unique_ptr<Runtime> Create(const DaemonConfig& config,
+                                         const RuntimeOptions& options,
+                                         std::string* error);
+  ~Runtime();
+  Runtime(const Runtime&) = delete;
+  Runtime& operator=(const Runtime&) = delete;
+
+  void Start();
+  /// Asks every thread to finish and joins them. Idempotent.
+  void Stop();
+
+  /// Sensors stream and the estimator has a state (the READY=1 condition).
+  bool Ready() const;
+  HealthSnapshot Snapshot() const;
+  const Watchdog& watchdog() const { return watchdog_; }
+  uint16_t msop_port() const;
+  uint16_t difop_port() const;
+  uint64_t sched_failures() const { return sched_failures_.load(); }
+
+ private:
+  struct Queues;
+  Runtime(const DaemonConfig& config, const RuntimeOptions& options);
+  /// Loads map.load_path and makes the localization thread; false with *error.
+  bool LoadLocalization(std::string* error);
+  /// The map cloud's publisher, handed to the loop-closure or localization thread (when DDS
+  /// runs and ipc.map_publish_period_s > 0).
+  void MakeMapPublisher(const std::string& frame_id);
+  /// With loop closure and map.save_path: the graph as a saved map (once, at stop).
+  void SaveMap();
+  void Spawn(std::vector<std::thread>* group,
+             const char* name,
+             std::function<void(const Watchdog::Handle&)> body);
+
+  DaemonConfig config_;
+  RuntimeOptions options_;
+  Watchdog watchdog_;
+  std::unique_ptr<Queues> queues_;
+  std::unique_ptr<ipc::Participant> participant_;
+  std::unique_ptr<ipc::Publisher> publisher_;
+  std::unique_ptr<LidarRx> lidar_rx_;
+  std::unique_ptr<ImuRx> imu_rx_;
+  std::unique_ptr<CanRx> can_rx_;  ///< only with can.enabled
+  int can_socket_ = -1;            ///< the CAN_RAW socket Runtime opened (closed on destruction)
+  std::unique_ptr<PropagatorThread> propagator_;
+  std::unique_ptr<OptimizerThread> optimizer_;
+  std::unique_ptr<LoopClosureThread> loop_closure_;   ///< only with estimator.loop_closure
+  std::unique_ptr<LocalizationThread> localization_;  ///< only with map.localize
+  /// With DDS, either of the two above and ipc.map_publish_period_s > 0; used by that thread.
+  std::unique_ptr<MapPublisher> map_publisher_;
+  std::unique_ptr<PublisherThread> publisher_thread_;
+  std::unique_ptr<Recorder> recorder_;
+  HealthReporter published_health_;          ///< used by the publisher thread only
+  std::atomic<uint64_t> sched_failures_{0};  ///< realtime settings a thread could not apply
+  std::atomic<bool> stop_rx_{false};
+  std::atomic<bool> stop_propagator_{false};
+  std::atomic<bool> stop_optimizer_{false};
+  std::atomic<bool> stop_loop_{false};
+  bool map_saved_ = false;
+  std::atomic<bool> stop_out_{false};  ///< publisher, recorder
+  std::vector<std::thread> rx_threads_;
+  std::vector<std::thread> propagator_threads_;
+  std::vector<std::thread> optimizer_threads_;
+  std::vector<std::thread> loop_threads_;
+  std::vector<std::thread> out_threads_;
+};
+
+}  // namespace swlio::daemon

@@ -1,0 +1,171 @@
+#include "swlio/daemon/output/publisher_thread.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace swlio::daemon {
+
+PublisherThread::PublisherThread(ipc::Publisher* publisher,
+                                 FrameIds frames,
+                                 const PublisherQueues& queues,
+                                 const TimeScale& time,
+                                 HealthFn health,
+                                 int64_t health_period_ns,
+                                 size_t path_max_poses,
+                                 const estimator::CorrectionSlewConfig& slew)
+    : publisher_(publisher),
+      frames_(std::move(frames)),
+      q_(queues),
+      time_(time),
+      health_(std::move(health)),
+      health_period_ns_(health_period_ns),
+      path_max_poses_(std::max<size_t>(path_max_poses, 1)),
+      slew_(slew) {
+  path_.frame_id = frames_.world;
+}
+
+void PublisherThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
+  ImuRatePose pose;
+  SweepEstimate estimate;
+  while (!stop.load(std::memory_order_relaxed)) {
+    beat.Beat();
+    q_.wake->Wait(20'000);  // a pose or an odometry, whichever comes first
+    TakeCorrections();
+    while (q_.poses_in->Pop(&pose)) WritePose(pose);
+    while (q_.odometry_in->Pop(&estimate)) WriteOdometry(estimate);
+    Periodic(MonotonicNowNs());
+  }
+  TakeCorrections();  // stopping: what the others queued last
+  while (q_.poses_in->Pop(&pose)) WritePose(pose);
+  while (q_.odometry_in->Pop(&estimate)) WriteOdometry(estimate);
+}
+
+void PublisherThread::TakeCorrections() {
+  if (q_.corrections_in == nullptr) return;
+  MapCorrection c;
+  while (q_.corrections_in->Pop(&c)) {
+    if (c.jump) {
+      slew_.JumpTo(c.T_map_odom);
+      holding_ = false;
+    } else {
+      slew_.SetTarget(c.T_map_odom);
+    }
+    if (c.path != nullptr) ReplacePath(*c.path);
+  }
+}
+
+void PublisherThread::ReplacePath(const std::vector<estimator::MapNode>& nodes) {
+  keyframes_.clear();
+  const size_t first = nodes.size() > path_max_poses_ ? nodes.size() - path_max_poses_ : 0;
+  for (size_t i = first; i < nodes.size(); ++i) {
+    State s;
+    s.t_ns = nodes[i].t_ns;
+    s.T_world_imu = nodes[i].T_map_imu;
+    ipc::PoseStamped p;
+    p.t_ns = time_.ToHost(s.t_ns);
+    p.frame_id = frames_.world;
+    p.pose = ToPose(s);
+    keyframes_.push_back(std::move(p));
+  }
+  path_changed_ = true;
+}
+
+State PublisherThread::Corrected(State s) {
+  const Eigen::Isometry3d& C = slew_.Step(s.t_ns, s.T_world_imu);
+  if (C.matrix() == Eigen::Matrix4d::Identity()) return s;  // no correction yet: exact
+  s.T_world_imu = C * s.T_world_imu;
+  s.vel_world = C.linear() * s.vel_world;
+  return s;
+}
+
+void PublisherThread::Count(bool ok, std::atomic<uint64_t>* counter) {
+  (ok ? *counter : failures_).fetch_add(1, std::memory_order_relaxed);
+}
+
+namespace {
+
+bool Finite(const ipc::Pose& p) {
+  bool finite = true;
+  for (const double v : p.position_m) finite = finite && std::isfinite(v);
+  for (const double v : p.orientation_xyzw) finite = finite && std::isfinite(v);
+  return finite;
+}
+
+}  // namespace
+
+void PublisherThread::WritePose(const ImuRatePose& pose) {
+  last_gyro_imu_radps_ = pose.gyro_imu_radps;
+  if (holding_) {
+    held_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  ipc::PoseWithCovarianceStamped m;
+  m.t_ns = time_.ToHost(pose.state.t_ns);
+  m.frame_id = frames_.world;
+  m.pose = ToPose(Corrected(pose.state));
+  if (!Finite(m.pose)) {  // the planner must never receive one
+    non_finite_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  m.covariance = pose.pose_covariance;
+  Count(publisher_ == nullptr || publisher_->PublishPose(m), &poses_);
+}
+
+void PublisherThread::WriteOdometry(const SweepEstimate& e) {
+  if (e.status == estimator::OdometryStatus::kInitializing ||
+      e.status == estimator::OdometryStatus::kSkipped) {
+    return;
+  }
+  if (holding_) {
+    held_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  ipc::Odometry m =
+      ToOdometryMessage(Corrected(e.state), last_gyro_imu_radps_, e.covariance, frames_);
+  m.t_ns = time_.ToHost(m.t_ns);
+  if (!Finite(m.pose)) {
+    non_finite_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  Count(publisher_ == nullptr || publisher_->PublishOdometry(m), &odometry_);
+  if (e.keyframe) {
+    ipc::PoseStamped p;
+    p.t_ns = m.t_ns;
+    p.frame_id = frames_.world;
+    p.pose = m.pose;
+    keyframes_.push_back(p);
+    if (keyframes_.size() > path_max_poses_) keyframes_.pop_front();
+    path_.t_ns = p.t_ns;
+    path_changed_ = true;
+  }
+}
+
+void PublisherThread::Periodic(int64_t now_ns) {
+  if (now_ns < next_health_ns_) return;
+  next_health_ns_ = now_ns + health_period_ns_;
+  if (health_) {
+    const ipc::DiagnosticArray h = health_(now_ns);
+    Count(publisher_ == nullptr || publisher_->PublishHealth(h), &health_count_);
+  }
+  if (path_changed_) {
+    path_.poses.assign(keyframes_.begin(), keyframes_.end());
+    Count(publisher_ == nullptr || publisher_->PublishPath(path_), &paths_);
+    path_changed_ = false;
+  }
+}
+
+PublisherCounters PublisherThread::counters() const {
+  constexpr auto kRelaxed = std::memory_order_relaxed;
+  PublisherCounters c;
+  c.poses = poses_.load(kRelaxed);
+  c.odometry = odometry_.load(kRelaxed);
+  c.health = health_count_.load(kRelaxed);
+  c.paths = paths_.load(kRelaxed);
+  c.failures = failures_.load(kRelaxed);
+  c.non_finite = non_finite_.load(kRelaxed);
+  c.held = held_.load(kRelaxed);
+  return c;
+}
+
+}  // namespace swlio::daemon

@@ -1,0 +1,95 @@
+#include "swlio/daemon/pipeline/localization_thread.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <numbers>
+#include <utility>
+
+#include "swlio/core/time.h"
+
+namespace swlio::daemon {
+
+using estimator::LocalizationState;
+
+LocalizationThread::LocalizationThread(estimator::SavedMap map,
+                                       const estimator::LocalizationConfig& config,
+                                       const LoopClosureQueues& queues)
+    : localizer_(std::move(map), config), q_(queues) {
+  map_nodes_ = localizer_.map().nodes.size();
+}
+
+void LocalizationThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
+  beat.Beat();
+  if (map_ != nullptr) map_->Publish(localizer_.map(), beat);  // keyframes wait in the queue
+  KeyframePtr keyframe;
+  while (!stop.load(std::memory_order_relaxed)) {
+    beat.Beat();
+    if (!q_.keyframes_in->WaitPop(&keyframe, 100'000)) continue;
+    Handle(*keyframe);
+    keyframe.reset();
+  }
+}
+
+void LocalizationThread::Handle(const estimator::KeyframeCloud& keyframe) {
+  constexpr auto kRelaxed = std::memory_order_relaxed;
+  keyframes_.fetch_add(1, kRelaxed);
+  const LocalizationState before = localizer_.state();
+  const int64_t t0 = MonotonicNowNs();
+  const estimator::LocalizationUpdate u = localizer_.AddKeyframe(keyframe);
+  const estimator::LocalizationStats& st = localizer_.stats();
+  state_.store(static_cast<int>(u.state), kRelaxed);
+  hypotheses_.store(st.hypotheses, kRelaxed);
+  dropped_.store(st.hypotheses_dropped, kRelaxed);
+  tracked_.store(st.tracked, kRelaxed);
+  failures_.store(st.track_failures, kRelaxed);
+  lost_.store(st.lost, kRelaxed);
+  if (u.registrations > 0) {
+    const double ms = static_cast<double>(MonotonicNowNs() - t0) * 1e-6;
+    last_ms_.store(ms, kRelaxed);
+    max_ms_.store(std::max(max_ms_.load(kRelaxed), ms), kRelaxed);
+  }
+  if (before == LocalizationState::kTracking && u.state == LocalizationState::kRelocalizing) {
+    spdlog::warn("localization: lost ({} registrations in a row failed); relocalizing",
+                 st.track_failures);
+  }
+  if (u.state != LocalizationState::kTracking || !u.accepted) return;
+  const bool jump = !published_in_map_;
+  if (jump) {
+    localized_t_ns_.store(keyframe.t_ns, kRelaxed);
+    const Eigen::Vector3d p = (localizer_.T_map_odom() * keyframe.T_world_imu).translation();
+    spdlog::info("localization: localized in the map at ({:.2f}, {:.2f}, {:.2f}) m", p.x(), p.y(),
+                 p.z());
+  }
+  Publish(keyframe, jump);
+}
+
+void LocalizationThread::Publish(const estimator::KeyframeCloud& keyframe, bool jump) {
+  MapCorrection c;
+  c.t_ns = keyframe.t_ns;
+  c.T_map_odom = localizer_.T_map_odom();
+  c.jump = jump;
+  // A full queue means the publisher is stalled; the next correction supersedes this one, but
+  // the jump must not be lost: retried with the next accepted keyframe.
+  published_in_map_ = q_.corrections_out->Push(std::move(c)) || published_in_map_;
+}
+
+LocalizationCounters LocalizationThread::counters() const {
+  constexpr auto kRelaxed = std::memory_order_relaxed;
+  LocalizationCounters c;
+  c.enabled = true;
+  c.state = static_cast<LocalizationState>(state_.load(kRelaxed));
+  c.map_nodes = map_nodes_;
+  c.keyframes = keyframes_.load(kRelaxed);
+  c.hypotheses = hypotheses_.load(kRelaxed);
+  c.hypotheses_dropped = dropped_.load(kRelaxed);
+  c.tracked = tracked_.load(kRelaxed);
+  c.track_failures = failures_.load(kRelaxed);
+  c.lost = lost_.load(kRelaxed);
+  c.localized_t_ns = localized_t_ns_.load(kRelaxed);
+  c.last_ms = last_ms_.load(kRelaxed);
+  c.max_ms = max_ms_.load(kRelaxed);
+  return c;
+}
+
+}  // namespace swlio::daemon

@@ -1,0 +1,152 @@
+#include "swlio/daemon/pipeline/loop_closure_thread.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <numbers>
+
+#include "swlio/core/time.h"
+#include "swlio/estimator/map/map_pcd.h"
+
+namespace swlio::daemon {
+
+LoopClosureThread::LoopClosureThread(const estimator::LoopClosureConfig& config,
+                                     const LoopClosureQueues& queues)
+    : closure_(config), q_(queues), gnss_(config.gnss.enabled) {}
+
+void LoopClosureThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
+  KeyframePtr keyframe;
+  while (!stop.load(std::memory_order_relaxed)) {
+    beat.Beat();
+    PublishMapIfDue(beat);  // also when idle: a correction may wait for the period to end
+    DrainGnss();            // 4 Hz at most: the keyframe wait below is short enough
+    if (!q_.keyframes_in->WaitPop(&keyframe, 100'000)) continue;
+    Handle(*keyframe);
+    keyframe.reset();
+  }
+  // Stopping: the optimizer has stopped; what it queued last is not worth a solve now.
+}
+
+void LoopClosureThread::Handle(const estimator::KeyframeCloud& keyframe) {
+  constexpr auto kRelaxed = std::memory_order_relaxed;
+  keyframes_.fetch_add(1, kRelaxed);
+  const int64_t t0 = MonotonicNowNs();
+  const size_t nodes_before = closure_.stats().nodes;
+  const estimator::LoopClosureUpdate u = closure_.AddKeyframe(keyframe);
+  const estimator::LoopClosureStats& st = closure_.stats();
+  nodes_.store(st.nodes, kRelaxed);
+  // The map grew: publish it (at most once per period), so a viewer sees the area being
+  // mapped, not only what the last correction covered.
+  if (map_ != nullptr && st.nodes > nodes_before) map_->MarkChanged();
+  const double ms = static_cast<double>(MonotonicNowNs() - t0) * 1e-6;
+  if (u.attempted) {
+    last_ms_.store(ms, kRelaxed);
+    max_ms_.store(std::max(max_ms_.load(kRelaxed), ms), kRelaxed);
+    attempts_.store(st.attempts, kRelaxed);
+    accepted_.store(st.accepted, kRelaxed);
+    rejected_.store(st.rejected, kRelaxed);
+  }
+  if (gnss_) PublishGnssCounters();
+  if (!u.optimized) return;
+  ApplyCorrection(u, keyframe.t_ns);
+  if (!u.attempted) return;                                  // solved for new GNSS edges
+  const double correction_m = correction_m_.load(kRelaxed);  // as ApplyCorrection stored it
+  const double correction_rad = correction_rad_.load(kRelaxed);
+  spdlog::info(
+      "loop closure: node {} matches node {} ({:.2f} m apart, fitness {:.2f}); graph of {} "
+      "nodes solved in {:.1f} ms, correction now {:.2f} m / {:.2f} deg",
+      u.attempt.node, u.attempt.candidate, u.attempt.distance_m, u.attempt.check.fitness, st.nodes,
+      ms, correction_m, correction_rad * 180.0 / std::numbers::pi);
+}
+
+void LoopClosureThread::ApplyCorrection(const estimator::LoopClosureUpdate& u, int64_t t_ns) {
+  constexpr auto kRelaxed = std::memory_order_relaxed;
+  switched_off_.fetch_add(u.summary.loops_switched_off, kRelaxed);
+  const Eigen::Isometry3d C = closure_.T_map_odom();
+  correction_m_.store(C.translation().norm(), kRelaxed);
+  correction_rad_.store(Eigen::AngleAxisd(C.rotation()).angle(), kRelaxed);
+  if (map_ != nullptr) map_->MarkChanged();
+  q_.corrections_out->Push(MapCorrection{
+      t_ns, C, std::make_shared<const std::vector<estimator::MapNode>>(closure_.MapPath())});
+}
+
+void LoopClosureThread::DrainGnss() {
+  if (q_.gnss_in == nullptr) return;
+  GnssFix fix;
+  while (q_.gnss_in->Pop(&fix)) {
+    gnss_fixes_.fetch_add(1, std::memory_order_relaxed);
+    const bool aligned = closure_.T_enu_map().has_value();
+    const estimator::LoopClosureUpdate u = closure_.AddGnss(fix);
+    if (!aligned && closure_.T_enu_map()) {
+      const Eigen::Isometry3d T = *closure_.T_enu_map();
+      spdlog::info(
+          "GNSS: map frame aligned to the local ENU frame (yaw {:.1f} deg, translation {:.1f} "
+          "{:.1f} {:.1f} m)",
+          std::atan2(T.linear()(1, 0), T.linear()(0, 0)) * 180.0 / std::numbers::pi,
+          T.translation().x(), T.translation().y(), T.translation().z());
+    }
+    if (u.summary.gnss_switched_off > 0) {
+      spdlog::warn("GNSS: {} fix(es) contradicting the odometry switched off (multipath?)",
+                   u.summary.gnss_switched_off);
+    }
+    if (u.optimized) ApplyCorrection(u, fix.t_ns);
+  }
+  PublishGnssCounters();
+}
+
+void LoopClosureThread::PublishGnssCounters() {
+  constexpr auto kRelaxed = std::memory_order_relaxed;
+  const estimator::LoopClosureStats& st = closure_.stats();
+  gnss_edges_.store(st.gnss_edges, kRelaxed);
+  gnss_switched_off_.store(st.gnss_switched_off, kRelaxed);
+  gnss_rejected_.store(
+      st.gnss.bad_quality + st.gnss.rate_limited + st.gnss.unplaced + st.gnss_gated, kRelaxed);
+  if (const auto T = closure_.T_enu_map()) {
+    gnss_aligned_.store(true, kRelaxed);
+    enu_yaw_rad_.store(std::atan2(T->linear()(1, 0), T->linear()(0, 0)), kRelaxed);
+  }
+}
+
+void LoopClosureThread::PublishMapIfDue(const Watchdog::Handle& beat) {
+  if (map_ == nullptr || !map_->Due(MonotonicNowNs())) return;
+  const int64_t t0 = MonotonicNowNs();
+  const estimator::SavedMap map = closure_.ToSavedMap();
+  beat.Beat();
+  map_->Publish(map, beat, static_cast<double>(MonotonicNowNs() - t0) * 1e-6);
+}
+
+size_t LoopClosureThread::SaveMap(const std::string& path,
+                                  const std::string& pcd_path,
+                                  std::string* error) const {
+  const estimator::SavedMap map = closure_.ToSavedMap();
+  if (estimator::SaveMapFile(path, map, error)) {
+    estimator::SaveMergedPcd(pcd_path, map, estimator::kMergedCloudVoxelM, error);
+  }
+  return map.nodes.size();
+}
+
+LoopClosureCounters LoopClosureThread::counters() const {
+  constexpr auto kRelaxed = std::memory_order_relaxed;
+  LoopClosureCounters c;
+  c.enabled = true;
+  c.keyframes = keyframes_.load(kRelaxed);
+  c.nodes = nodes_.load(kRelaxed);
+  c.attempts = attempts_.load(kRelaxed);
+  c.accepted = accepted_.load(kRelaxed);
+  c.rejected = rejected_.load(kRelaxed);
+  c.loops_switched_off = switched_off_.load(kRelaxed);
+  c.last_attempt_ms = last_ms_.load(kRelaxed);
+  c.max_attempt_ms = max_ms_.load(kRelaxed);
+  c.correction_m = correction_m_.load(kRelaxed);
+  c.correction_rad = correction_rad_.load(kRelaxed);
+  c.gnss = gnss_;
+  c.gnss_fixes = gnss_fixes_.load(kRelaxed);
+  c.gnss_edges = gnss_edges_.load(kRelaxed);
+  c.gnss_switched_off = gnss_switched_off_.load(kRelaxed);
+  c.gnss_rejected = gnss_rejected_.load(kRelaxed);
+  c.gnss_aligned = gnss_aligned_.load(kRelaxed);
+  c.enu_yaw_rad = enu_yaw_rad_.load(kRelaxed);
+  return c;
+}
+
+}  // namespace swlio::daemon

@@ -1,0 +1,116 @@
+#include "swlio/daemon/pipeline/propagator_thread.h"
+
+#include "swlio/daemon/output/message_conversion.h"
+
+namespace swlio::daemon {
+
+ipc::Covariance6 GrownPoseCovariance(const estimator::StateCovariance& covariance, double dt_s) {
+  if (!covariance.valid) return {};
+  estimator::StateCovariance grown = covariance;
+  const auto& P = covariance.P;
+  grown.P.block<3, 3>(0, 0) +=
+      P.block<3, 3>(6, 6) * dt_s * dt_s + (P.block<3, 3>(0, 6) + P.block<3, 3>(6, 0)) * dt_s;
+  return PoseCovariance(grown);
+}
+
+PropagatorThread::PropagatorThread(int64_t imu_baud,
+                                   const estimator::ImuRatePropagatorConfig& config,
+                                   const PropagatorQueues& queues,
+                                   const TimeScale& time)
+    : q_(queues), time_(time), stage_(imu_baud), propagator_(config) {}
+
+void PropagatorThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
+  ImuRaw raw;
+  while (!stop.load(std::memory_order_relaxed)) {
+    beat.Beat();
+    ApplyStates();
+    if (!q_.imu_in->WaitPop(&raw, 50'000)) {
+      Publish();
+      continue;
+    }
+    Handle(raw);
+    if (stage_.counters().samples % 100 == 0) Publish();
+  }
+  ApplyStates();  // stopping: the rx threads have stopped; finish what they queued
+  while (q_.imu_in->Pop(&raw)) Handle(raw);
+  Publish();
+}
+
+void PropagatorThread::ApplyStates() {
+  SweepEstimate e;
+  while (q_.states_in->Pop(&e)) {
+    if (e.reset) {  // the estimator restarted: no output from its diverged state
+      propagator_.Clear();
+      covariance_ = {};
+      continue;
+    }
+    if (e.status == estimator::OdometryStatus::kInitializing ||
+        e.status == estimator::OdometryStatus::kSkipped) {
+      continue;  // no state
+    }
+    if (propagator_.SetState(e.state)) {
+      covariance_ = e.covariance;
+      ++states_;
+    }
+  }
+}
+
+void PropagatorThread::Handle(const ImuRaw& raw) {
+  ImuRaw scaled = raw;
+  scaled.t_rx_ns = time_.ToDaemon(raw.t_rx_ns);
+  const std::optional<ImuSample> sample = stage_.Map(scaled);
+  if (!sample) return;
+  last_sample_t_ns_ = sample->t_ns;
+  q_.imu_out->Push(*sample);
+  if (raw.has_gnss_pvt && q_.gnss_out != nullptr) {
+    const std::optional<GnssFix> fix = drivers::xsens::ToGnssFix(raw.gnss_pvt, sample->t_ns);
+    if (fix) q_.gnss_out->Push(*fix);
+    (fix ? gnss_fixes_ : gnss_unusable_)++;
+  }
+  const std::optional<estimator::ImuRateOutput> out = propagator_.Add(*sample);
+  if (!out) return;
+  ImuRatePose pose;
+  pose.state = out->state;
+  pose.gyro_imu_radps = out->gyro_imu_radps;
+  pose.since_optimized_ns = out->since_optimized_ns;
+  pose.rx_ns = raw.t_rx_ns;
+  pose.pose_covariance =
+      GrownPoseCovariance(covariance_, static_cast<double>(out->since_optimized_ns) * 1e-9);
+  q_.poses_out->Push(pose);
+  ++poses_;
+}
+
+void PropagatorThread::Publish() {
+  constexpr auto kRelaxed = std::memory_order_relaxed;
+  const ImuStageCounters& c = stage_.counters();
+  a_samples_.store(c.samples, kRelaxed);
+  a_dropped_.store(c.no_sample_time + c.incomplete + c.out_of_order, kRelaxed);
+  a_invalid_.store(c.incomplete, kRelaxed);
+  a_poses_.store(poses_, kRelaxed);
+  a_states_.store(states_, kRelaxed);
+  a_jumps_.store(stage_.clock().jumps, kRelaxed);
+  a_gnss_fixes_.store(gnss_fixes_, kRelaxed);
+  a_gnss_unusable_.store(gnss_unusable_, kRelaxed);
+  a_last_sample_t_ns_.store(last_sample_t_ns_, kRelaxed);
+  a_offset_ns_.store(stage_.clock().offset_ns, kRelaxed);
+  a_drift_ppm_.store(stage_.clock().drift_ppm, kRelaxed);
+}
+
+PropagatorCounters PropagatorThread::counters() const {
+  constexpr auto kRelaxed = std::memory_order_relaxed;
+  PropagatorCounters c;
+  c.samples = a_samples_.load(kRelaxed);
+  c.dropped = a_dropped_.load(kRelaxed);
+  c.invalid = a_invalid_.load(kRelaxed);
+  c.poses = a_poses_.load(kRelaxed);
+  c.states = a_states_.load(kRelaxed);
+  c.clock_jumps = a_jumps_.load(kRelaxed);
+  c.clock_offset_ns = a_offset_ns_.load(kRelaxed);
+  c.clock_drift_ppm = a_drift_ppm_.load(kRelaxed);
+  c.last_sample_t_ns = a_last_sample_t_ns_.load(kRelaxed);
+  c.gnss_fixes = a_gnss_fixes_.load(kRelaxed);
+  c.gnss_unusable = a_gnss_unusable_.load(kRelaxed);
+  return c;
+}
+
+}  // namespace swlio::daemon

@@ -1,0 +1,138 @@
+#include "swlio/daemon/recording/recorder.h"
+
+#include <Eigen/Geometry>
+#include <cstdio>
+
+#include "swlio/drivers/candump_log.h"
+
+namespace swlio::daemon {
+namespace {
+
+void WriteManifest(const std::filesystem::path& path,
+                   const DaemonConfig& config,
+                   const Eigen::Isometry3d& T_imu_lidar,
+                   const TimeScale& time) {
+  const Eigen::Vector3d t = T_imu_lidar.translation();
+  const Eigen::Quaterniond q(T_imu_lidar.linear());
+  char line[256];
+  std::ofstream y(path);
+  y << "# swliod recording: raw sensor bytes with host receive times (CLOCK_MONOTONIC ns)\n"
+    << "format_version: 1\nmode: daemon\n"
+    << "# Receive times are on the daemon's time base (time_scale.h): host = origin + (t −\n"
+    << "# origin) / scale. Both are 1 / any on a robot (times are host times).\n"
+    << "time_scale: " << time.scale << "\ntime_origin_ns: " << time.origin_ns << "\n"
+    << "extrinsic_T_imu_lidar:  # maps LiDAR points into the IMU frame (as configured)\n";
+  std::snprintf(line, sizeof line, "  translation_m: [%.9g, %.9g, %.9g]\n", t.x(), t.y(), t.z());
+  y << line;
+  std::snprintf(line, sizeof line, "  quaternion_xyzw: [%.12g, %.12g, %.12g, %.12g]\n", q.x(),
+                q.y(), q.z(), q.w());
+  y << line << "lidar:\n  model: " << config.lidar.model
+    << "\n  msop_port: " << config.lidar.msop_port << "\n  difop_port: " << config.lidar.difop_port
+    << "\nimu:\n  device: " << config.imu.device << "\n  baud: " << config.imu.baud
+    << "\nfiles: {lidar: lidar.pcap, imu: imu.xbus, imu_rx: imu.rx.csv}\n";
+}
+
+}  // namespace
+
+Recorder::Recorder(const DaemonConfig& config, const TimeScale& time)
+    : time_(time), msop_port_(config.lidar.msop_port), difop_port_(config.lidar.difop_port) {}
+
+Recorder::~Recorder() = default;
+
+std::unique_ptr<Recorder> Recorder::Create(const std::filesystem::path& dir,
+                                           const DaemonConfig& config,
+                                           const Eigen::Isometry3d& T_imu_lidar,
+                                           const TimeScale& time,
+                                           std::string* error) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    *error = "cannot create " + dir.string() + ": " + ec.message();
+    return nullptr;
+  }
+  std::unique_ptr<Recorder> r(new Recorder(config, time));
+  r->pcap_ = drivers::PcapWriter::Create((dir / "lidar.pcap").string(), {}, error);
+  if (!r->pcap_) return nullptr;
+  r->xbus_.open(dir / "imu.xbus", std::ios::binary);
+  r->rx_csv_.open(dir / "imu.rx.csv");
+  if (!r->xbus_ || !r->rx_csv_) {
+    *error = "cannot write imu.xbus / imu.rx.csv in " + dir.string();
+    return nullptr;
+  }
+  r->rx_csv_ << "byte_offset,bytes,t_rx_ns\n";
+  if (config.can.enabled) {
+    r->can_interface_ = config.can.interface;
+    r->can_log_.open(dir / "can.log");
+    if (!r->can_log_) {
+      *error = "cannot write can.log in " + dir.string();
+      return nullptr;
+    }
+  }
+  WriteManifest(dir / "manifest.yaml", config, T_imu_lidar, time);
+  return r;
+}
+
+void Recorder::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
+  int64_t next_flush_ns = MonotonicNowNs() + 1'000'000'000;
+  while (!stop.load(std::memory_order_relaxed)) {
+    beat.Beat();
+    LidarPacket p;
+    if (!Drain() && lidar_.WaitPop(&p, 50'000)) WritePacket(p);  // sleep until data arrives
+    const int64_t now = MonotonicNowNs();
+    if (now >= next_flush_ns) {
+      Flush();
+      next_flush_ns = now + 1'000'000'000;
+    }
+  }
+  while (Drain()) {
+  }
+  Flush();
+}
+
+void Recorder::WritePacket(const LidarPacket& p) {
+  const uint16_t port = p.difop ? difop_port_ : msop_port_;
+  const bool ok =
+      pcap_->Write(time_.ToDaemon(p.t_rx_ns), port, port, std::span(p.bytes).first(p.size));
+  (ok ? lidar_packets_ : write_errors_).fetch_add(1, std::memory_order_relaxed);
+}
+
+bool Recorder::Drain() {
+  bool any = false;
+  LidarPacket p;
+  while (lidar_.Pop(&p)) {
+    WritePacket(p);
+    any = true;
+  }
+  drivers::CanRxFrame f;
+  while (can_.Pop(&f)) {
+    const bool ok = drivers::WriteCandumpLine(
+        can_log_, drivers::MakeCandumpRecord(time_.ToDaemon(f.t_ns), can_interface_, f.frame));
+    if (!ok) write_errors_.fetch_add(1, std::memory_order_relaxed);
+    any = true;
+  }
+  SerialChunk c;
+  while (serial_.Pop(&c)) {
+    xbus_.write(reinterpret_cast<const char*>(c.bytes.data()), c.size);
+    rx_csv_ << offset_ << ',' << c.size << ',' << time_.ToDaemon(c.t_rx_ns) << '\n';
+    offset_ += c.size;
+    serial_bytes_.fetch_add(c.size, std::memory_order_relaxed);
+    any = true;
+  }
+  return any;
+}
+
+void Recorder::Flush() {
+  bool ok = pcap_->Flush() && xbus_.flush().good() && rx_csv_.flush().good();
+  if (can_log_.is_open()) ok = can_log_.flush().good() && ok;
+  if (!ok) write_errors_.fetch_add(1, std::memory_order_relaxed);
+}
+
+RecorderCounters Recorder::counters() const {
+  RecorderCounters c;
+  c.lidar_packets = lidar_packets_.load(std::memory_order_relaxed);
+  c.serial_bytes = serial_bytes_.load(std::memory_order_relaxed);
+  c.write_errors = write_errors_.load(std::memory_order_relaxed);
+  return c;
+}
+
+}  // namespace swlio::daemon

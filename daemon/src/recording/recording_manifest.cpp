@@ -1,0 +1,174 @@
+// A recording's manifest.yaml, read line by line for the facts a replay needs (time base, ports,
+// the rig). Deliberately not YAML: the daemon recorder and the simulator write these lines
+// themselves, one key per line; a key inside a block (`wheel:`, `gnss:`) is looked for only in
+// that block's indented lines, so blocks may reuse short keys such as `rate_hz`.
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "swlio/daemon/recording/recording_reader.h"
+
+namespace swlio::daemon {
+namespace {
+
+/// Calls `fn(line)` for every indented line of the top-level block `block`.
+template <typename Fn>
+void ForEachLineIn(const std::filesystem::path& dir, std::string_view block, Fn fn) {
+  std::ifstream in(dir / "manifest.yaml");
+  const std::string header = std::string(block) + ":";
+  std::string line;
+  bool inside = false;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (line[0] != ' ') {
+      inside = line.compare(0, header.size(), header) == 0;
+      continue;
+    }
+    if (inside) fn(line);
+  }
+}
+
+bool AllFinite(std::initializer_list<double> values) {
+  for (const double v : values) {
+    if (!std::isfinite(v)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+TimeScale ManifestTimeScale(const std::filesystem::path& dir) {
+  std::ifstream in(dir / "manifest.yaml");
+  std::string line;
+  TimeScale t;
+  double scale = 0.0;
+  long long origin = 0;
+  while (std::getline(in, line)) {
+    if (std::sscanf(line.c_str(), "time_scale: %lf", &scale) == 1 && scale > 0.0) t.scale = scale;
+    if (std::sscanf(line.c_str(), "time_origin_ns: %lld", &origin) == 1) t.origin_ns = origin;
+  }
+  return t;
+}
+
+drivers::LidarConfig WithManifestPorts(const std::filesystem::path& dir,
+                                       drivers::LidarConfig lidar) {
+  std::ifstream in(dir / "manifest.yaml");
+  std::string line;
+  unsigned port = 0;
+  while (std::getline(in, line)) {
+    if (std::sscanf(line.c_str(), " msop_port: %u", &port) == 1 && port <= 65535)
+      lidar.msop_port = static_cast<uint16_t>(port);
+    if (std::sscanf(line.c_str(), " difop_port: %u", &port) == 1 && port <= 65535)
+      lidar.difop_port = static_cast<uint16_t>(port);
+  }
+  return lidar;
+}
+
+std::optional<Eigen::Isometry3d> ManifestExtrinsic(const std::filesystem::path& dir) {
+  std::ifstream in(dir / "manifest.yaml");
+  std::string line;
+  double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1};
+  int found = 0;
+  while (std::getline(in, line)) {
+    found += std::sscanf(line.c_str(), " translation_m: [%lf, %lf, %lf]", &t[0], &t[1], &t[2]) == 3;
+    found += std::sscanf(line.c_str(), " quaternion_xyzw: [%lf, %lf, %lf, %lf]", &q[0], &q[1],
+                         &q[2], &q[3]) == 4;
+  }
+  if (found != 2) return std::nullopt;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
+  T.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
+  return T;
+}
+
+std::optional<Eigen::Isometry3d> ManifestWheelExtrinsic(const std::filesystem::path& dir) {
+  double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1};
+  bool have_t = false, have_q = false;
+  ForEachLineIn(dir, "wheel", [&](const std::string& line) {
+    const char* l = line.c_str();
+    have_t |=
+        std::sscanf(l, " T_imu_base_translation_m: [%lf, %lf, %lf]", &t[0], &t[1], &t[2]) == 3;
+    have_q |= std::sscanf(l, " T_imu_base_quaternion_xyzw: [%lf, %lf, %lf, %lf]", &q[0], &q[1],
+                          &q[2], &q[3]) == 4;
+  });
+  const Eigen::Quaterniond quat(q[3], q[0], q[1], q[2]);
+  if (!have_t || !have_q || !AllFinite({t[0], t[1], t[2], q[0], q[1], q[2], q[3]}) ||
+      quat.norm() < 0.5) {
+    return std::nullopt;
+  }
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = quat.normalized().toRotationMatrix();
+  T.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
+  return T;
+}
+
+std::optional<drivers::CanConfig> ManifestWheelCan(const std::filesystem::path& dir) {
+  int id = -1, dlc = -1, left = -1, right = -1;
+  double scale = 0.0, track_m = 0.0;
+  char mode[32] = {}, unit[32] = {};
+  ForEachLineIn(dir, "wheel", [&](const std::string& line) {
+    const char* l = line.c_str();
+    std::sscanf(l, " can_mode: %31s", mode);
+    std::sscanf(l, " can_wheel_speed_unit: %31s", unit);
+    std::sscanf(l, " can_frame_id: %i", &id);
+    std::sscanf(l, " can_dlc: %i", &dlc);
+    std::sscanf(l, " can_left_byte_offset: %i", &left);
+    std::sscanf(l, " can_right_byte_offset: %i", &right);
+    std::sscanf(l, " can_scale_mps_per_lsb: %lf", &scale);
+    std::sscanf(l, " track_width_m: %lf", &track_m);
+  });
+  if (std::string_view(mode) != "wheel_speeds" || std::string_view(unit) != "mps") {
+    return std::nullopt;
+  }
+  drivers::CanConfig c;
+  c.enabled = true;
+  c.mode = "wheel_speeds";
+  c.wheel_speed_unit = "mps";
+  c.track_width_m = track_m;
+  using Field = std::pair<const char*, int>;
+  for (const auto& [role, offset] :
+       std::array<Field, 2>{Field{"left_wheel_speed", left}, Field{"right_wheel_speed", right}}) {
+    drivers::CanSignalConfig s;
+    s.role = role;
+    s.can_id = id;
+    s.byte_offset = offset;
+    s.length_bits = 16;
+    s.byte_order = "intel";
+    s.is_signed = true;
+    s.scale = scale;
+    s.dlc = dlc;
+    c.signals.push_back(s);
+  }
+  if (!c.ValidateLayout().empty()) return std::nullopt;
+  return c;
+}
+
+std::optional<ManifestGnss> ManifestGnssSetup(const std::filesystem::path& dir) {
+  ManifestGnss g;
+  double b[3] = {0, 0, 0};
+  int found = 0;
+  ForEachLineIn(dir, "gnss", [&](const std::string& line) {
+    const char* l = line.c_str();
+    found |= std::sscanf(l, " origin_lat_deg: %lf", &g.origin.lat_deg) == 1 ? 1 : 0;
+    found |= std::sscanf(l, " origin_lon_deg: %lf", &g.origin.lon_deg) == 1 ? 2 : 0;
+    found |= std::sscanf(l, " origin_height_m: %lf", &g.origin.height_m) == 1 ? 4 : 0;
+    found |= std::sscanf(l, " antenna_imu_m: [%lf, %lf, %lf]", &b[0], &b[1], &b[2]) == 3 ? 8 : 0;
+    std::sscanf(l, " rate_hz: %lf", &g.rate_hz);
+    std::sscanf(l, " sigma_h_m: %lf", &g.sigma_h_m);
+    std::sscanf(l, " sigma_v_m: %lf", &g.sigma_v_m);
+  });
+  const Geodetic& o = g.origin;
+  if (found != 15 || !AllFinite({o.lat_deg, o.lon_deg, o.height_m, b[0], b[1], b[2]}) ||
+      std::abs(o.lat_deg) > 90.0 || std::abs(o.lon_deg) > 180.0) {
+    return std::nullopt;
+  }
+  g.antenna_imu_m = Eigen::Vector3d(b[0], b[1], b[2]);
+  return g;
+}
+
+}  // namespace swlio::daemon
