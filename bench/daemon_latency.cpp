@@ -98,7 +98,7 @@ int Run(const std::string& scenario,
   config.lidar.difop_port = 0;
   config.imu.device = "/tmp/swlio_daemon_latency.pty";
   config.imu.configure_on_start = false;
-  config.ipc.domain_id = 160;  // apart from every test's (tests/daemon/live_drive.h)
+  config.ipc.domain_id = 160;  // apart from every test's (tests/daemon/runtime/live_drive.h)
   config.ipc.dds_config_file = xml;
   config.realtime = ShippedScheduling(realtime, plain);
   swlio::daemon::RuntimeOptions options;
