@@ -23,9 +23,9 @@
 #include <thread>
 #include <vector>
 
-#include "imu_sim.h"
-#include "sim_live.h"
-#include "sim_setup.h"
+#include "live/sim_live.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/imu_sim.h"
 #include "swlio/daemon/config/config_loader.h"
 #include "swlio/daemon/runtime/runtime.h"
 #include "swlio/ipc/participant.h"

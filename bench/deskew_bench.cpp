@@ -11,8 +11,8 @@
 #include <numbers>
 #include <vector>
 
-#include "labelled_scan.h"
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/labelled_scan.h"
 #include "swlio/core/time.h"
 #include "swlio/estimator/frontend/deskew.h"
 

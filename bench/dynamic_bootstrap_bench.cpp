@@ -8,9 +8,9 @@
 #include <cstdlib>
 #include <vector>
 
-#include "imu_sim.h"
-#include "labelled_scan.h"
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/imu_sim.h"
+#include "sensors/labelled_scan.h"
 #include "swlio/core/time.h"
 #include "swlio/estimator/init/dynamic_bootstrap.h"
 

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <vector>
 
-#include "labelled_scan.h"
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/labelled_scan.h"
 #include "swlio/estimator/frontend/feature_extractor.h"
 #include "swlio/estimator/frontend/segmentation.h"
 #include "swlio/estimator/frontend/voxel_filter.h"

@@ -17,8 +17,8 @@
 #include <nanoflann.hpp>
 #include <vector>
 
-#include "labelled_scan.h"
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/labelled_scan.h"
 #include "swlio/estimator/frontend/front_end.h"
 #include "swlio/estimator/registration/voxel_map.h"
 

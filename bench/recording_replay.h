@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "sim_recording.h"
-#include "sim_setup.h"
+#include "recording/sim_recording.h"
+#include "scenarios/sim_setup.h"
 #include "swlio/core/types.h"
 #include "swlio/daemon/config/daemon_config.h"
 #include "swlio/daemon/recording/recording_reader.h"

@@ -20,8 +20,8 @@
 #include <string>
 #include <system_error>
 
-#include "sim_recording.h"
-#include "sim_setup.h"
+#include "recording/sim_recording.h"
+#include "scenarios/sim_setup.h"
 
 namespace swlio::test {
 

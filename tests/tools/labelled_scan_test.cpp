@@ -1,14 +1,14 @@
 // LabelledScanSource sweeps: every point inside its sweep's time span, in time order, and no
 // firing twice. The sweep starting at a whole second follows a DIFOP packet (one a second).
 
-#include "labelled_scan.h"
+#include "sensors/labelled_scan.h"
 
 #include <gtest/gtest.h>
 
 #include <set>
 #include <utility>
 
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
 
 namespace swlio::sim {
 namespace {

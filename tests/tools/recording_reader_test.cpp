@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "sim_recording.h"
-#include "sim_setup.h"
+#include "recording/sim_recording.h"
+#include "scenarios/sim_setup.h"
 #include "swlio/core/time.h"
 #include "test_data.h"
 

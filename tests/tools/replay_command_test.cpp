@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "sim_recording.h"
-#include "sim_setup.h"
+#include "recording/sim_recording.h"
+#include "scenarios/sim_setup.h"
 #include "test_data.h"
 
 namespace swlio {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "scenarios/sim_setup.h"
 #include "shared_sim_recording.h"
-#include "sim_setup.h"
 #include "state_nees.h"
 #include "swlio/eval/evaluate.h"
 #include "test_data.h"

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
 #include "swlio/core/time.h"
 #include "swlio/drivers/clock_model.h"
 #include "swlio/drivers/rs16_decoder.h"

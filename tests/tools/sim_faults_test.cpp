@@ -1,15 +1,15 @@
 // The live sender's fault injector: the loss channel's statistics, the byte-level damage it
 // does, and which samples it withholds.
 
-#include "sim_faults.h"
+#include "live/sim_faults.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "lidar_sim.h"
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/lidar_sim.h"
 #include "swlio/drivers/lidar_config.h"
 #include "swlio/drivers/rs16_decoder.h"
 

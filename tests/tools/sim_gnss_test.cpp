@@ -2,15 +2,15 @@
 // converted back to the local ENU frame, against the true antenna position; the error model,
 // the faults, and the longer frames' later arrival.
 
-#include "gnss_sim.h"
+#include "sensors/gnss_sim.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include "sim_recording.h"
-#include "sim_setup.h"
+#include "recording/sim_recording.h"
+#include "scenarios/sim_setup.h"
 #include "swlio/core/time.h"
 #include "swlio/drivers/xsens/mtdata2.h"
 #include "swlio/drivers/xsens/xbus.h"

@@ -1,7 +1,7 @@
 // Laps of a closed route (sim_laps.h): the lap period's arithmetic, which routes may be
 // repeated, the trajectory's continuity across laps, and the replayed LiDAR packets.
 
-#include "sim_laps.h"
+#include "scenarios/sim_laps.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-#include "lidar_sim.h"
+#include "sensors/lidar_sim.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
 #include "swlio/drivers/rs16_protocol.h"

@@ -8,8 +8,8 @@
 #include <atomic>
 #include <thread>
 
-#include "sim_live.h"
-#include "sim_recording.h"
+#include "live/sim_live.h"
+#include "recording/sim_recording.h"
 #include "swlio/drivers/udp_receiver.h"
 #include "test_data.h"
 #include "udp_port.h"

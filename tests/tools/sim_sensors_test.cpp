@@ -7,8 +7,8 @@
 #include <numbers>
 #include <sstream>
 
-#include "sim_recording.h"
-#include "sim_setup.h"
+#include "recording/sim_recording.h"
+#include "scenarios/sim_setup.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
 #include "swlio/drivers/rs16_decoder.h"

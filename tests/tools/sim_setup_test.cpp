@@ -1,7 +1,7 @@
 // The simulator's setup options (sim_setup.h): a longer standing start (an inspection stop
 // before driving off) keeps the route and only delays it.
 
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // path, and the CAN frames (through the candump log and the daemon's WheelOdomDecoder) against
 // that truth within the noise model.
 
-#include "wheel_sim.h"
+#include "sensors/wheel_sim.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
 #include "swlio/core/time.h"
 #include "swlio/drivers/candump_log.h"
 #include "swlio/drivers/wheel_odom_decoder.h"

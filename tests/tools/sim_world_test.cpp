@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "scenarios.h"
-#include "sim_setup.h"
-#include "substation.h"
+#include "scenarios/scenarios.h"
+#include "scenarios/sim_setup.h"
 #include "swlio/core/lie.h"
+#include "world/substation.h"
 
 namespace swlio::sim {
 namespace {

@@ -7,11 +7,11 @@
 #include <cstdio>
 #include <iostream>
 
-#include "scenarios.h"
-#include "sim_dump.h"
-#include "sim_laps.h"
-#include "sim_live.h"
-#include "sim_recording.h"
+#include "live/sim_live.h"
+#include "recording/sim_recording.h"
+#include "scenarios/scenarios.h"
+#include "scenarios/sim_dump.h"
+#include "scenarios/sim_laps.h"
 
 namespace {
 

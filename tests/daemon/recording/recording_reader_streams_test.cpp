@@ -8,13 +8,13 @@
 #include <cmath>
 #include <fstream>
 
-#include "gnss_sim.h"
-#include "sim_recording.h"
-#include "sim_setup.h"
+#include "recording/sim_recording.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/gnss_sim.h"
+#include "sensors/wheel_sim.h"
 #include "swlio/core/time.h"
 #include "swlio/daemon/recording/recording_reader.h"
 #include "test_data.h"
-#include "wheel_sim.h"
 
 namespace swlio::daemon {
 namespace {

@@ -15,8 +15,8 @@
 #include <thread>
 #include <vector>
 
-#include "sim_live.h"
-#include "sim_setup.h"
+#include "live/sim_live.h"
+#include "scenarios/sim_setup.h"
 #include "swlio/daemon/runtime/runtime.h"
 #include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/ipc/participant.h"

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <vector>
 
-#include "imu_sim.h"
-#include "sim_recording.h"
-#include "sim_setup.h"
+#include "recording/sim_recording.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/imu_sim.h"
 #include "swlio/daemon/recording/recording_reader.h"
 #include "swlio/daemon/sensors/lidar_stage.h"
 #include "swlio/drivers/pcap_file.h"

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "allocation_counter.h"
-#include "sim_recording.h"
+#include "recording/sim_recording.h"
 #include "swlio/daemon/sensors/imu_rx.h"
 #include "swlio/daemon/sensors/lidar_rx.h"
 #include "test_data.h"

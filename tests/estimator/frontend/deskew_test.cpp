@@ -8,10 +8,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "imu_sim.h"
-#include "lidar_sim.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/imu_sim.h"
+#include "sensors/lidar_sim.h"
 #include "sim_imu_util.h"
-#include "sim_setup.h"
 #include "swlio/core/time.h"
 #include "swlio/estimator/imu/imu_propagator.h"
 

@@ -10,8 +10,8 @@
 #include <set>
 #include <string>
 
-#include "labelled_scan.h"
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/labelled_scan.h"
 
 namespace swlio::estimator {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "labelled_scan.h"
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/labelled_scan.h"
 
 namespace swlio::estimator {
 namespace {

@@ -8,8 +8,8 @@
 #include <map>
 #include <string>
 
-#include "labelled_scan.h"
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/labelled_scan.h"
 
 namespace swlio::estimator {
 namespace {

@@ -14,9 +14,9 @@
 #include <numeric>
 #include <sstream>
 
-#include "lidar_sim.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/lidar_sim.h"
 #include "sim_imu_util.h"
-#include "sim_setup.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
 

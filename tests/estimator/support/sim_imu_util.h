@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "imu_sim.h"
-#include "sim_setup.h"
+#include "scenarios/sim_setup.h"
+#include "sensors/imu_sim.h"
 #include "swlio/core/time.h"
 #include "swlio/core/types.h"
 

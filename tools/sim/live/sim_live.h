@@ -1,0 +1,60 @@
+#pragma once
+/// @file
+/// Live mode: the simulated streams in (N×) real time, LiDAR packets as UDP datagrams to
+/// 127.0.0.1 and IMU bytes on a pseudo-terminal, each sent at its simulated receive time.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "live/sim_faults.h"
+#include "scenarios/sim_setup.h"
+
+namespace swlio::sim {
+
+struct LiveOptions {
+  uint16_t msop_port = 6699;
+  uint16_t difop_port = 7788;
+  double speed = 1.0;             ///< 2.0 = twice real time
+  std::string pty_link;           ///< if set, a symlink to the pty's slave device
+  std::filesystem::path out_dir;  ///< groundtruth.tum and manifest.yaml (host times) go here
+  /// Wait between the preparation (the IMU samples; a repeated route's first lap, minutes for
+  /// loop943) and streaming; "sim: streaming in N s" on stderr marks its start.
+  double start_delay_s = 0.0;
+  /// Cast every LiDAR packet of the drive during the preparation (about 1 MB per second of
+  /// driving) instead of while streaming. Ray casting on the fly keeps up at a few times real
+  /// time on an idle core; on a loaded machine (or under a sanitizer) it falls behind, and then
+  /// every sample goes out late: the receiver sees sensor clocks running slower than the
+  /// `speed` it was told, which no real sensor does (a TSan run of the daemon's live test
+  /// streamed at 0.22× while the daemon expected 0.5×, and diverged). A repeated route is
+  /// always cast ahead (its first lap).
+  bool precast = false;
+  /// If set, receives for every IMU sample (in SimulateImu's order) the CLOCK_MONOTONIC time
+  /// just before its frame was written to the pty (0: not written), for latency measurements.
+  std::vector<int64_t>* imu_write_ns = nullptr;
+  LiveFaults faults;  ///< none by default
+};
+
+struct LiveStats {
+  uint64_t udp_sent = 0;
+  uint64_t udp_errors = 0;
+  uint64_t imu_bytes = 0;
+  uint64_t imu_bytes_dropped = 0;  ///< pty buffer full (nobody reading)
+  double max_lateness_ms = 0.0;    ///< how late the worst send was against its schedule
+  /// Host time (CLOCK_MONOTONIC) of simulation time 0: a sample due at simulation time t is
+  /// sent at start_ns + t / speed.
+  int64_t start_ns = 0;
+  FaultCounts faults;  ///< what LiveOptions::faults injected
+};
+
+/// Runs until the route ends or `stop` becomes true. Destinations are always 127.0.0.1.
+/// Prints the pty slave path to stdout as "pty: /dev/pts/N". Returns false with `error` on a
+/// set-up failure.
+bool RunLive(const SimSetup& setup,
+             const LiveOptions& options,
+             const volatile bool* stop,
+             LiveStats* stats,
+             std::string* error);
+
+}  // namespace swlio::sim

@@ -1,0 +1,31 @@
+#pragma once
+/// @file
+/// Built-in scenarios: each is fully determined by its name and a seed.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scenarios/trajectory.h"
+
+namespace swlio::sim {
+
+struct Scenario {
+  std::string name;
+  std::string description;
+  RouteSpec route;
+  /// Added to the substation's own (this scenario's course; the other scenarios' world is the
+  /// same for every one of them).
+  std::vector<Bump> extra_bumps;
+};
+
+/// Names of the built-in scenarios: short, loop943, degenerate, aggressive, revisit,
+/// calibration.
+std::vector<std::string> ScenarioNames();
+
+/// The scenario called `name`, or nothing when there is none. Only `revisit` depends on the
+/// seed (its start place and direction).
+std::optional<Scenario> MakeScenario(const std::string& name, uint64_t seed = 1);
+
+}  // namespace swlio::sim
