@@ -1,0 +1,63 @@
+# Read by CTest after the GoogleTest discovery files (tests/CMakeLists.txt): adds to each
+# discovered test the labels that scripts/test's sanitizer phases select on. Patterns are
+# regular expressions on the full test name, "<module>.<Suite>.<Case>".
+#
+#   release_only  runs in the Release phase only: whole drives or long checks that take minutes
+#                 under ASan and repeat code that shorter tests run there too.
+#   no_tsan       left out of the TSan phase: nothing threaded to check, or a peer that trips
+#                 TSan inside uninstrumented libraries.
+
+set(_swlio_release_only
+  # Drives through the estimator that repeat the shorter drives kept under ASan: the online
+  # calibration run, the recovery control run without checks, the LiDAR-only drive.
+  "\\.OnlineCalibrationRecoversTheExtrinsic"
+  "\\.WithoutTheChecksTheSameFaultIsNotRecovered"
+  "\\.LidarOnlyFollowsTheSimulatedDrive"
+  # swlio-run drives that repeat the window estimator under other options (55, 29, 15 and
+  # 64 s under ASan); TightlyCoupledFollowsTheSimulatedDrive and loop closure's tests stay.
+  "\\.RunOnShortDrive\\.(TightlyCoupledStartsWhileMoving|ExtrinsicCalibrationRefusesAStraightDrive)"
+  "\\.RunOnShortDrive\\.(ConfigWindowSectionAppliesAndFlagsOverride|LoopClosureWritesItsOutputsAndLeavesAStraightDriveAlone)"
+  # The deterministic-replay check (34 s under ASan; RecordingReader's own tests stay).
+  "\\.ReplayCommand\\.DeterministicReplay"
+  # Live fault drives that send well-formed data on another schedule (loss, outages, gaps,
+  # clock steps, silence); the faults with malformed or odd content stay under ASan.
+  "\\.RuntimeFaults\\.(BurstyUdpLoss|TwoSecond|ImuGap|SerialUnplug|LidarClockJump|ImuCounterWrap)"
+  "\\.RuntimeFaults\\.(MissingDifop|LidarThatNever|ImuThatNever)"
+  # Timing checks whose cost under ASan is ray casting a simulated recording (40–60 s each);
+  # the clock models, recording writer and reader run under ASan in their own tests.
+  "\\.ClockMapping\\.SimulatedClocksAt100Ppm"
+  "\\.SimClock\\.LidarHeaderTime"
+  "\\.SimRecording\\.SameNameAndSeedGiveIdenticalBytes"
+  # MapLocalizer cases that verify dozens of relocalization hypotheses (3–12 s each in Release);
+  # the relocalization, look-alike bay and lost-pose cases stay.
+  "\\.MapLocalizer\\.(NeverLocalizesInTheMapOfAnotherPlace|WaitsWhereEveryPlaceHasALookAlike)"
+  "\\.MapLocalizer\\.(KeepsTrackingWhereTheSceneChanged|ThrottlesRelocalizationWhileAmbiguous)")
+
+set(_swlio_no_tsan
+  # The Fast DDS subscriber (a test tool) trips TSan inside Fast DDS's timed mutexes, which live
+  # in the uninstrumented libstdc++; the interop test runs in the other two phases.
+  "\\.FastDdsInterop"
+  # The estimator or a simulated recording on one thread: nothing for TSan, minutes under it.
+  "\\.RecoveryOnShortDrive\\."
+  "\\.ClockMapping\\."
+  "\\.RecordingReaderStreams\\."
+  # Live drives with injected faults run the same threads as Runtime.*, which stays.
+  "\\.RuntimeFaults\\.")
+
+foreach(_swlio_list IN ITEMS core drivers estimator ipc daemon daemon_live tools)
+  foreach(_test IN LISTS swlio_${_swlio_list}_TESTS)
+    string(REGEX MATCH "^[a-z]+" _labels "${_test}")
+    foreach(_label IN ITEMS release_only no_tsan)
+      foreach(_pattern IN LISTS _swlio_${_label})
+        if(_test MATCHES "${_pattern}")
+          list(APPEND _labels ${_label})
+          break()
+        endif()
+      endforeach()
+    endforeach()
+    list(LENGTH _labels _count)
+    if(_count GREATER 1)
+      set_tests_properties("${_test}" PROPERTIES LABELS "${_labels}")
+    endif()
+  endforeach()
+endforeach()
