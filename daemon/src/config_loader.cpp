@@ -16,6 +16,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <utility>
 
 namespace swlio::daemon {
 namespace {
@@ -154,7 +155,17 @@ class Section {
     }
   }
 
-  /// Reports keys that no Get()/Child() took, and duplicated keys.
+  /// A key removed from the schema because nothing read it: when present, an error that says
+  /// what to use `instead`. Removed keys are not offered as "did you mean" hints.
+  void Removed(const char* key, const std::string& instead) {
+    removed_.emplace_back(key);
+    const auto [k, value] = Find(key);
+    if (!k) return;
+    ctx_->marks[Path(key)] = k.Mark();
+    ctx_->Error(k.Mark(), Path(key), "removed key (it was never read); " + instead);
+  }
+
+  /// Reports keys that no Get()/Child()/Removed() took, and duplicated keys.
   void Finish() {
     if (!node_.IsMap()) return;
     std::set<std::string> seen;
@@ -163,7 +174,8 @@ class Section {
       const std::string name = k.IsScalar() ? k.Scalar() : Describe(k);
       if (!seen.insert(name).second) {
         ctx_->Error(k.Mark(), Path(name.c_str()), "duplicate key");
-      } else if (std::find(known_.begin(), known_.end(), name) == known_.end()) {
+      } else if (std::find(known_.begin(), known_.end(), name) == known_.end() &&
+                 std::find(removed_.begin(), removed_.end(), name) == removed_.end()) {
         ctx_->Error(k.Mark(), Path(name.c_str()), "unknown key" + Suggestion(name));
       }
     }
@@ -174,17 +186,24 @@ class Section {
  private:
   std::string Path(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
 
-  /// The value under `key` (or a null handle), remembering that the key is known.
-  YAML::Node Take(const char* key) {
-    known_.emplace_back(key);
-    if (!node_.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
-    for (const auto& entry : node_) {
-      if (entry.first.IsScalar() && entry.first.Scalar() == key) {
-        ctx_->marks[Path(key)] = entry.first.Mark();
-        return entry.second;
+  /// The key node and the value of `key` in this mapping; undefined handles when absent.
+  std::pair<YAML::Node, YAML::Node> Find(const char* key) const {
+    if (node_.IsMap()) {
+      for (const auto& entry : node_) {
+        if (entry.first.IsScalar() && entry.first.Scalar() == key) {
+          return {entry.first, entry.second};
+        }
       }
     }
-    return YAML::Node(YAML::NodeType::Undefined);
+    return {YAML::Node(YAML::NodeType::Undefined), YAML::Node(YAML::NodeType::Undefined)};
+  }
+
+  /// The value under `key` (or an undefined handle), remembering that the key is known.
+  YAML::Node Take(const char* key) {
+    known_.emplace_back(key);
+    const auto [k, value] = Find(key);
+    if (k) ctx_->marks[Path(key)] = k.Mark();
+    return value;
   }
 
   template <typename Parse>
@@ -231,6 +250,7 @@ class Section {
   std::string path_;
   Context* ctx_;
   std::vector<std::string> known_;
+  std::vector<std::string> removed_;
 };
 
 void Bind(Section s, drivers::LidarConfig& c) {
@@ -295,7 +315,6 @@ void Bind(Section s, estimator::ImuNoiseConfig& c) {
 void Bind(Section s, estimator::ExtrinsicConfig& c) {
   s.Get("translation_m", c.translation_m);
   s.Get("rotation_rpy_deg", c.rotation_rpy_deg);
-  s.Get("estimate_online", c.estimate_online);
   s.Finish();
 }
 
@@ -512,15 +531,20 @@ void Bind(Section s,
           estimator::LocalizationConfig& localization) {
   s.Get("mode", c.mode);
   Bind(s.Child("imu_noise"), c.imu_noise);
-  Bind(s.Child("extrinsic_imu_lidar"), c.extrinsic_imu_lidar);
+  Section extrinsic = s.Child("extrinsic_imu_lidar");
+  extrinsic.Removed("estimate_online",
+                    "use estimator.window.estimate_extrinsic to refine T_imu_lidar in the window, "
+                    "or estimator.window.calibrate_extrinsic_s to calibrate it in one batch");
+  Bind(extrinsic, c.extrinsic_imu_lidar);
   s.Get("gravity_mps2", c.gravity_mps2);
   s.Get("init_static_duration_s", c.init_static_duration_s);
-  s.Get("window_size", c.window_size);
-  s.Get("max_iterations", c.max_iterations);
   s.Get("plane_voxel_m", c.plane_voxel_m);
   s.Get("edge_voxel_m", c.edge_voxel_m);
   s.Get("local_map_radius_m", c.local_map_radius_m);
-  s.Get("num_threads", c.num_threads);
+  s.Removed("window_size", "use estimator.window.window_size instead");
+  s.Removed("max_iterations", "use estimator.window.max_iterations instead");
+  s.Removed("num_threads",
+            "every solve runs on one thread, for deterministic results: delete the line");
   Bind(s.Child("window"), window);
   Bind(s.Child("loop_closure"), loop_closure);
   Bind(s.Child("localization"), localization);

@@ -39,12 +39,9 @@ ConfigIssues EstimatorConfig::Validate() const {
   AppendWithPrefix(issues, "extrinsic_imu_lidar", extrinsic_imu_lidar.Validate());
   CheckInRange(issues, "gravity_mps2", gravity_mps2, 9.7, 9.9);
   CheckInRange(issues, "init_static_duration_s", init_static_duration_s, 0.2, 30.0);
-  CheckInRange<int64_t>(issues, "window_size", window_size, 2, 50);
-  CheckInRange<int64_t>(issues, "max_iterations", max_iterations, 1, 50);
   CheckInRange(issues, "plane_voxel_m", plane_voxel_m, 0.05, 2.0);
   CheckInRange(issues, "edge_voxel_m", edge_voxel_m, 0.05, 2.0);
   CheckInRange(issues, "local_map_radius_m", local_map_radius_m, 10.0, 500.0);
-  CheckInRange<int64_t>(issues, "num_threads", num_threads, 1, 64);
   return issues;
 }
 
