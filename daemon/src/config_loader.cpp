@@ -374,14 +374,7 @@ void Bind(Section s, estimator::StandstillConfig& c) {
 /// `T_imu_base` as translation_m and rotation_rpy_deg (the extrinsic's convention).
 void Bind(Section s, estimator::WheelFactorConfig& c) {
   s.Get("enabled", c.enabled);
-  estimator::ExtrinsicConfig base;
-  {
-    Section t = s.Child("T_imu_base");
-    t.Get("translation_m", base.translation_m);
-    t.Get("rotation_rpy_deg", base.rotation_rpy_deg);
-    t.Finish();
-  }
-  c.T_imu_base = base.ToIsometry();
+  Bind(s.Child("T_imu_base"), c.T_imu_base);
   s.Get("sigma_forward_mps", c.sigma_forward_mps);
   s.Get("sigma_lateral_mps", c.sigma_lateral_mps);
   s.Get("sigma_vertical_mps", c.sigma_vertical_mps);

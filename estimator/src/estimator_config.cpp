@@ -55,4 +55,13 @@ Eigen::Isometry3d ExtrinsicConfig::ToIsometry() const {
   return T;
 }
 
+ExtrinsicConfig ExtrinsicConfig::FromIsometry(const Eigen::Isometry3d& T) {
+  constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+  const Eigen::Vector3d rpy_deg = lie::RpyFromRotation(T.linear()) * kRadToDeg;
+  ExtrinsicConfig c;
+  c.translation_m = {T.translation().x(), T.translation().y(), T.translation().z()};
+  c.rotation_rpy_deg = {rpy_deg.x() + 0.0, rpy_deg.y() + 0.0, rpy_deg.z() + 0.0};  // no -0
+  return c;
+}
+
 }  // namespace swlio::estimator

@@ -24,15 +24,18 @@ struct ImuNoiseConfig {
   ConfigIssues Validate() const;
 };
 
-/// Extrinsic `T_imu_lidar` (maps LiDAR-frame points into the IMU frame).
-/// Rotation R = Rz(yaw)·Ry(pitch)·Rx(roll).
+/// A rigid transform `T_a_b` (maps frame-b points into frame a) as the configuration writes it:
+/// the extrinsic `T_imu_lidar`, the wheel base `T_imu_base`. The numbers are kept as given, so a
+/// printed configuration states them exactly. Rotation R = Rz(yaw)·Ry(pitch)·Rx(roll).
 struct ExtrinsicConfig {
-  std::array<double, 3> translation_m = {0.0, 0.0, 0.0};
+  std::array<double, 3> translation_m = {0.0, 0.0, 0.0};  ///< origin of frame b in frame a
   std::array<double, 3> rotation_rpy_deg = {0.0, 0.0, 0.0};
 
   ConfigIssues Validate() const;
   /// The transform these numbers describe.
   Eigen::Isometry3d ToIsometry() const;
+  /// The numbers of `T`: ToIsometry() gives `T` back to rounding (not always to the last bit).
+  static ExtrinsicConfig FromIsometry(const Eigen::Isometry3d& T);
 };
 
 struct EstimatorConfig {
