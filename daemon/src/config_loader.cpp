@@ -1,5 +1,7 @@
-// The only file that includes yaml-cpp. A `Section` walks one YAML mapping: each Get() call
-// takes a known key, checks its type and stores it; Finish() reports every key nobody took.
+// The only file that reads YAML (config_printer.cpp, the other yaml-cpp user, only writes it
+// for --print-config). A `Section` walks one YAML mapping: each Get() call takes a known key,
+// checks its type and stores it; Removed() refuses a key the schema dropped, saying what
+// replaced it; Finish() reports every key nobody took.
 // Marks (line/column) of every key are remembered so that the modules' Validate() results,
 // which only know key names, can be reported with their place in the file.
 
