@@ -13,6 +13,9 @@
 #include <charconv>
 #include <cmath>
 #include <concepts>
+#include <cstdint>
+#include <string>
+#include <utility>
 
 namespace swlio::daemon {
 namespace {
@@ -35,11 +38,11 @@ class ConfigWriter {
   void Put(const char* key, const std::string& v) { out_ << YAML::Key << key << YAML::Value << v; }
   template <std::integral Int>
   void Put(const char* key, Int v) {
-    out_ << YAML::Key << key << YAML::Value << static_cast<long long>(v);
+    out_ << YAML::Key << key << YAML::Value << static_cast<int64_t>(v);
   }
   /// CAN identifiers, as the DBC files and candump write them.
   void PutHex(const char* key, int64_t v) {
-    out_ << YAML::Key << key << YAML::Value << YAML::Hex << static_cast<long long>(v);
+    out_ << YAML::Key << key << YAML::Value << YAML::Hex << v;
   }
   template <size_t N>
   void Put(const char* key, const std::array<double, N>& v) {
