@@ -3,27 +3,44 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "swlio/daemon/config/config_files.h"
 #include "swlio/daemon/config/config_loader.h"
+#include "swlio/daemon/config/config_printer.h"
 #include "swlio/daemon/runtime/daemon_main.h"
 #include "swlio/daemon/runtime/logging.h"
 
 namespace {
 
+/// The name of `path` in messages: "-" is standard input.
+std::string DisplayName(const std::string& path) { return path == "-" ? "<stdin>" : path; }
+
+/// `path`, or standard input for "-". Relative paths inside standard input resolve against the
+/// current directory (a printed configuration has none: --print-config writes them absolute).
+swlio::daemon::LoadedConfig LoadFileOrStdin(const std::string& path) {
+  if (path != "-") return swlio::daemon::LoadConfigFile(path);
+  std::ostringstream text;
+  text << std::cin.rdbuf();
+  return swlio::daemon::LoadConfigText(text.str(), DisplayName(path),
+                                       std::filesystem::current_path());
+}
+
 /// Loads and validates `path` (schema, ranges, referenced files); prints every problem.
 bool LoadChecked(const std::string& path, swlio::daemon::DaemonConfig* config) {
-  const swlio::daemon::LoadedConfig loaded = swlio::daemon::LoadConfigFile(path);
+  const swlio::daemon::LoadedConfig loaded = LoadFileOrStdin(path);
+  const std::string name = DisplayName(path);
   if (!loaded.ok()) {
     std::cerr << loaded.ErrorReport();
-    std::cerr << path << ": " << loaded.errors.size() << " error(s)\n";
+    std::cerr << name << ": " << loaded.errors.size() << " error(s)\n";
     return false;
   }
   const std::vector<std::string> file_problems = swlio::daemon::CheckReferencedFiles(loaded.config);
-  for (const std::string& problem : file_problems) std::cerr << path << ": " << problem << "\n";
+  for (const std::string& problem : file_problems) std::cerr << name << ": " << problem << "\n";
   if (!file_problems.empty()) return false;
   *config = loaded.config;
   return true;
@@ -48,16 +65,23 @@ bool ApplyMapFlags(const std::string& map_path,
 int Run(int argc, char** argv) {
   swlio::daemon::BlockStopSignals();  // before any thread exists (spdlog, DDS, ours)
   CLI::App app{"swliod: LiDAR-inertial localization daemon"};
-  std::string check_config, config_path;
+  std::string check_config, print_config, config_path;
   double run_for_s = 0.0;
   bool no_dds = false;
   double time_scale = 1.0;
   std::string record_dir, map_path, save_map;
   bool localize = false;
   auto* check = app.add_option("--check-config", check_config,
-                               "Validate a configuration file, print every problem with its "
-                               "line, and exit");
-  app.add_option("--config", config_path, "Configuration file (YAML) to run with")->excludes(check);
+                               "Validate a configuration file (- for standard input), print "
+                               "every problem with its line, and exit");
+  auto* print = app.add_option("--print-config", print_config,
+                               "Print the effective configuration of a file (- for standard "
+                               "input) as YAML: every key, defaults filled in, paths absolute; "
+                               "--check-config accepts it")
+                    ->excludes(check);
+  app.add_option("--config", config_path, "Configuration file (YAML) to run with")
+      ->excludes(check)
+      ->excludes(print);
   app.add_option("--run-for", run_for_s, "Stop after this many seconds (0: until a signal)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--no-dds", no_dds, "Run without DDS (nothing is published)");
@@ -80,11 +104,17 @@ int Run(int argc, char** argv) {
   if (!check_config.empty()) {
     swlio::daemon::DaemonConfig config;
     if (!LoadChecked(check_config, &config)) return 1;
-    std::cout << check_config << ": OK\n";
+    std::cout << DisplayName(check_config) << ": OK\n";
+    return 0;
+  }
+  if (!print_config.empty()) {
+    swlio::daemon::DaemonConfig config;
+    if (!LoadChecked(print_config, &config)) return 1;
+    std::cout << swlio::daemon::PrintConfig(config);
     return 0;
   }
   if (config_path.empty()) {
-    std::cerr << "swliod: give --config FILE (or --check-config FILE)\n";
+    std::cerr << "swliod: give --config FILE (or --check-config FILE, --print-config FILE)\n";
     return 2;
   }
   swlio::daemon::DaemonConfig config;

@@ -5,6 +5,8 @@
 //
 // Invariants:
 // - an accepted configuration passes its own Validate() (nothing invalid slips through);
+// - an accepted configuration, printed (swliod --print-config), loads again without an error
+//   and prints the same (--print-config | --check-config - holds for every accepted file);
 // - every error names a reason, and a line only together with a column (file:line:column);
 // - loading is a function of the text: the same text twice gives the same errors.
 //
@@ -15,6 +17,7 @@
 #include <string>
 
 #include "swlio/daemon/config/config_loader.h"
+#include "swlio/daemon/config/config_printer.h"
 
 namespace {
 
@@ -37,6 +40,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto loaded = swlio::daemon::LoadConfigText(text, "fuzz.yaml", "/etc/swlio");
   if (loaded.ok()) {
     Check(loaded.config.Validate().empty());
+    const std::string printed = swlio::daemon::PrintConfig(loaded.config);
+    const auto again = swlio::daemon::LoadConfigText(printed, "printed.yaml", "/elsewhere");
+    Check(again.ok());
+    Check(swlio::daemon::PrintConfig(again.config) == printed);
   }
   for (const auto& e : loaded.errors) {
     Check(!e.reason.empty());

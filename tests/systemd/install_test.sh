@@ -6,6 +6,7 @@
 #   install_test.sh verify       BUILD_DIR DESTDIR   systemd-analyze verify (unit, + realtime)
 #   install_test.sh security     BUILD_DIR DESTDIR   systemd-analyze security --offline=yes
 #   install_test.sh check-config BUILD_DIR DESTDIR   installed swliod accepts installed config
+#                                                    (and its --print-config output on stdin)
 #   install_test.sh sysusers     BUILD_DIR DESTDIR   systemd-sysusers creates the user in a root
 #
 # Exit 77 = skipped (CTest SKIP_RETURN_CODE): the tool needed is absent.
@@ -119,6 +120,11 @@ case $mode in
   check-config)
     out=$("$destdir/usr/bin/swliod" --check-config "$config" 2>&1) ||
       fail "swliod rejects the installed config: $out"
+    echo "$out"
+    # Its effective configuration (paths made absolute) passes the same check from stdin.
+    out=$("$destdir/usr/bin/swliod" --print-config "$config" |
+      "$destdir/usr/bin/swliod" --check-config - 2>&1) ||
+      fail "--check-config - rejects --print-config's output for the installed config: $out"
     echo "$out"
     # The check must fail for the same file without the DDS XML beside it (a copy: the
     # installed tree is shared with the other checks, which may run in parallel).

@@ -17,7 +17,9 @@ bool SetUpWheel(const std::filesystem::path& dir,
   }
   read->wheel = can;
   config->window.wheel.enabled = true;
-  if (const auto T = daemon::ManifestWheelExtrinsic(dir)) config->window.wheel.T_imu_base = *T;
+  if (const auto T = daemon::ManifestWheelExtrinsic(dir)) {
+    config->window.wheel.T_imu_base = estimator::ExtrinsicConfig::FromIsometry(*T);
+  }
   return true;
 }
 

@@ -1,5 +1,7 @@
-// The only file that includes yaml-cpp. A `Section` walks one YAML mapping: each Get() call
-// takes a known key, checks its type and stores it; Finish() reports every key nobody took.
+// The only file that reads YAML (config_printer.cpp, the other yaml-cpp user, only writes it
+// for --print-config). A `Section` walks one YAML mapping: each Get() call takes a known key,
+// checks its type and stores it; Removed() refuses a key the schema dropped, saying what
+// replaced it; Finish() reports every key nobody took.
 // Marks (line/column) of every key are remembered so that the modules' Validate() results,
 // which only know key names, can be reported with their place in the file.
 
@@ -16,6 +18,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <utility>
 
 namespace swlio::daemon {
 namespace {
@@ -154,7 +157,17 @@ class Section {
     }
   }
 
-  /// Reports keys that no Get()/Child() took, and duplicated keys.
+  /// A key removed from the schema because nothing read it: when present, an error that says
+  /// what to use `instead`. Removed keys are not offered as "did you mean" hints.
+  void Removed(const char* key, const std::string& instead) {
+    removed_.emplace_back(key);
+    const auto [k, value] = Find(key);
+    if (!k) return;
+    ctx_->marks[Path(key)] = k.Mark();
+    ctx_->Error(k.Mark(), Path(key), "removed key (it was never read); " + instead);
+  }
+
+  /// Reports keys that no Get()/Child()/Removed() took, and duplicated keys.
   void Finish() {
     if (!node_.IsMap()) return;
     std::set<std::string> seen;
@@ -163,7 +176,8 @@ class Section {
       const std::string name = k.IsScalar() ? k.Scalar() : Describe(k);
       if (!seen.insert(name).second) {
         ctx_->Error(k.Mark(), Path(name.c_str()), "duplicate key");
-      } else if (std::find(known_.begin(), known_.end(), name) == known_.end()) {
+      } else if (std::find(known_.begin(), known_.end(), name) == known_.end() &&
+                 std::find(removed_.begin(), removed_.end(), name) == removed_.end()) {
         ctx_->Error(k.Mark(), Path(name.c_str()), "unknown key" + Suggestion(name));
       }
     }
@@ -174,17 +188,24 @@ class Section {
  private:
   std::string Path(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
 
-  /// The value under `key` (or a null handle), remembering that the key is known.
-  YAML::Node Take(const char* key) {
-    known_.emplace_back(key);
-    if (!node_.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
-    for (const auto& entry : node_) {
-      if (entry.first.IsScalar() && entry.first.Scalar() == key) {
-        ctx_->marks[Path(key)] = entry.first.Mark();
-        return entry.second;
+  /// The key node and the value of `key` in this mapping; undefined handles when absent.
+  std::pair<YAML::Node, YAML::Node> Find(const char* key) const {
+    if (node_.IsMap()) {
+      for (const auto& entry : node_) {
+        if (entry.first.IsScalar() && entry.first.Scalar() == key) {
+          return {entry.first, entry.second};
+        }
       }
     }
-    return YAML::Node(YAML::NodeType::Undefined);
+    return {YAML::Node(YAML::NodeType::Undefined), YAML::Node(YAML::NodeType::Undefined)};
+  }
+
+  /// The value under `key` (or an undefined handle), remembering that the key is known.
+  YAML::Node Take(const char* key) {
+    known_.emplace_back(key);
+    const auto [k, value] = Find(key);
+    if (k) ctx_->marks[Path(key)] = k.Mark();
+    return value;
   }
 
   template <typename Parse>
@@ -231,6 +252,7 @@ class Section {
   std::string path_;
   Context* ctx_;
   std::vector<std::string> known_;
+  std::vector<std::string> removed_;
 };
 
 void Bind(Section s, drivers::LidarConfig& c) {
@@ -295,7 +317,6 @@ void Bind(Section s, estimator::ImuNoiseConfig& c) {
 void Bind(Section s, estimator::ExtrinsicConfig& c) {
   s.Get("translation_m", c.translation_m);
   s.Get("rotation_rpy_deg", c.rotation_rpy_deg);
-  s.Get("estimate_online", c.estimate_online);
   s.Finish();
 }
 
@@ -355,14 +376,7 @@ void Bind(Section s, estimator::StandstillConfig& c) {
 /// `T_imu_base` as translation_m and rotation_rpy_deg (the extrinsic's convention).
 void Bind(Section s, estimator::WheelFactorConfig& c) {
   s.Get("enabled", c.enabled);
-  estimator::ExtrinsicConfig base;
-  {
-    Section t = s.Child("T_imu_base");
-    t.Get("translation_m", base.translation_m);
-    t.Get("rotation_rpy_deg", base.rotation_rpy_deg);
-    t.Finish();
-  }
-  c.T_imu_base = base.ToIsometry();
+  Bind(s.Child("T_imu_base"), c.T_imu_base);
   s.Get("sigma_forward_mps", c.sigma_forward_mps);
   s.Get("sigma_lateral_mps", c.sigma_lateral_mps);
   s.Get("sigma_vertical_mps", c.sigma_vertical_mps);
@@ -512,15 +526,20 @@ void Bind(Section s,
           estimator::LocalizationConfig& localization) {
   s.Get("mode", c.mode);
   Bind(s.Child("imu_noise"), c.imu_noise);
-  Bind(s.Child("extrinsic_imu_lidar"), c.extrinsic_imu_lidar);
+  Section extrinsic = s.Child("extrinsic_imu_lidar");
+  extrinsic.Removed("estimate_online",
+                    "use estimator.window.estimate_extrinsic to refine T_imu_lidar in the window, "
+                    "or estimator.window.calibrate_extrinsic_s to calibrate it in one batch");
+  Bind(extrinsic, c.extrinsic_imu_lidar);
   s.Get("gravity_mps2", c.gravity_mps2);
   s.Get("init_static_duration_s", c.init_static_duration_s);
-  s.Get("window_size", c.window_size);
-  s.Get("max_iterations", c.max_iterations);
   s.Get("plane_voxel_m", c.plane_voxel_m);
   s.Get("edge_voxel_m", c.edge_voxel_m);
   s.Get("local_map_radius_m", c.local_map_radius_m);
-  s.Get("num_threads", c.num_threads);
+  s.Removed("window_size", "use estimator.window.window_size instead");
+  s.Removed("max_iterations", "use estimator.window.max_iterations instead");
+  s.Removed("num_threads",
+            "every solve runs on one thread, for deterministic results: delete the line");
   Bind(s.Child("window"), window);
   Bind(s.Child("loop_closure"), loop_closure);
   Bind(s.Child("localization"), localization);

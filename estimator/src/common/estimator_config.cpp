@@ -39,12 +39,9 @@ ConfigIssues EstimatorConfig::Validate() const {
   AppendWithPrefix(issues, "extrinsic_imu_lidar", extrinsic_imu_lidar.Validate());
   CheckInRange(issues, "gravity_mps2", gravity_mps2, 9.7, 9.9);
   CheckInRange(issues, "init_static_duration_s", init_static_duration_s, 0.2, 30.0);
-  CheckInRange<int64_t>(issues, "window_size", window_size, 2, 50);
-  CheckInRange<int64_t>(issues, "max_iterations", max_iterations, 1, 50);
   CheckInRange(issues, "plane_voxel_m", plane_voxel_m, 0.05, 2.0);
   CheckInRange(issues, "edge_voxel_m", edge_voxel_m, 0.05, 2.0);
   CheckInRange(issues, "local_map_radius_m", local_map_radius_m, 10.0, 500.0);
-  CheckInRange<int64_t>(issues, "num_threads", num_threads, 1, 64);
   return issues;
 }
 
@@ -56,6 +53,15 @@ Eigen::Isometry3d ExtrinsicConfig::ToIsometry() const {
                    .toRotationMatrix();
   T.translation() = Eigen::Vector3d(translation_m[0], translation_m[1], translation_m[2]);
   return T;
+}
+
+ExtrinsicConfig ExtrinsicConfig::FromIsometry(const Eigen::Isometry3d& T) {
+  constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+  const Eigen::Vector3d rpy_deg = lie::RpyFromRotation(T.linear()) * kRadToDeg;
+  ExtrinsicConfig c;
+  c.translation_m = {T.translation().x(), T.translation().y(), T.translation().z()};
+  c.rotation_rpy_deg = {rpy_deg.x() + 0.0, rpy_deg.y() + 0.0, rpy_deg.z() + 0.0};  // no -0
+  return c;
 }
 
 }  // namespace swlio::estimator

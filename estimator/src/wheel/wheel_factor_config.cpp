@@ -9,7 +9,7 @@ ConfigIssues WheelFactorConfig::Validate() const {
   CheckInRange(issues, "sigma_vertical_mps", sigma_vertical_mps, 1e-4, 10.0);
   CheckInRange(issues, "max_gap_s", max_gap_s, 1e-3, 1.0);
   CheckInRange(issues, "max_innovation_mps", max_innovation_mps, 0.01, 20.0);
-  CheckThat(issues, T_imu_base.matrix().allFinite(), "T_imu_base", "must be finite");
+  AppendWithPrefix(issues, "T_imu_base", T_imu_base.Validate());
   return issues;
 }
 

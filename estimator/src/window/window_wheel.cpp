@@ -65,10 +65,11 @@ bool WindowEstimator::AttachWheel(Frame* frame) {
   const auto max_gap_ns = static_cast<int64_t>(config_.wheel.max_gap_s * 1e9);
   if (!WheelSpeedAt(wheel_, frame->t_ns, max_gap_ns, &speed_mps)) return false;
   const WheelFactorConfig& c = config_.wheel;
-  auto factor = WheelVelocityFactor::Create(speed_mps, GyroAt(frame->t_ns), c.T_imu_base,
-                                            {.forward_mps = c.sigma_forward_mps,
-                                             .lateral_mps = c.sigma_lateral_mps,
-                                             .vertical_mps = c.sigma_vertical_mps});
+  auto factor =
+      WheelVelocityFactor::Create(speed_mps, GyroAt(frame->t_ns), c.T_imu_base.ToIsometry(),
+                                  {.forward_mps = c.sigma_forward_mps,
+                                   .lateral_mps = c.sigma_lateral_mps,
+                                   .vertical_mps = c.sigma_vertical_mps});
   if (factor == nullptr) return false;
   // Slip gate against the IMU prediction (the frame's state before the solve).
   const double predicted_mps =

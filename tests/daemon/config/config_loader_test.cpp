@@ -29,7 +29,7 @@ TEST(ConfigLoader, ShippedConfigIsValid) {
   EXPECT_EQ(loaded.config.lidar.model, "rs16");
   EXPECT_EQ(loaded.config.lidar.msop_port, 6699);
   EXPECT_EQ(loaded.config.imu.baud, 921600);
-  EXPECT_EQ(loaded.config.estimator.window_size, 10);
+  EXPECT_EQ(loaded.config.window.window_size, 5u);
   // Relative paths are resolved against the file's directory.
   EXPECT_EQ(loaded.config.ipc.dds_config_file,
             (std::filesystem::absolute(path).parent_path() / "cyclonedds-loopback.xml")
@@ -177,7 +177,7 @@ lidar:
   max_range_m: 4
 estimator:
   mode: fast
-  window_size: 1
+  init_static_duration_s: 0.1
 logging:
   file_level: verbose
 )");
@@ -188,7 +188,7 @@ logging:
   EXPECT_EQ(loaded.errors[1].key, "lidar.max_range_m");
   EXPECT_EQ(loaded.errors[1].line, 5);
   EXPECT_EQ(loaded.errors[2].key, "estimator.mode");
-  EXPECT_EQ(loaded.errors[3].key, "estimator.window_size");
+  EXPECT_EQ(loaded.errors[3].key, "estimator.init_static_duration_s");
   EXPECT_EQ(loaded.errors[4].key, "logging.file_level");
   EXPECT_EQ(loaded.errors[4].line, 10);
 }
@@ -213,6 +213,52 @@ ipc:
   EXPECT_TRUE(Load("config_version: 1\nipc:\n  domain_id: 1\n").ok());
   EXPECT_FALSE(Load("config_version: 1\nlidar:\n  msop_port: 7400\n").ok());
   EXPECT_TRUE(Load("config_version: 1\nlidar:\n  msop_port: 7512\n").ok());
+}
+
+// Keys that nothing read were removed; an old file that has them is refused, each with what
+// replaced it (not merely "unknown key").
+TEST(ConfigLoader, RemovedKeysAreRefusedNamingTheirReplacement) {
+  const LoadedConfig loaded = Load(R"(config_version: 1
+estimator:
+  extrinsic_imu_lidar:
+    estimate_online: true
+  window_size: 10
+  max_iterations: 5
+  num_threads: 1
+)");
+  ASSERT_EQ(loaded.errors.size(), 4u) << loaded.ErrorReport();
+  EXPECT_EQ(loaded.errors[0].ToString(),
+            "test.yaml:4:5: estimator.extrinsic_imu_lidar.estimate_online: removed key (it was "
+            "never read); use estimator.window.estimate_extrinsic to refine T_imu_lidar in the "
+            "window, or estimator.window.calibrate_extrinsic_s to calibrate it in one batch");
+  EXPECT_EQ(loaded.errors[1].ToString(),
+            "test.yaml:5:3: estimator.window_size: removed key (it was never read); use "
+            "estimator.window.window_size instead");
+  EXPECT_EQ(loaded.errors[2].key, "estimator.max_iterations");
+  EXPECT_THAT(loaded.errors[2].reason, HasSubstr("use estimator.window.max_iterations instead"));
+  EXPECT_EQ(loaded.errors[3].key, "estimator.num_threads");
+  EXPECT_THAT(loaded.errors[3].reason, HasSubstr("every solve runs on one thread"));
+  // Their replacements are read where the messages point.
+  const LoadedConfig replaced = Load(R"(config_version: 1
+estimator:
+  window:
+    window_size: 7
+    max_iterations: 6
+    estimate_extrinsic: true
+)");
+  ASSERT_TRUE(replaced.ok()) << replaced.ErrorReport();
+  EXPECT_EQ(replaced.config.window.window_size, 7u);
+  EXPECT_EQ(replaced.config.window.max_iterations, 6);
+  EXPECT_TRUE(replaced.config.window.estimate_extrinsic);
+  // A removed key is no "did you mean" hint: a typo of one stays a plain unknown key.
+  const ConfigError typo = OnlyError(Load("config_version: 1\nestimator:\n  num_thread: 1\n"));
+  EXPECT_EQ(typo.reason, "unknown key");
+  // Only where it was: estimate_online is unknown in the wheel base's transform.
+  const ConfigError elsewhere =
+      OnlyError(Load("config_version: 1\nestimator:\n  window:\n    wheel:\n      T_imu_base:\n"
+                     "        estimate_online: true\n"));
+  EXPECT_EQ(elsewhere.key, "estimator.window.wheel.T_imu_base.estimate_online");
+  EXPECT_EQ(elsewhere.reason, "unknown key");
 }
 
 TEST(ConfigLoader, DuplicateKeyIsAnError) {

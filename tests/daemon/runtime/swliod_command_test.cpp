@@ -1,5 +1,6 @@
 // swliod as systemd runs it: a bad configuration exits with EX_CONFIG (not restarted), a good
-// one runs until SIGTERM and stops cleanly with its status in the log.
+// one runs until SIGTERM and stops cleanly with its status in the log. And its configuration
+// commands: --print-config FILE | --check-config -.
 
 #include <fcntl.h>
 #include <gmock/gmock.h>
@@ -14,6 +15,8 @@
 #include <sstream>
 #include <thread>
 
+#include "swlio/daemon/config/config_loader.h"
+#include "swlio/daemon/config/config_printer.h"
 #include "test_data.h"
 #include "udp_port.h"
 
@@ -78,6 +81,64 @@ TEST(SwliodCommand, RunsUntilSigtermAndStopsCleanly) {
   EXPECT_THAT(log, HasSubstr("status initializing"));  // no sensor: never ready
   EXPECT_THAT(log, HasSubstr("stopping (Terminated)"));
   EXPECT_THAT(log, HasSubstr("final status"));
+}
+
+TEST(SwliodCommand, PrintedConfigurationPassesCheckConfigOnStdin) {
+  const std::string swliod = SWLIOD_PATH;
+  const std::string shipped = (test::SourceDir() / "config" / "swlio.yaml").string();
+  int code = -1;
+  const std::string out = test::RunCommand(
+      swliod + " --print-config " + shipped + " | " + swliod + " --check-config - 2>&1", &code);
+  EXPECT_EQ(code, 0) << out;
+  EXPECT_EQ(out, "<stdin>: OK\n");
+  // What it prints is the library's PrintConfig of the file, and nothing else.
+  const std::string printed = test::RunCommand(swliod + " --print-config " + shipped, &code);
+  EXPECT_EQ(code, 0);
+  EXPECT_EQ(printed, PrintConfig(LoadConfigFile(shipped).config));
+}
+
+// Standard input has no directory of its own: its relative paths resolve against the current
+// one, and --print-config writes them absolute, so the printed file checks from anywhere.
+TEST(SwliodCommand, StdinResolvesRelativePathsAgainstTheCurrentDirectory) {
+  const std::string swliod = SWLIOD_PATH;
+  const auto dir = std::filesystem::canonical(test::MakeTempDir("swliod_stdin"));
+  const auto xml = dir / "cyclonedds-loopback.xml";
+  std::filesystem::copy_file(test::SourceDir() / "config" / "cyclonedds-loopback.xml", xml);
+  int code = -1;
+  const std::string printed = test::RunCommand(
+      "cd " + dir.string() + " && printf 'config_version: 1\\n' | " + swliod + " --print-config -",
+      &code);
+  ASSERT_EQ(code, 0) << printed;
+  EXPECT_THAT(printed, HasSubstr("  dds_config_file: " + xml.string() + "\n"));
+  DaemonConfig defaults;  // a minimal file: every default filled in
+  defaults.ipc.dds_config_file = xml.string();
+  EXPECT_EQ(printed, PrintConfig(defaults));
+  std::ofstream(dir / "printed.yaml") << printed;
+  const std::string out = test::RunCommand(
+      "cd / && " + swliod + " --check-config - < " + (dir / "printed.yaml").string() + " 2>&1",
+      &code);
+  EXPECT_EQ(code, 0) << out;
+  // The minimal file itself, from elsewhere, does not find the XML.
+  test::RunCommand(
+      "cd / && printf 'config_version: 1\\n' | " + swliod + " --check-config - 2>/dev/null", &code);
+  EXPECT_EQ(code, 1);
+}
+
+TEST(SwliodCommand, ARemovedKeyIsRefusedNamingItsReplacement) {
+  const std::string swliod = SWLIOD_PATH;
+  const std::string old_file = "printf 'config_version: 1\\nestimator:\\n  window_size: 10\\n'";
+  int code = -1;
+  const std::string out =
+      test::RunCommand(old_file + " | " + swliod + " --check-config - 2>&1", &code);
+  EXPECT_EQ(code, 1);
+  EXPECT_THAT(out, HasSubstr("<stdin>:3:3: estimator.window_size: removed key (it was never "
+                             "read); use estimator.window.window_size instead\n"));
+  EXPECT_THAT(out, HasSubstr("<stdin>: 1 error(s)"));
+  // --print-config refuses it as well, and prints nothing.
+  const std::string printed =
+      test::RunCommand(old_file + " | " + swliod + " --print-config - 2>/dev/null", &code);
+  EXPECT_EQ(code, 1);
+  EXPECT_EQ(printed, "");
 }
 
 }  // namespace

@@ -3,9 +3,10 @@
 /// The one place YAML becomes a DaemonConfig.
 ///
 /// Rules: every key is optional (in-class defaults) except `config_version`; unknown keys are
-/// errors (with a "did you mean" hint); values must have the field's type; then every module's
-/// `Validate()` runs. All problems are collected, each with file, line, column, key and reason,
-/// so one run of `swliod --check-config` lists everything that is wrong.
+/// errors (with a "did you mean" hint), and so are removed keys (with what replaced them);
+/// values must have the field's type; then every module's `Validate()` runs. All problems are
+/// collected, each with file, line, column, key and reason, so one run of `swliod --check-config`
+/// lists everything that is wrong.
 
 #include <filesystem>
 #include <string>
@@ -40,7 +41,7 @@ struct LoadedConfig {
 LoadedConfig LoadConfigFile(const std::filesystem::path& path);
 
 /// Same as LoadConfigFile for text already in memory; `display_name` names it in messages and
-/// `base_dir` resolves relative paths.
+/// `base_dir` resolves relative paths (swliod gives standard input the current directory).
 LoadedConfig LoadConfigText(const std::string& yaml_text,
                             const std::string& display_name,
                             const std::filesystem::path& base_dir);

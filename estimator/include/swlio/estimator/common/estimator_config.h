@@ -5,7 +5,6 @@
 
 #include <Eigen/Geometry>
 #include <array>
-#include <cstdint>
 #include <string>
 
 #include "swlio/core/config_issue.h"
@@ -25,17 +24,18 @@ struct ImuNoiseConfig {
   ConfigIssues Validate() const;
 };
 
-/// Extrinsic `T_imu_lidar` (maps LiDAR-frame points into the IMU frame).
-/// Rotation R = Rz(yaw)·Ry(pitch)·Rx(roll).
+/// A rigid transform `T_a_b` (maps frame-b points into frame a) as the configuration writes it:
+/// the extrinsic `T_imu_lidar`, the wheel base `T_imu_base`. The numbers are kept as given, so a
+/// printed configuration states them exactly. Rotation R = Rz(yaw)·Ry(pitch)·Rx(roll).
 struct ExtrinsicConfig {
-  std::array<double, 3> translation_m = {0.0, 0.0, 0.0};
+  std::array<double, 3> translation_m = {0.0, 0.0, 0.0};  ///< origin of frame b in frame a
   std::array<double, 3> rotation_rpy_deg = {0.0, 0.0, 0.0};
-  /// Not read: WindowEstimatorConfig's estimate_extrinsic and calibrate_extrinsic_s decide.
-  bool estimate_online = true;
 
   ConfigIssues Validate() const;
   /// The transform these numbers describe.
   Eigen::Isometry3d ToIsometry() const;
+  /// The numbers of `T`: ToIsometry() gives `T` back to rounding (not always to the last bit).
+  static ExtrinsicConfig FromIsometry(const Eigen::Isometry3d& T);
 };
 
 struct EstimatorConfig {
@@ -46,13 +46,10 @@ struct EstimatorConfig {
   double gravity_mps2 = 9.80665;
   /// The robot must stand still this long before the static initialization completes.
   double init_static_duration_s = 1.0;
-  int64_t window_size = 10;    ///< not read: WindowEstimatorConfig::window_size
-  int64_t max_iterations = 5;  ///< not read: WindowEstimatorConfig::max_iterations
   /// MakeOdometryConfig (lidar_odometry.h) gives these three to the front end and the maps.
   double plane_voxel_m = 0.4;        ///< down-sampling of planar features
   double edge_voxel_m = 0.2;         ///< down-sampling of edge features
   double local_map_radius_m = 80.0;  ///< local map kept around the robot
-  int64_t num_threads = 1;           ///< not read: every solve is serial (deterministic)
 
   ConfigIssues Validate() const;
 };

@@ -3,9 +3,8 @@
 /// Options of the wheel-odometry velocity factor (wheel_velocity_factor.h), apart from it so
 /// that configuration code does not pull in Ceres.
 
-#include <Eigen/Geometry>
-
 #include "swlio/core/config_issue.h"
+#include "swlio/estimator/estimator_config.h"
 
 namespace swlio::estimator {
 
@@ -13,8 +12,8 @@ struct WheelFactorConfig {
   /// Off by default: only a chassis that reports odometry on CAN has it (daemon `can:`).
   bool enabled = false;
   /// The chassis base frame (x forward, z up; the point whose speed the wheels report, midway
-  /// between the driven wheels) in the IMU frame.
-  Eigen::Isometry3d T_imu_base = Eigen::Isometry3d::Identity();
+  /// between the driven wheels) in the IMU frame; identity by default.
+  ExtrinsicConfig T_imu_base;
   /// Standard deviations of the base velocity: forward (the wheels' speed: noise, radius error
   /// and slip), lateral and vertical (the non-holonomic constraint: a wheeled base does not
   /// slide sideways; vertical also absorbs bumps and suspension travel). Forward is loose: a
