@@ -4,7 +4,7 @@
 /// that configuration code does not pull in Ceres.
 
 #include "swlio/core/config_issue.h"
-#include "swlio/estimator/estimator_config.h"
+#include "swlio/estimator/common/estimator_config.h"
 
 namespace swlio::estimator {
 
