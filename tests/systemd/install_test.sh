@@ -20,7 +20,8 @@ set -euo pipefail
 # Measured on Debian 12 (systemd 252): 1.7 for swliod.service, 2.0 with the realtime drop-in;
 # the ceilings are those values, so any loosening of the unit that raises the score fails.
 # (1.6 before setpriority was allowed back from @resources for the sensor threads' nice −10,
-# bounded by LimitNICE: IMU → pose p99 3.2 → 2.5 ms, bench/README.md.)
+# bounded by LimitNICE: IMU → pose p99 3.2 → 2.5 ms,
+# docs/notes/2026-11-22-daemon-end-to-end.md, "Latency".)
 readonly kMaxExposure=1.7
 readonly kMaxExposureRealtime=2.0
 

@@ -145,7 +145,7 @@ TEST_F(RunOnShortDrive, TightlyCoupledFollowsTheSimulatedDrive) {
 
   // The covariance where the window observes the state (state_nees.h): mean NEES of the tilt
   // (2 dof) and of the IMU-frame velocity (3 dof) within [¼, 3]× their dof. The tilt is about
-  // 2× overconfident (bench/README.md, "Covariance and consistency").
+  // 2× overconfident (docs/notes/2026-11-22-covariance-and-nees.md, "The first measurement").
   const test::NeesSummary nees = test::StateNees(*dir_ / "groundtruth.tum", dir / "cov.csv", 1.0);
   std::cout << "[ nees ] tilt " << nees.tilt_mean << " (2 dof), velocity " << nees.velocity_mean
             << " (3 dof), " << nees.samples << " sweeps\n";
@@ -341,7 +341,7 @@ TEST_F(RunOnShortDrive, LoopClosureWritesItsOutputsAndLeavesAStraightDriveAlone)
 // Wheel odometry (the recording's can.log, differential drive with the simulator's wheel-radius
 // errors) as the window's velocity factor: every tracked sweep gets one and the drive is
 // followed as well as without, within 20 % (on 25 m the LiDAR alone is at 1.4 cm; the wheels
-// pay off on long drives: bench/README.md, "Wheel odometry and GNSS").
+// pay off on long drives: docs/notes/2026-11-24-wheel-odometry-and-gnss.md).
 TEST_F(RunOnShortDrive, WheelOdometryFactorOnEverySweep) {
   const fs::path dir = *out_ / "wheel";
   fs::create_directories(dir);
@@ -401,7 +401,7 @@ double LastNumberAfter(const std::string& out, const std::string& key) {
 
 // The online extrinsic calibration on 33 s of the `aggressive` drive (turns from 8 s on), started
 // 2° and 5 cm (horizontal) off: after 30 s of LiDAR-only odometry beside the window the batch
-// is accepted and the window restarts on it (bench/README.md, "Online extrinsic").
+// is accepted and the window restarts on it (docs/notes/2026-11-22-online-extrinsic.md).
 TEST(RunOnAggressiveDrive, OnlineCalibrationRecoversTheExtrinsic) {
   const fs::path tool = test::ToolPath("swlio-run");
   if (tool.empty()) GTEST_SKIP() << "swlio-run not built next to the tests";

@@ -65,7 +65,8 @@ ImuSample At(ImuSample s, int64_t t_ns) {
 /// looser, let the LiDAR's yaw jitter move the bias while the robot still stood: on `short`
 /// seeds 1–3 the z bias was 0.7–1.7e-4 rad/s off after the initialization, 1.7–2.0e-4 off three
 /// seconds later (seed 2: 7.7e-4 within the first second), and the yaw drifted with it
-/// (bench/README, "The gyro bias after a standing start").
+/// (docs/notes/2026-11-25-tightly-coupled-yaw-gyro-bias.md, "The gyro bias after a standing
+/// start").
 Eigen::Vector3d StaticGyroBiasSigma(const StaticInitResult& init) {
   constexpr double kFloorRadps = 1e-5;
   return init.bias_gyro_std.cwiseMax(kFloorRadps);

@@ -87,7 +87,7 @@ namespace {
 /// H = JᵀJ of a sparse Jacobian, row by row: a row adds the outer product of its non-zeros.
 /// Ceres' rows are short (an IMU row touches two frames, a prior row its blocks), so this costs
 /// Σ nnz(row)² instead of the dense product's rows·cols² (2.6 M instructions per sweep, 6 % of
-/// the update, with an 87-column window; bench/README, issue 6).
+/// the update, with an 87-column window; docs/notes/2026-12-02-per-sweep-time-250m-map.md).
 Eigen::MatrixXd NormalMatrix(const ceres::CRSMatrix& J) {
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(J.num_cols, J.num_cols);
   for (size_t r = 0; r < static_cast<size_t>(J.num_rows); ++r) {

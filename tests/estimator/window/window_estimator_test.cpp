@@ -185,8 +185,9 @@ Eigen::Vector3d FirstGyroBiasSigma(double gyro_sigma_radps) {
 
 // After a standing start the gyro bias is known to the still window's standard error, σ_ω/√N
 // (400 samples in the default 1 s), not to the configured 0.005 rad/s: with that loose prior the
-// LiDAR's yaw jitter moved the bias while the robot stood (bench/README, "The gyro bias after a
-// standing start"). A noise-free gyro gets the 1e-5 rad/s floor.
+// LiDAR's yaw jitter moved the bias while the robot stood
+// (docs/notes/2026-11-25-tightly-coupled-yaw-gyro-bias.md, "The gyro bias after a standing
+// start"). A noise-free gyro gets the 1e-5 rad/s floor.
 TEST(WindowEstimator, AfterAStandingStartTheGyroBiasIsKnownToTheStillWindowsStandardError) {
   const double sigma_radps = 3.5e-3;  // the MTi-G-710 at 400 Hz: 0.01 °/s/√Hz · √400
   const Eigen::Vector3d noisy = FirstGyroBiasSigma(sigma_radps);

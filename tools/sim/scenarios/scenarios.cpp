@@ -80,8 +80,9 @@ Scenario Aggressive() {
 /// `aggressive`'s slalom and corners over a calibration course: cable covers laid at ±45°
 /// across the south road, at the slalom's first five turns and the centre-line crossings after
 /// them, so that each one tips the robot about both horizontal axes. A drive that only yaws
-/// leaves the vertical lever arm of the IMU-LiDAR extrinsic unobservable (bench/README,
-/// "Online extrinsic"); this one is for `--calibrate-extrinsic` in its first 30 s.
+/// leaves the vertical lever arm of the IMU-LiDAR extrinsic unobservable
+/// (docs/notes/2026-11-22-online-extrinsic.md); this one is for `--calibrate-extrinsic` in its
+/// first 30 s (docs/notes/2026-12-02-calibration-scenario.md).
 Scenario Calibration() {
   Scenario s = Aggressive();
   s.name = "calibration";

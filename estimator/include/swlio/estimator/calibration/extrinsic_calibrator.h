@@ -6,8 +6,8 @@
 ///
 /// Why not in the window: the window's local map is built with the extrinsic being estimated
 /// (T_world_imu · T_imu_lidar), which anchors the estimate to its own past value
-/// (bench/README.md, "Online extrinsic"). LiDAR-only odometry builds its map at LiDAR poses, so
-/// its poses T_w0_lidar do not depend on the extrinsic.
+/// (docs/notes/2026-11-22-online-extrinsic.md). LiDAR-only odometry builds its map at LiDAR
+/// poses, so its poses T_w0_lidar do not depend on the extrinsic.
 ///
 /// Unknowns: per pose k the IMU pose T_world_imu,k and [v, b_a, b_g]_k; the extrinsic
 /// T_imu_lidar; the tilt of the odometry world, T_world_w0 = Rot(Exp([a, b, 0])) · T̄_world_w0
@@ -42,7 +42,7 @@ struct ExtrinsicCalibratorOptions {
   /// σ_point² H⁻¹ plus a floor, so that a direction the scan hardly constrains (along a road
   /// between walls) weighs little; 0 ignores H. σ_point is the RS-LiDAR-16's ±2 cm range
   /// accuracy (RoboSense RS-LiDAR-16 user manual, specifications); on the `calibration` drive
-  /// 0.02 m did better than 0.05 m (bench/README.md, "calibration").
+  /// 0.02 m did better than 0.05 m (docs/notes/2026-12-02-calibration-scenario.md).
   double hessian_point_sigma_m = 0.02;
   double hessian_floor_position_m = 0.002;
   double hessian_floor_rotation_rad = 0.02 * 3.14159265358979323846 / 180.0;

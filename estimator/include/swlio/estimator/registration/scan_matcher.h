@@ -43,7 +43,8 @@ struct ScanMatcherConfig {
   /// A feature this far from its map surface (4σ of the window's 0.05 m) has found the wrong
   /// one. Typically a surface coming into view found the one seen before just behind it, such
   /// as the far face of a wall. Against a map built from the true poses, the simulated 0.3 m
-  /// firewalls pulled the yaw by 0.2° as the far face came into view (bench/README, issue 6).
+  /// firewalls pulled the yaw by 0.2° as the far face came into view
+  /// (docs/notes/2026-11-24-residual-gate.md).
   double refined_max_residual_m = 0.2;
   int max_iterations = 10;
   /// Correspondence searches per match at most (each costs ~1.7 ms on a 1,100-feature sweep);

@@ -26,9 +26,9 @@ struct WindowEstimatorConfig {
   /// Edge features of the window's sweeps (and its dynamic bootstrap), in place of
   /// odometry.front_end.features' edge_threshold_m2 and max_edges_per_sector; by default the
   /// LiDAR-only mode's. More and weaker edges (0.15 m², 40 per sector) trade along-track
-  /// velocity for yaw (bench/README, "More, weaker edges in the window"): loop943 seeds 1–3
-  /// without loop closure, APE 0.716 / 0.360 / 0.664 → 0.454 / 0.198 / 0.372 m, yaw drift
-  /// 0.285 → 0.231°/100 m; but on run_command_test's 25 s drive the forward velocity error
+  /// velocity for yaw (docs/notes/2026-11-24-loop943-yaw-drift.md, "The yaw drift"): loop943
+  /// seeds 1–3 without loop closure, APE 0.716 / 0.360 / 0.664 → 0.454 / 0.198 / 0.372 m, yaw
+  /// drift 0.285 → 0.231°/100 m; but on run_command_test's 25 s drive the forward velocity error
   /// 0.016 → 0.027 m/s RMS and its NEES 5.3 → 16 (limit 9). At 0.2 m² loop943 was worse than
   /// both (0.724 / 0.537 / 0.766 m): the gain is not established by three runs.
   double edge_threshold_m2 = 0.3;
@@ -36,10 +36,10 @@ struct WindowEstimatorConfig {
   /// Radius of the window's local maps (in place of odometry.estimator.local_map_radius_m, the
   /// LiDAR-only mode's 80 m): voxels farther from the robot are dropped. A map that keeps the
   /// whole site lets a revisited place match the surfaces first mapped there, and holds far
-  /// surfaces that steady the yaw (bench/README, "A local map of the whole site"): loop943 seeds
-  /// 1–3 without loop closure, APE 0.406 / 0.240 / 0.475 m at 80 m → 0.062 / 0.077 / 0.150 m,
-  /// end gap ≤ 0.02 m. LiDAR-only has drifted too far when it comes back and gains nothing
-  /// (0.83 / 0.96 / 0.66 → 1.08 / 0.72 / 0.94 m), so its mode keeps 80 m.
+  /// surfaces that steady the yaw (docs/notes/2026-12-01-whole-site-local-map.md): loop943
+  /// seeds 1–3 without loop closure, APE 0.406 / 0.240 / 0.475 m at 80 m → 0.062 / 0.077 /
+  /// 0.150 m, end gap ≤ 0.02 m. LiDAR-only has drifted too far when it comes back and gains
+  /// nothing (0.83 / 0.96 / 0.66 → 1.08 / 0.72 / 0.94 m), so its mode keeps 80 m.
   double local_map_radius_m = 250.0;
   double lidar_sigma_m = 0.05;  ///< point-to-plane / point-to-line standard deviation
   double huber_m = 0.1;         ///< Huber kernel width (metres of residual)
@@ -120,10 +120,11 @@ struct WindowEstimatorConfig {
   /// WindowResult, the covariance of the attitude against gravity in
   /// StateCovariance::rot_gravity. Without it, the tilt learned at the first turn is forced onto
   /// new frames against the start's map (loop943_3 ended 1.07 m high; ARCHITECTURE.md).
-  /// With the 250 m local map, APE off → on (bench/README, "A local map of the whole site"):
+  /// With the 250 m local map, APE off → on (docs/notes/2026-12-01-whole-site-local-map.md):
   /// degenerate seeds 1–3 0.026 / 0.025 / 0.132 → 0.013 / 0.015 / 0.021 m, loop943 0.062 /
   /// 0.077 / 0.150 → 0.061 / 0.073 / 0.084 m; on run_command_test's drive the tilt NEES
-  /// against gravity is 2.95 (off: 5.58, limit 6) and the velocity NEES 1.97.
+  /// against gravity is 2.95 (off: 5.58, limit 6) and the velocity NEES 1.97
+  /// (docs/notes/2026-11-22-covariance-and-nees.md, "The tilt NEES against gravity").
   bool estimate_gravity_tilt = true;
 
   ConfigIssues Validate() const;
