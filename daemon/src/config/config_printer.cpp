@@ -1,6 +1,6 @@
 // `swliod --print-config`: a DaemonConfig written back as the YAML the loader reads. With
 // config_loader.cpp the only file that includes yaml-cpp (here only its emitter); the two are
-// kept in step by the round-trip tests (tests/daemon/config_printer_test.cpp): print, load,
+// kept in step by the round-trip tests (tests/daemon/config/config_printer_test.cpp): print, load,
 // print again gives the same text, and the keys printed are the shipped file's.
 //
 // Keys follow config/swlio.yaml's order. Each Emit() below mirrors one Bind() of the loader.
