@@ -85,7 +85,7 @@ TEST(ThreadSetup, SetsTheNiceValueOfThisThreadOnlyEvenWithoutRealtime) {
   errno = 0;
   const int inherited = getpriority(PRIO_PROCESS, static_cast<id_t>(gettid()));
   const int target = std::min(inherited + 5, 19);
-  ASSERT_NE(target, inherited) << "the tests already run at the lowest priority";
+  if (target == inherited) GTEST_SKIP() << "the tests run at nice 19: no higher value to set";
   RealtimeConfig config;  // enabled: false
   config.threads = {{"optimizer", 0, -1, target}};
   int nice = 0;
