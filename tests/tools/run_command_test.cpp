@@ -144,8 +144,9 @@ TEST_F(RunOnShortDrive, TightlyCoupledFollowsTheSimulatedDrive) {
   EXPECT_LT(ape.stats.max, 0.15) << out;
 
   // The covariance where the window observes the state (state_nees.h): mean NEES of the tilt
-  // (2 dof) and of the IMU-frame velocity (3 dof) within [¼, 3]× their dof. The tilt is about
-  // 2× overconfident (docs/notes/2026-11-22-covariance-and-nees.md, "The first measurement").
+  // (2 dof) and of the IMU-frame velocity (3 dof) within [¼, 3]× their dof. The tilt was 2×
+  // overconfident when first measured and is about 1.5× with the gravity-tilt estimate
+  // (docs/notes/2026-11-22-covariance-and-nees.md).
   const test::NeesSummary nees = test::StateNees(*dir_ / "groundtruth.tum", dir / "cov.csv", 1.0);
   std::cout << "[ nees ] tilt " << nees.tilt_mean << " (2 dof), velocity " << nees.velocity_mean
             << " (3 dof), " << nees.samples << " sweeps\n";
