@@ -66,14 +66,8 @@ class RawSweeps {
  private:
   void Add(const sim::SimReturn& r, Scan* out) const {
     if (out->t_start_ns < 0) out->t_start_ns = r.t_true_ns;
-    const double az = (setup_.lidar.initial_azimuth_deg +
-                       360.0 * setup_.lidar.rpm / 60.0 * NsToSec(r.t_true_ns)) *
-                      kDeg;
-    const double om = setup_.lidar.vertical_angles_deg[r.channel] * kDeg;
     LidarPoint p;
-    p.xyz_m =
-        (r.range_m * Vec3(std::cos(om) * std::sin(az), std::cos(om) * std::cos(az), std::sin(om)))
-            .cast<float>();
+    p.xyz_m = sim::SimDecodedPoint(setup_.lidar, r.channel, r.t_true_ns, r.range_m).cast<float>();
     p.ring = ring_[r.channel];
     p.dt_ns = r.t_true_ns - out->t_start_ns;
     out->t_end_ns = r.t_true_ns;
