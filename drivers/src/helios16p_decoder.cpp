@@ -25,7 +25,8 @@
 // Point in the frame RoboSense's drivers publish (as for RS16: x forward at azimuth 0, y left,
 // z up; azimuth clockwise seen from above), with the lens-centre offset L (rs_driver's Helios
 // RX = 0.03498 m by default, helios16p::kLensRxM) on the uncalibrated azimuth, in float with
-// 0.01° tables as rs_driver and nebula c60082d compute it (decoder_RSHELIOS_16P.hpp L213–215):
+// 0.01° tables as rs_driver (decoder_RSHELIOS_16P.hpp L245–247 @ 4eeadac) and nebula c60082d
+// compute it:
 //   a = interpolated azimuth, af = a + horizontal calibration of the laser, v = elevation
 //   x = r cos v cos af + L cos a,  y = −r cos v sin af − L sin a,  z = r sin v
 //

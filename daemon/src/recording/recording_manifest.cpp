@@ -45,10 +45,6 @@ bool AllFinite(std::initializer_list<double> values) {
   return true;
 }
 
-}  // namespace
-
-namespace {
-
 /// The manifest's top-level `key: value` line as text ("" when absent).
 std::string TopLevelValue(const std::filesystem::path& dir, const std::string& key) {
   std::ifstream in(dir / "manifest.yaml");
@@ -75,8 +71,7 @@ std::string Version1Advice(const std::filesystem::path& dir) {
   const Eigen::Quaterniond q(T->linear() * Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitZ()));
   char text[192];
   std::snprintf(text, sizeof text, "[%.17g, %.17g, %.17g, %.17g]", q.x(), q.y(), q.z(), q.w());
-  return std::string("if its LiDAR is an RS16, Helios-16P or VLP-16 as the daemon decodes it, ") +
-         "the same extrinsic in the new frame is quaternion_xyzw: " + text +
+  return std::string("the same extrinsic in the new frame is quaternion_xyzw: ") + text +
          " (R·Rz(+90°), translation unchanged): put that line and format_version: 2 into its "
          "manifest.yaml, or record it again";
 }

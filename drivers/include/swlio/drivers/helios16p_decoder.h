@@ -14,7 +14,7 @@ namespace swlio::drivers {
 namespace helios16p {
 /// Optical (lens) centre that RoboSense's drivers add along the firing's uncalibrated azimuth,
 /// as for RS16 (rs_driver `decoder_RSHELIOS_16P.hpp` `getConstParam` RX 0.03498, RY −0.015,
-/// RZ 0 and its formula L213–215 @ 4eeadac; nebula c60082d `robosense_helios16P_decoder.hpp`).
+/// RZ 0 and its formula L245–247 @ 4eeadac; nebula c60082d `robosense_helios16P_decoder.hpp`).
 inline constexpr double kLensRxM = 0.03498;
 /// Declared beside RX but applied by neither driver's Helios-16P formula, so not here either.
 inline constexpr double kLensRyUnusedM = -0.015;
