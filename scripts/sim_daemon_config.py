@@ -16,6 +16,10 @@ loop_closure = "false" if "--no-loop-closure" in sys.argv[1:] else "true"
 work, root, msop, difop = args[0:4]
 status_period_s = args[4] if len(args) > 4 else "5.0"
 m = open(f"{work}/sim/manifest.yaml").read()
+# Version 2: the extrinsic is in the drivers' LiDAR frame (x forward, y left, z up), as swliod
+# reads it; an older simulator's manifest would give a wrong rig (drivers/recording_format.h).
+if re.search(r"^format_version: 2$", m, re.M) is None:
+    sys.exit(f"{work}/sim/manifest.yaml: not format_version 2; rerun it with this swlio-sim")
 t = re.search(r"extrinsic_T_imu_lidar:.*?translation_m: \[([^\]]*)\]", m, re.S).group(1)
 r = re.search(r"rotation_rpy_deg: \[([^\]]*)\]", m).group(1)
 open(f"{work}/swlio.yaml", "w").write(f"""config_version: 1

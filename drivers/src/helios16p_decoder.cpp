@@ -22,11 +22,13 @@
 // channels 0–15 are the first and 16–31 the second return of one firing (rs_driver's
 // Rs16DualReturnBlockIterator); no dual capture was available to check this.
 //
-// Point in the RoboSense manual's sensor frame (as for RS16: y forward at azimuth 0, x right,
-// z up; azimuth clockwise seen from above), with the lens-centre offset RX = 0.03498 m of
-// rs_driver's Helios constants:
+// Point in the frame RoboSense's drivers publish (as for RS16: x forward at azimuth 0, y left,
+// z up; azimuth clockwise seen from above), with the lens-centre offset L (rs_driver's Helios
+// RX = 0.03498 m by default, helios16p::kLensRxM) on the uncalibrated azimuth, in float with
+// 0.01° tables as rs_driver (decoder_RSHELIOS_16P.hpp L245–247 @ 4eeadac) and nebula c60082d
+// compute it:
 //   a = interpolated azimuth, af = a + horizontal calibration of the laser, v = elevation
-//   x = r cos v sin af + RX sin a,  y = r cos v cos af + RX cos a,  z = r sin v
+//   x = r cos v cos af + L cos a,  y = −r cos v sin af − L sin a,  z = r sin v
 //
 // DIFOP (1248 bytes, port 7788): id A5 FF 00 5A 11 11 55 55; rpm u16 @8; MSOP port @24,
 // DIFOP port @28; FOV start/end (0.01°) @32/@34; return mode @300; vertical angles @468 and
@@ -57,7 +59,6 @@ constexpr size_t kBlocks = 12;
 constexpr size_t kChannels = 32;
 constexpr size_t kLasers = 16;
 constexpr float kDistanceLsbM = 0.0025f;
-constexpr float kLensRxM = 0.03498f;
 constexpr double kBlockUs = 55.56;
 constexpr int64_t kBlockNs = 55560;
 constexpr int32_t kMaxPlausibleStepCdeg = 100;  // rs_driver: larger gaps are FOV blind zones
@@ -190,6 +191,7 @@ void Helios16pDecoder::DecodeBlock(const uint8_t* block,
   const int32_t block_az = ReadU16Be(block + 2);
   const float min_r = static_cast<float>(options_.min_range_m);
   const float max_r = static_cast<float>(options_.max_range_m);
+  const float lens_m = static_cast<float>(options_.lens_offset_m);
   for (size_t c = 0; c < kChannels; ++c) {
     const uint8_t* ch = block + 4 + 3 * c;
     const float range = static_cast<float>(ReadU16Be(ch)) * kDistanceLsbM;
@@ -204,8 +206,8 @@ void Helios16pDecoder::DecodeBlock(const uint8_t* block,
     const int32_t az_final = az + horiz_cdeg_[laser];
     const float xy = range * cos_vert_[laser];
     LidarReturn& r = out[s->returns++];
-    r.x_m = xy * trig.Sin(az_final) + kLensRxM * trig.Sin(az);
-    r.y_m = xy * trig.Cos(az_final) + kLensRxM * trig.Cos(az);
+    r.x_m = xy * trig.Cos(az_final) + lens_m * trig.Cos(az);
+    r.y_m = -xy * trig.Sin(az_final) - lens_m * trig.Sin(az);
     r.z_m = range * sin_vert_[laser];
     r.range_m = range;
     r.azimuth_deg = static_cast<float>(detail::CentidegTrig::Wrap(az_final)) * 0.01f;

@@ -1,8 +1,22 @@
 #include "swlio/drivers/lidar_config.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "swlio/drivers/helios16p_decoder.h"
+#include "swlio/drivers/rs16_protocol.h"
 
 namespace swlio::drivers {
+
+double VendorLensOffsetM(const std::string& model) {
+  if (model == "rs16") return rs16::kLensRxM;
+  if (model == "helios16p") return helios16p::kLensRxM;
+  return 0.0;
+}
+
+double LidarConfig::EffectiveLensOffsetM() const {
+  return std::isnan(lens_offset_m) ? VendorLensOffsetM(model) : lens_offset_m;
+}
 
 ConfigIssues LidarConfig::Validate() const {
   ConfigIssues issues;
@@ -20,6 +34,7 @@ ConfigIssues LidarConfig::Validate() const {
   const bool angles_ok = std::all_of(vertical_angles_deg.begin(), vertical_angles_deg.end(),
                                      [](double a) { return a >= -90.0 && a <= 90.0; });
   CheckThat(issues, angles_ok, "vertical_angles_deg", "every angle must be in [-90, 90]");
+  if (!std::isnan(lens_offset_m)) CheckInRange(issues, "lens_offset_m", lens_offset_m, 0.0, 0.1);
   CheckThat(issues, rpm == 300.0 || rpm == 600.0 || rpm == 1200.0, "rpm",
             "must be 300, 600 or 1200");
   return issues;

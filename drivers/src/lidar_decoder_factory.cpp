@@ -7,12 +7,18 @@
 namespace swlio::drivers {
 
 std::unique_ptr<LidarPacketDecoder> MakeLidarDecoder(const LidarConfig& config) {
-  if (config.model == "rs16") return std::make_unique<Rs16Decoder>(config);
+  const double lens_offset_m = config.EffectiveLensOffsetM();
+  if (config.model == "rs16") {
+    Rs16DecoderOptions o;
+    o.lens_offset_m = lens_offset_m;
+    return std::make_unique<Rs16Decoder>(config, o);
+  }
   if (config.model == "helios16p") {
     Helios16pOptions o;
     o.min_range_m = config.min_range_m;
     o.max_range_m = config.max_range_m;
     o.rpm = config.rpm;
+    o.lens_offset_m = lens_offset_m;
     return std::make_unique<Helios16pDecoder>(o);
   }
   if (config.model == "vlp16") {
@@ -20,6 +26,7 @@ std::unique_ptr<LidarPacketDecoder> MakeLidarDecoder(const LidarConfig& config) 
     o.min_range_m = config.min_range_m;
     o.max_range_m = config.max_range_m;
     o.rpm = config.rpm;
+    o.lens_offset_m = lens_offset_m;
     return std::make_unique<Vlp16Decoder>(o);
   }
   return nullptr;

@@ -257,9 +257,10 @@ uint32_t Rs16Decoder::DecodeBlock(const BlockInput& block,
     const double r = raw * resolution_m_;
     const double r_xy = r * cos_vert_[laser];
     LidarReturn& ret = out[n++];
-    ret.x_m = static_cast<float>(r_xy * sa + options_.lens_offset_m * s1);
-    ret.y_m = static_cast<float>(r_xy * ca + options_.lens_offset_m * c1);
-    ret.z_m = static_cast<float>(r * sin_vert_[laser]);
+    // rs_driver's frame and formula (rs16_decoder.h): the lens term on the uncalibrated α.
+    ret.x_m = static_cast<float>(r_xy * ca + options_.lens_offset_m * c1);
+    ret.y_m = static_cast<float>(-(r_xy * sa + options_.lens_offset_m * s1));
+    ret.z_m = static_cast<float>(r * sin_vert_[laser] + kLensRzM);
     ret.range_m = static_cast<float>(r);
     double azimuth_deg =
         (block.azimuth_cdeg + delta_cdeg) * kAzimuthResolutionDeg + horizontal_deg_[laser];

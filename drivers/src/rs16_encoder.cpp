@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "swlio/drivers/bytes.h"
 
@@ -52,8 +53,11 @@ size_t FillRs16Slots(std::span<const LidarReturn> returns, Rs16MsopContent* cont
   return used;
 }
 
-float RangeOfPoint(float x_m, float y_m, float z_m) {
-  return std::sqrt(x_m * x_m + y_m * y_m + z_m * z_m);
+float RangeOfPoint(float x_m, float y_m, float z_m, double azimuth_deg, double lens_offset_m) {
+  const double a = azimuth_deg * std::numbers::pi / 180.0;
+  const double dx = x_m - lens_offset_m * std::cos(a);
+  const double dy = y_m + lens_offset_m * std::sin(a);
+  return static_cast<float>(std::sqrt(dx * dx + dy * dy + static_cast<double>(z_m) * z_m));
 }
 
 bool EncodeRs16Msop(const Rs16MsopContent& content, std::span<uint8_t> out) {

@@ -17,11 +17,13 @@
 // the gap being the azimuth advance to the next block (pair); the last block (pair) of a packet
 // reuses the previous gap. Azimuth is rounded to 0.01° for the sine/cosine table.
 //
-// Point in the VLP-16 manual's sensor frame (y forward at azimuth 0, x right, z up; azimuth
-// clockwise seen from above), the same convention as the RoboSense decoders:
-//   x = r cos ω sin α,  y = r cos ω cos α,  z = r sin ω
-// (ROS drivers and nebula rotate this to x forward, y left.) The manual's per-laser vertical
-// offsets (±11.2 mm) are not applied.
+// Point in the frame Velodyne's ROS driver publishes (ros-drivers/velodyne `rawdata.cc`
+// unpack_vlp16, "Use standard ROS coordinate system", L800–802 @ 29abd0e; nebula the same):
+// x forward at azimuth 0, y left, z up; azimuth clockwise seen from above:
+//   x = r cos ω cos α + L cos α,  y = −r cos ω sin α − L sin α,  z = r sin ω
+// with the lens offset L of Vlp16Options (0 by default, as Velodyne's calibration files have
+// every offset correction 0). The manual's per-laser vertical offsets (±11.2 mm) are not
+// applied, as neither driver applies them with the stock calibration.
 
 #include "swlio/drivers/vlp16_decoder.h"
 
@@ -152,6 +154,7 @@ void Vlp16Decoder::DecodeBlock(const uint8_t* packet,
   const float az0 = static_cast<float>(BlockAzimuth(packet, block));
   const float min_r = static_cast<float>(options_.min_range_m);
   const float max_r = static_cast<float>(options_.max_range_m);
+  const float lens_m = static_cast<float>(options_.lens_offset_m);
   for (size_t f = 0; f < 2; ++f) {
     for (size_t l = 0; l < kLasers; ++l) {
       const size_t off = 4 + 3 * (f * kLasers + l);
@@ -166,10 +169,10 @@ void Vlp16Decoder::DecodeBlock(const uint8_t* packet,
           static_cast<double>(f) * kSequenceUs + static_cast<double>(l) * kFiringUs;
       const float az_f = az0 + step_cdeg * static_cast<float>(t_in_block_us / (2 * kSequenceUs));
       const int32_t az = detail::CentidegTrig::Wrap(static_cast<int32_t>(std::lround(az_f)));
-      const float xy = range * cos_vert_[l];
+      const float xy = range * cos_vert_[l] + lens_m;
       LidarReturn& r = out[s->returns++];
-      r.x_m = xy * trig.Sin(az);
-      r.y_m = xy * trig.Cos(az);
+      r.x_m = xy * trig.Cos(az);
+      r.y_m = -xy * trig.Sin(az);
       r.z_m = range * sin_vert_[l];
       r.range_m = range;
       r.azimuth_deg = static_cast<float>(az) * 0.01f;

@@ -7,7 +7,9 @@
 #include <pcap/pcap.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -106,6 +108,44 @@ inline std::vector<RefPoint> ReadNebulaPcd(const std::filesystem::path& path) {
     }
   }
   return pts;
+}
+
+/// Distances between decoded points and a reference decoder's, against the tolerance of issue
+/// 32: 1 cm + 0.025 % of the range.
+struct DeviationStats {
+  size_t count = 0;
+  size_t within = 0;  ///< at most 1 cm + 0.025 % of range from the reference
+  double median_m = 0.0;
+  double max_m = 0.0;
+  double Fraction() const {
+    return count == 0 ? 0.0 : static_cast<double>(within) / static_cast<double>(count);
+  }
+};
+
+inline bool WithinTolerance(double deviation_m, double range_m) {
+  return deviation_m <= 0.01 + 0.00025 * range_m;
+}
+
+/// `deviation_m[i]` belongs to a return of range `range_m[i]`.
+inline DeviationStats Summarize(std::vector<double> deviation_m,
+                                const std::vector<double>& range_m) {
+  DeviationStats s;
+  s.count = deviation_m.size();
+  for (size_t i = 0; i < s.count; ++i) s.within += WithinTolerance(deviation_m[i], range_m[i]);
+  if (s.count == 0) return s;
+  const auto middle = deviation_m.begin() + static_cast<std::ptrdiff_t>(s.count / 2);
+  std::nth_element(deviation_m.begin(), middle, deviation_m.end());
+  s.median_m = deviation_m[s.count / 2];
+  s.max_m = *std::max_element(deviation_m.begin(), deviation_m.end());
+  return s;
+}
+
+/// One line on stdout, so the figures show in the test log.
+inline void Print(const char* what, const DeviationStats& s) {
+  std::printf(
+      "%s: %zu returns, %zu (%.3f %%) within 1 cm + 0.025 %% of range; median %.4f mm, "
+      "max %.4f mm\n",
+      what, s.count, s.within, 100.0 * s.Fraction(), s.median_m * 1e3, s.max_m * 1e3);
 }
 
 /// The reference PCDs in a directory, sorted by name (nebula names them by bag time, ns).

@@ -107,22 +107,30 @@ TEST(Rs16Decoder, NoReturnCodesAndRangeLimitsAreCounted) {
   EXPECT_EQ(r.returns[0].slot, 4);
 }
 
-TEST(Rs16Decoder, GeometryFollowsTheManualFrame) {
+// rs_driver's frame (x forward at azimuth 0, y left, z up) with its lens offset RX = 3.825 cm
+// along the firing azimuth, by default.
+TEST(Rs16Decoder, GeometryFollowsTheVendorFrame) {
   Rs16Decoder d(OpenRangeConfig());  // nominal angles: channel 0 −15°, channel 8 +15°
   Rs16MsopContent c = UniformContent(90.0, 0.0, 0.0f);
   c.blocks[0].range_m[0] = 10.0f;  // laser 0, first firing at exactly the block azimuth
   c.blocks[0].range_m[8] = 10.0f;
   c.blocks[1].azimuth_deg = 90.0;  // zero step: no interpolation
+  for (size_t b = 2; b < 12; ++b) c.blocks[b].azimuth_deg = 0.0;
+  c.blocks[2].range_m[0] = 10.0f;  // laser 0 at azimuth 0
   const Decoded r = Decode(d, Encode(c));
-  ASSERT_EQ(r.returns.size(), 2u);
+  ASSERT_EQ(r.returns.size(), 3u);
   const double cos15 = std::cos(15.0 * kPi / 180), sin15 = std::sin(15.0 * kPi / 180);
-  EXPECT_NEAR(r.returns[0].x_m, 10 * cos15, 1e-5);  // azimuth 90°: +x (right)
-  EXPECT_NEAR(r.returns[0].y_m, 0.0, 1e-5);
+  const double lens = 0.03825;
+  EXPECT_NEAR(r.returns[0].x_m, 0.0, 1e-5);  // azimuth 90° (clockwise): −y, to the right
+  EXPECT_NEAR(r.returns[0].y_m, -(10 * cos15 + lens), 1e-5);
   EXPECT_NEAR(r.returns[0].z_m, -10 * sin15, 1e-5);
   EXPECT_EQ(r.returns[0].ring, 0);
   EXPECT_NEAR(r.returns[1].z_m, 10 * sin15, 1e-5);
   EXPECT_EQ(r.returns[1].ring, 15);  // channel 8 points highest
   EXPECT_FLOAT_EQ(r.returns[0].azimuth_deg, 90.0f);
+  EXPECT_NEAR(r.returns[2].x_m, 10 * cos15 + lens, 1e-5);  // azimuth 0: +x, forward
+  EXPECT_NEAR(r.returns[2].y_m, 0.0, 1e-5);
+  EXPECT_FLOAT_EQ(r.returns[2].azimuth_deg, 0.0f);
 }
 
 TEST(Rs16Decoder, FiringTimesAndAzimuthInterpolationSingleReturn) {
@@ -235,21 +243,28 @@ TEST(Rs16Decoder, DamagedDifopCalibrationIsRefused) {
   EXPECT_NEAR(d.vertical_deg_by_channel()[3], -9.03, 1e-9);
 }
 
+// The range term follows the calibrated azimuth, the lens term the uncalibrated one
+// (rs_driver decoder_RS16.hpp L316–318); a lens offset of 0 gives the manual's formula.
 TEST(Rs16Decoder, LensOffsetAlongTheFiringAzimuth) {
-  Rs16DecoderOptions options;
-  options.lens_offset_m = 0.03825;
-  Rs16Decoder d(OpenRangeConfig(), options);
-  std::array<double, 16> horizontal{};
-  horizontal[0] = 1.0;  // the range term follows the calibrated azimuth, the offset does not
-  d.SetCalibration(d.vertical_deg_by_channel(), horizontal);
-  Rs16MsopContent c = UniformContent(0.0, 0.0, 0.0f);
-  c.blocks[0].range_m[0] = 10.0f;
-  const Decoded r = Decode(d, Encode(c));
-  ASSERT_EQ(r.returns.size(), 1u);
-  const double rxy = 10.0 * std::cos(15.0 * kPi / 180);
-  EXPECT_NEAR(r.returns[0].x_m, rxy * std::sin(kPi / 180), 1e-5);
-  EXPECT_NEAR(r.returns[0].y_m, rxy * std::cos(kPi / 180) + 0.03825, 1e-5);
-  EXPECT_FLOAT_EQ(r.returns[0].range_m, 10.0f);
+  for (const double lens : {0.03825, 0.0, 0.05}) {
+    SCOPED_TRACE(lens);
+    Rs16DecoderOptions options;
+    options.lens_offset_m = lens;
+    Rs16Decoder d(OpenRangeConfig(), options);
+    std::array<double, 16> horizontal{};
+    horizontal[0] = 1.0;
+    d.SetCalibration(d.vertical_deg_by_channel(), horizontal);
+    Rs16MsopContent c = UniformContent(30.0, 0.0, 0.0f);
+    c.blocks[0].range_m[0] = 10.0f;
+    const Decoded r = Decode(d, Encode(c));
+    ASSERT_EQ(r.returns.size(), 1u);
+    const double rxy = 10.0 * std::cos(15.0 * kPi / 180);
+    const double a = 30.0 * kPi / 180, af = 31.0 * kPi / 180;
+    EXPECT_NEAR(r.returns[0].x_m, rxy * std::cos(af) + lens * std::cos(a), 1e-5);
+    EXPECT_NEAR(r.returns[0].y_m, -rxy * std::sin(af) - lens * std::sin(a), 1e-5);
+    EXPECT_FLOAT_EQ(r.returns[0].range_m, 10.0f);
+  }
+  EXPECT_EQ(Rs16DecoderOptions{}.lens_offset_m, 0.03825);  // rs_driver's RX by default
 }
 
 TEST(Rs16Decoder, OldFirmwareDistanceResolutionAndSingleReturn) {
@@ -278,7 +293,9 @@ TEST(Rs16Decoder, OldFirmwareDistanceResolutionAndSingleReturn) {
 }
 
 TEST(Rs16Decoder, HorizontalCalibrationRotatesAzimuth) {
-  Rs16Decoder d(OpenRangeConfig());
+  Rs16DecoderOptions no_lens;
+  no_lens.lens_offset_m = 0.0;
+  Rs16Decoder d(OpenRangeConfig(), no_lens);
   std::array<double, 16> horizontal{};
   horizontal[2] = -0.5;
   d.SetCalibration(d.vertical_deg_by_channel(), horizontal);
@@ -288,7 +305,8 @@ TEST(Rs16Decoder, HorizontalCalibrationRotatesAzimuth) {
   ASSERT_EQ(r.returns.size(), 1u);
   EXPECT_NEAR(r.returns[0].azimuth_deg, 359.7, 1e-4);
   const double rxy = std::hypot(r.returns[0].x_m, r.returns[0].y_m);
-  EXPECT_NEAR(r.returns[0].x_m, rxy * std::sin(-0.3 * kPi / 180), 1e-5);
+  EXPECT_NEAR(r.returns[0].y_m, -rxy * std::sin(-0.3 * kPi / 180), 1e-5);
+  EXPECT_GT(r.returns[0].y_m, 0.0f);  // 0.3° anticlockwise of forward: to the left
 }
 
 TEST(Rs16Time, BothHeaderFormats) {
@@ -339,7 +357,7 @@ TEST(Rs16Encoder, RoundTripWithinQuantization) {
       const auto& b = c.blocks[ret.slot / 32];
       EXPECT_NEAR(ret.range_m, b.range_m[ret.slot % 32], 0.0025 + 1e-5);
       EXPECT_EQ(ret.intensity, b.intensity[ret.slot % 32]);
-      EXPECT_NEAR(RangeOfPoint(ret.x_m, ret.y_m, ret.z_m), ret.range_m, 1e-4);
+      EXPECT_NEAR(RangeOfPoint(ret.x_m, ret.y_m, ret.z_m, ret.azimuth_deg), ret.range_m, 1e-4);
     }
     // Re-encoding the decoded returns reproduces the packet's slots bit for bit.
     Rs16MsopContent again = UniformContent(0, 0.4, 0.0f);

@@ -1,8 +1,8 @@
 // swlio-decode helios16p FILE.pcap [--msop-port N] [--difop-port N] [--cut-angle D]
 //                                  [--summary] [--points OUT.csv]
 // The shared LiDAR pipeline (lidar_decode.h) with the RS-Helios-16P decoder: JSON summary with
-// the common keys plus the DIFOP fields; CSV of every valid point in the RoboSense manual's
-// sensor frame (y forward, x right, z up).
+// the common keys plus the DIFOP fields; CSV of every valid point in rs_driver's frame
+// (x forward, y left, z up, with its lens offset unless --lens-offset says otherwise).
 
 #include <iostream>
 #include <memory>
@@ -19,6 +19,7 @@ namespace {
 struct HeliosArgs {
   std::string file;
   LidarDecodeOptions options;
+  drivers::Helios16pOptions decoder;
   bool summary = false;
 };
 
@@ -38,7 +39,7 @@ void WriteDifop(const drivers::Helios16pDecoder& decoder, JsonWriter& json) {
 }
 
 int Run(HeliosArgs& args) {
-  drivers::Helios16pDecoder decoder;
+  drivers::Helios16pDecoder decoder(args.decoder);
   args.options.pcap_path = args.file;
   LidarDecodeResult result;
   std::string error;
@@ -50,6 +51,7 @@ int Run(HeliosArgs& args) {
     JsonWriter json(std::cout);
     json.BeginObject();
     json.Key("model").Value("helios16p");
+    json.Key("lens_offset_m").Value(args.decoder.lens_offset_m);
     WriteLidarSummary(result, json);
     WriteDifop(decoder, json);
     json.EndObject();
@@ -66,6 +68,10 @@ void AddHeliosCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--difop-port", args->options.info_port, "DIFOP UDP port")->capture_default_str();
   cmd->add_option("--cut-angle", args->options.cut_angle_deg, "sweep cut azimuth, degrees")
       ->check(CLI::Range(0.0, 359.999));
+  cmd->add_option("--lens-offset", args->decoder.lens_offset_m,
+                  "optical-centre offset along the firing azimuth, m (default: rs_driver's RX)")
+      ->check(CLI::Range(0.0, 0.1))
+      ->capture_default_str();
   cmd->add_flag("--summary", args->summary, "print the JSON summary (default without --points)");
   cmd->add_option("--points", args->options.points_csv, "write every valid point to this CSV");
   cmd->callback([args, exit_code] { *exit_code = Run(*args); });

@@ -2,13 +2,16 @@
 /// @file
 /// A small streaming JSON writer for swlio-decode summaries (one object, keys in insertion
 /// order, no dependencies). Usage: `JsonWriter j(os); j.BeginObject(); j.Key("n").Value(3);
-/// j.EndObject();`. Doubles are written with up to 10 significant digits; NaN/inf as null.
+/// j.EndObject();`. Doubles are written exactly (shortest round trip); NaN/inf as null.
 
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <ostream>
 #include <span>
 #include <string_view>
+#include <system_error>
 #include <type_traits>
 #include <vector>
 
@@ -41,12 +44,13 @@ class JsonWriter {
     os_ << (v ? "true" : "false");
     return *this;
   }
+  /// The shortest text that reads back as the same double (std::to_chars); null if not finite.
   JsonWriter& Value(double v) {
     Separate();
-    if (std::isfinite(v)) {
-      const auto precision = os_.precision(10);
-      os_ << v;
-      os_.precision(precision);
+    std::array<char, 32> buffer{};
+    const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
+    if (std::isfinite(v) && ec == std::errc()) {
+      os_.write(buffer.data(), end - buffer.data());
     } else {
       os_ << "null";
     }

@@ -24,10 +24,11 @@ void CountScan(const drivers::AssembledScan& s, LidarDecodeResult* r, FILE* csv)
     if (p.ring >= r->points_per_ring.size()) r->points_per_ring.resize(p.ring + 1u, 0);
     ++r->points_per_ring[p.ring];
     if (csv == nullptr) continue;
-    // Azimuth of the point itself in the manual frame: clockwise from +y seen from above.
-    double azimuth_deg = std::atan2(p.xyz_m.x(), p.xyz_m.y()) * 180.0 / std::numbers::pi;
+    // Azimuth of the point itself, clockwise from +x (forward) seen from above, as the
+    // sensor's; coordinates with the 9 digits that give back the decoder's float exactly.
+    double azimuth_deg = std::atan2(-p.xyz_m.y(), p.xyz_m.x()) * 180.0 / std::numbers::pi;
     if (azimuth_deg < 0.0) azimuth_deg += 360.0;
-    std::fprintf(csv, "%llu,%u,%.3f,%.4f,%.4f,%.4f,%.0f,%lld\n",
+    std::fprintf(csv, "%llu,%u,%.3f,%.9g,%.9g,%.9g,%.0f,%lld\n",
                  static_cast<unsigned long long>(s.scan.seq), static_cast<unsigned>(p.ring),
                  azimuth_deg, static_cast<double>(p.xyz_m.x()), static_cast<double>(p.xyz_m.y()),
                  static_cast<double>(p.xyz_m.z()), static_cast<double>(p.intensity),

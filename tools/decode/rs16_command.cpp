@@ -1,5 +1,6 @@
 // swlio-decode rs16: decode an RS-LiDAR-16 pcap (MSOP + DIFOP) into a JSON summary and,
-// optionally, a CSV of every valid point (metres, the RoboSense manual's sensor frame).
+// optionally, a CSV of every valid point (metres, in rs_driver's frame: x forward, y left,
+// z up, with its lens offset unless --lens-offset says otherwise).
 
 #include <iostream>
 #include <limits>
@@ -21,7 +22,7 @@ struct Rs16Args {
   double cut_angle_deg = 0.0;
   double min_range_m = 0.0;
   double max_range_m = std::numeric_limits<double>::infinity();
-  double lens_offset_m = 0.0;
+  double lens_offset_m = drivers::rs16::kLensRxM;
   bool msop_port_given = false;
   bool summary = false;
   std::string points_csv;
@@ -78,6 +79,7 @@ int Run(const Rs16Args& args) {
     JsonWriter json(std::cout);
     json.BeginObject();
     json.Key("model").Value("rs16");
+    json.Key("lens_offset_m").Value(args.lens_offset_m);
     WriteLidarSummary(result, json);
     WriteDifop(decoder, json);
     json.EndObject();
@@ -102,7 +104,9 @@ void AddRs16Command(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--max-range", args->max_range_m, "drop returns farther than this, m");
   cmd->add_option("--lens-offset", args->lens_offset_m,
-                  "optical-centre offset along the firing azimuth, m (rs_driver: 0.03825)")
+                  "optical-centre offset along the firing azimuth, m (default: rs_driver's RX; "
+                  "0: the manual's formula)")
+      ->check(CLI::Range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_flag("--summary", args->summary, "print the JSON summary (default without --points)");
   cmd->add_option("--points", args->points_csv, "write every valid point to this CSV file");

@@ -1,7 +1,7 @@
 // swlio-decode vlp16 FILE.pcap [--port N] [--cut-angle D] [--summary] [--points OUT.csv]
 // The shared LiDAR pipeline (lidar_decode.h) with the VLP-16 decoder (no info packets): JSON
 // summary with the common keys; CSV of every valid point (second returns of dual pairs
-// included) in the VLP-16 manual's sensor frame (y forward, x right, z up).
+// included) in the frame of Velodyne's ROS driver (x forward, y left, z up).
 
 #include <iostream>
 #include <memory>
@@ -18,11 +18,12 @@ namespace {
 struct Vlp16Args {
   std::string file;
   LidarDecodeOptions options;
+  drivers::Vlp16Options decoder;
   bool summary = false;
 };
 
 int Run(Vlp16Args& args) {
-  drivers::Vlp16Decoder decoder;
+  drivers::Vlp16Decoder decoder(args.decoder);
   args.options.pcap_path = args.file;
   args.options.info_port = 0;  // Velodyne sends no DIFOP-like packets on this port
   LidarDecodeResult result;
@@ -35,6 +36,7 @@ int Run(Vlp16Args& args) {
     JsonWriter json(std::cout);
     json.BeginObject();
     json.Key("model").Value("vlp16");
+    json.Key("lens_offset_m").Value(args.decoder.lens_offset_m);
     WriteLidarSummary(result, json);
     json.EndObject();
     std::cout << "\n";
@@ -50,6 +52,11 @@ void AddVlp16Command(CLI::App& app, int* exit_code) {
   cmd->add_option("--port", args->options.data_port, "data UDP port")->capture_default_str();
   cmd->add_option("--cut-angle", args->options.cut_angle_deg, "sweep cut azimuth, degrees")
       ->check(CLI::Range(0.0, 359.999));
+  cmd->add_option("--lens-offset", args->decoder.lens_offset_m,
+                  "optical-centre offset along the firing azimuth, m (default: none, as "
+                  "Velodyne's drivers)")
+      ->check(CLI::Range(0.0, 0.1))
+      ->capture_default_str();
   cmd->add_flag("--summary", args->summary, "print the JSON summary (default without --points)");
   cmd->add_option("--points", args->options.points_csv, "write every valid point to this CSV");
   cmd->callback([args, exit_code] { *exit_code = Run(*args); });

@@ -13,6 +13,12 @@ std::unique_ptr<LocalizationRun> LocalizationRun::Open(const std::string& map_pa
                                                        std::string* error) {
   std::optional<estimator::SavedMap> map = estimator::LoadMapFile(map_path, error);
   if (!map) return nullptr;
+  if (map->file_version == estimator::kSavedMapVersionManualFrame) {
+    std::fprintf(stderr,
+                 "swlio-run: %s is a version-1 map (LiDAR frame of the RoboSense manual), "
+                 "converted to the drivers' frame on reading\n",
+                 map_path.c_str());
+  }
   return std::unique_ptr<LocalizationRun>(new LocalizationRun(std::move(*map), config, now_ns));
 }
 

@@ -85,6 +85,7 @@ void Emit(ConfigWriter& w, const drivers::LidarConfig& c) {
   w.Put("rcvbuf_bytes", c.rcvbuf_bytes);
   w.Put("vertical_angles_deg", c.vertical_angles_deg);
   w.Put("rpm", c.rpm);
+  w.Put("lens_offset_m", c.EffectiveLensOffsetM());  // when absent, the model's vendor value
   w.EndMap();
 }
 

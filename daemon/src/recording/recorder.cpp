@@ -1,33 +1,43 @@
 #include "swlio/daemon/recording/recorder.h"
 
 #include <Eigen/Geometry>
-#include <cstdio>
+#include <initializer_list>
+#include <string>
 
+#include "swlio/core/exact_number.h"
 #include "swlio/drivers/candump_log.h"
+#include "swlio/drivers/recording_format.h"
 
 namespace swlio::daemon {
 namespace {
 
+std::string List(std::initializer_list<double> values) {
+  std::string s = "[";
+  for (const double v : values) s += (s.size() > 1 ? ", " : "") + ExactNumber(v);
+  return s + "]";
+}
+
+/// Every number exactly (shortest round trip): swlio-run, swlio-replay and scripts read them.
 void WriteManifest(const std::filesystem::path& path,
                    const DaemonConfig& config,
                    const Eigen::Isometry3d& T_imu_lidar,
                    const TimeScale& time) {
   const Eigen::Vector3d t = T_imu_lidar.translation();
   const Eigen::Quaterniond q(T_imu_lidar.linear());
-  char line[256];
   std::ofstream y(path);
   y << "# swliod recording: raw sensor bytes with host receive times (CLOCK_MONOTONIC ns)\n"
-    << "format_version: 1\nmode: daemon\n"
+    << "# format_version 2: extrinsic_T_imu_lidar in the LiDAR vendor driver's frame (x forward,\n"
+    << "# y left, z up); version 1 (before swlio issue 32) used the RoboSense manual's frame.\n"
+    << "format_version: " << drivers::kRecordingFormatVersion << "\nmode: daemon\n"
     << "# Receive times are on the daemon's time base (time_scale.h): host = origin + (t −\n"
     << "# origin) / scale. Both are 1 / any on a robot (times are host times).\n"
-    << "time_scale: " << time.scale << "\ntime_origin_ns: " << time.origin_ns << "\n"
-    << "extrinsic_T_imu_lidar:  # maps LiDAR points into the IMU frame (as configured)\n";
-  std::snprintf(line, sizeof line, "  translation_m: [%.9g, %.9g, %.9g]\n", t.x(), t.y(), t.z());
-  y << line;
-  std::snprintf(line, sizeof line, "  quaternion_xyzw: [%.12g, %.12g, %.12g, %.12g]\n", q.x(),
-                q.y(), q.z(), q.w());
-  y << line << "lidar:\n  model: " << config.lidar.model
-    << "\n  msop_port: " << config.lidar.msop_port << "\n  difop_port: " << config.lidar.difop_port
+    << "time_scale: " << ExactNumber(time.scale) << "\ntime_origin_ns: " << time.origin_ns << "\n"
+    << "extrinsic_T_imu_lidar:  # LiDAR points (x forward, y left, z up) into the IMU frame\n"
+    << "  translation_m: " << List({t.x(), t.y(), t.z()}) << "\n"
+    << "  quaternion_xyzw: " << List({q.x(), q.y(), q.z(), q.w()}) << "\n"
+    << "lidar:\n  model: " << config.lidar.model << "\n  msop_port: " << config.lidar.msop_port
+    << "\n  difop_port: " << config.lidar.difop_port
+    << "\n  lens_offset_m: " << ExactNumber(config.lidar.EffectiveLensOffsetM())
     << "\nimu:\n  device: " << config.imu.device << "\n  baud: " << config.imu.baud
     << "\nfiles: {lidar: lidar.pcap, imu: imu.xbus, imu_rx: imu.rx.csv}\n";
 }

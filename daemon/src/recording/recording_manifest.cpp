@@ -6,15 +6,20 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <numbers>
 #include <string>
 #include <string_view>
 #include <utility>
 
 #include "swlio/daemon/recording/recording_reader.h"
+#include "swlio/drivers/recording_format.h"
 
 namespace swlio::daemon {
 namespace {
+
+constexpr double kPi = std::numbers::pi;
 
 /// Calls `fn(line)` for every indented line of the top-level block `block`.
 template <typename Fn>
@@ -40,7 +45,63 @@ bool AllFinite(std::initializer_list<double> values) {
   return true;
 }
 
+/// The manifest's top-level `key: value` line as text ("" when absent).
+std::string TopLevelValue(const std::filesystem::path& dir, const std::string& key) {
+  std::ifstream in(dir / "manifest.yaml");
+  const std::string prefix = key + ": ";
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.compare(0, prefix.size(), prefix) == 0) return line.substr(prefix.size());
+  }
+  return "";
+}
+
+/// What to do with a version-1 recording: re-simulate it, or for a swliod recording the same
+/// extrinsic in the new frame. Points in the manual frame are Rz(+90°) of the vendor frame's
+/// (x_manual = −y, y_manual = x), so T_imu_lidar's rotation becomes R·Rz(+90°), its
+/// translation unchanged (tests/daemon/recording/recording_version_test.cpp checks the sign).
+std::string Version1Advice(const std::filesystem::path& dir) {
+  const std::string mode = TopLevelValue(dir, "mode");
+  if (mode == "file" || mode == "live") {
+    return "write it again with this swlio-sim (same --scenario, --seed and --duration): the "
+           "simulator now also casts its rays from the lens centre the decoder adds";
+  }
+  const std::optional<Eigen::Isometry3d> T = ManifestExtrinsic(dir);
+  if (!T) return "record it again";
+  const Eigen::Quaterniond q(T->linear() * Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitZ()));
+  char text[192];
+  std::snprintf(text, sizeof text, "[%.17g, %.17g, %.17g, %.17g]", q.x(), q.y(), q.z(), q.w());
+  return std::string("the same extrinsic in the new frame is quaternion_xyzw: ") + text +
+         " (R·Rz(+90°), translation unchanged): put that line and format_version: 2 into its "
+         "manifest.yaml, or record it again";
+}
+
 }  // namespace
+
+std::string ManifestVersionProblem(const std::filesystem::path& dir) {
+  const std::filesystem::path manifest = dir / "manifest.yaml";
+  if (!std::ifstream(manifest)) {
+    return "cannot read " + manifest.string() + " (a recording folder states its format there)";
+  }
+  const std::string text = TopLevelValue(dir, "format_version");
+  if (text.empty()) {
+    return manifest.string() + ": no format_version line (swliod --record and swlio-sim write one)";
+  }
+  const long long version = std::atoll(text.c_str());
+  const long long current = drivers::kRecordingFormatVersion;
+  if (version == current) return "";
+  const std::string head = manifest.string() + ": format_version " + text +
+                           ", this program reads " + std::to_string(current) + ": ";
+  if (version == 1) {
+    return head +
+           "recorded before swlio decoded LiDAR points in the vendor driver's frame (x forward, "
+           "y left, z up, with the lens offset; issue 32), so its extrinsic is for the RoboSense "
+           "manual's frame (y forward, x right) and would be misread. To use it, " +
+           Version1Advice(dir);
+  }
+  if (version > current) return head + "written by a newer swlio; read it with that one";
+  return head + "not a format_version this program knows";
+}
 
 TimeScale ManifestTimeScale(const std::filesystem::path& dir) {
   std::ifstream in(dir / "manifest.yaml");

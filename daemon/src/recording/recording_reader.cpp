@@ -4,6 +4,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "swlio/daemon/sensors/imu_stage.h"
 #include "swlio/daemon/sensors/lidar_stage.h"
@@ -65,6 +66,10 @@ std::unique_ptr<RecordingReader> RecordingReader::Open(const std::filesystem::pa
                                                        const drivers::ImuConfig& imu,
                                                        const RecordingReadOptions& options,
                                                        std::string* error) {
+  if (std::string problem = ManifestVersionProblem(dir); !problem.empty()) {
+    *error = std::move(problem);
+    return nullptr;
+  }
   std::unique_ptr<RecordingReader> reader(new RecordingReader());
   if (!reader->ReadImu(dir, imu, options.gnss, error)) return nullptr;
   if (options.wheel && !reader->ReadWheel(dir, *options.wheel, error)) return nullptr;

@@ -152,6 +152,12 @@ bool Runtime::LoadLocalization(std::string* error) {
   }
   spdlog::info("localization: map {} with {} nodes; relocalizing", config_.map.load_path,
                map->nodes.size());
+  if (map->file_version == estimator::kSavedMapVersionManualFrame) {
+    spdlog::warn(
+        "localization: map {} is version 1 (LiDAR frame of the RoboSense manual), "
+        "converted to the drivers' frame on reading; save it again to store version 2",
+        config_.map.load_path);
+  }
   estimator::LocalizationConfig c = config_.localization;
   c.registration = config_.loop_closure;
   localization_ = std::make_unique<LocalizationThread>(

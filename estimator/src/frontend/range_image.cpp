@@ -51,8 +51,9 @@ RangeImage::RangeImage(const RangeImageConfig& config)
 }
 
 int RangeImage::Column(const Eigen::Vector3f& xyz_m) const {
-  // Azimuth clockwise from +y (the RS16 manual's convention), shifted to [0, 2π).
-  const float azimuth = FastAtan2(xyz_m.x(), xyz_m.y()) + std::numbers::pi_v<float>;
+  // Azimuth clockwise from +x (forward) seen from above, as the LiDAR turns, shifted to
+  // [0, 2π): column 0 is behind the sensor.
+  const float azimuth = FastAtan2(-xyz_m.y(), xyz_m.x()) + std::numbers::pi_v<float>;
   const int column = static_cast<int>(azimuth * columns_per_rad_);
   return std::clamp(column, 0, columns_ - 1);
 }

@@ -94,6 +94,7 @@ class Writer {
 };
 
 struct Header {
+  uint32_t version = 0;
   uint32_t rings = 0;
   uint32_t sectors = 0;
   double max_range_m = 0.0;
@@ -237,8 +238,9 @@ std::optional<Header> ParseHeader(std::string_view bytes, std::string* why) {
   }
   Cursor c(bytes, kMagic.size());
   const uint32_t version = c.U32();
-  if (version != kSavedMapVersion) {
-    *why = "unsupported version " + std::to_string(version) + " (this reader knows version " +
+  if (version != kSavedMapVersion && version != kSavedMapVersionManualFrame) {
+    *why = "unsupported version " + std::to_string(version) + " (this reader knows versions " +
+           std::to_string(kSavedMapVersionManualFrame) + " and " +
            std::to_string(kSavedMapVersion) + ")";
     return std::nullopt;
   }
@@ -248,10 +250,11 @@ std::optional<Header> ParseHeader(std::string_view bytes, std::string* why) {
   }
   const uint32_t flags = c.U32();
   if (flags != 0) {
-    *why = "unsupported header flags " + std::to_string(flags) + " (version 1 defines none)";
+    *why = "unsupported header flags " + std::to_string(flags) + " (no flag is defined)";
     return std::nullopt;
   }
   Header h;
+  h.version = version;
   h.rings = c.U32();
   h.sectors = c.U32();
   h.max_range_m = c.F64();
@@ -362,6 +365,7 @@ std::optional<SavedMap> Decode(std::string_view bytes, const Header& h, std::str
   *why = DescriptorIssue(h.rings, h.sectors, h.max_range_m, h.min_range_m, h.height_offset_m);
   if (!why->empty()) return std::nullopt;
   SavedMap map;
+  map.file_version = h.version;
   map.descriptor_rings = static_cast<int>(h.rings);
   map.descriptor_sectors = static_cast<int>(h.sectors);
   map.descriptor_max_range_m = h.max_range_m;
@@ -396,7 +400,9 @@ std::optional<SavedMap> ReadBytes(std::string_view bytes, std::string* why) {
            "): the file is corrupt";
     return std::nullopt;
   }
-  return Decode(bytes, *header, why);
+  std::optional<SavedMap> map = Decode(bytes, *header, why);
+  if (map && header->version == kSavedMapVersionManualFrame) ConvertManualFrameNodes(&*map);
+  return map;
 }
 
 std::string ErrnoText() { return std::error_code(errno, std::generic_category()).message(); }

@@ -3,7 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <fstream>
+#include <utility>
 
 #include "test_data.h"
 
@@ -96,6 +98,25 @@ logging:
   EXPECT_FALSE(loaded.config.imu.configure_on_start);
   EXPECT_DOUBLE_EQ(loaded.config.estimator.extrinsic_imu_lidar.translation_m[2], 0.3);
   EXPECT_EQ(loaded.config.logging.directory, "/etc/swlio/logs");
+}
+
+// lidar.lens_offset_m: absent, the model's vendor value (rs_driver's RX for the RoboSense
+// models, none for Velodyne); given, that value for a unit calibrated otherwise; bounded.
+TEST(ConfigLoader, LensOffsetDefaultsToTheModelsVendorValue) {
+  const std::array<std::pair<const char*, double>, 3> vendor = {
+      {{"rs16", 0.03825}, {"helios16p", 0.03498}, {"vlp16", 0.0}}};
+  for (const auto& [model, lens_m] : vendor) {
+    const LoadedConfig loaded =
+        Load(std::string("config_version: 1\nlidar:\n  model: ") + model + "\n");
+    ASSERT_TRUE(loaded.ok()) << loaded.ErrorReport();
+    EXPECT_EQ(loaded.config.lidar.EffectiveLensOffsetM(), lens_m) << model;
+  }
+  const LoadedConfig given = Load("config_version: 1\nlidar:\n  lens_offset_m: 0.0391\n");
+  ASSERT_TRUE(given.ok()) << given.ErrorReport();
+  EXPECT_EQ(given.config.lidar.EffectiveLensOffsetM(), 0.0391);
+  const ConfigError e = OnlyError(Load("config_version: 1\nlidar:\n  lens_offset_m: -0.01\n"));
+  EXPECT_EQ(e.key, "lidar.lens_offset_m");
+  EXPECT_EQ(e.line, 3);
 }
 
 TEST(ConfigLoader, MissingVersionIsAnError) {

@@ -73,6 +73,7 @@ TEST(ConfigPrinter, ShippedConfigPrintsAndLoadsBackTheSame) {
   EXPECT_THAT(printed, HasSubstr("  rotation_sigma_rad: 0.003490658503988659\n"));
   EXPECT_THAT(printed, HasSubstr("  cut_angle_deg: 0.0\n"));
   EXPECT_THAT(printed, HasSubstr("  rcvbuf_bytes: 8388608\n"));
+  EXPECT_THAT(printed, HasSubstr("  lens_offset_m: 0.03825\n"));  // RS16: rs_driver's RX
   EXPECT_THAT(printed, HasSubstr("  - {name: lidar_rx, priority: 80, cpu: -1, nice: -10}\n"));
 }
 
@@ -96,7 +97,8 @@ TEST(ConfigPrinter, MinimalConfigPrintsEveryDefault) {
 }
 
 // Every key the shipped file shows is printed, and nothing else: the example CAN signals (a
-// commented-out list there) print as an empty list.
+// commented-out list there) print as an empty list, the lens offset (commented out there: the
+// model's vendor value) as that value.
 TEST(ConfigPrinter, PrintsTheShippedFilesKeys) {
   const auto path = test::SourceDir() / "config" / "swlio.yaml";
   const LoadedConfig shipped = LoadConfigFile(path);
@@ -105,6 +107,7 @@ TEST(ConfigPrinter, PrintsTheShippedFilesKeys) {
   ASSERT_GT(want.size(), 200u);
   ASSERT_TRUE(want.count("estimator.window.bootstrap.initializer.gravity_iterations"));
   want.insert("can.signals");
+  want.insert("lidar.lens_offset_m");
   EXPECT_EQ(KeyPaths(PrintConfig(shipped.config)), want);
 }
 

@@ -42,14 +42,8 @@ Scan SweepAt(const sim::SimSetup& setup, double t_s, std::vector<Eigen::Vector3d
     for (const sim::SimReturn& r : returns) {
       if (r.range_m <= 0.0) continue;
       if (scan.t_start_ns < 0) scan.t_start_ns = r.t_true_ns;
-      const double az = (setup.lidar.initial_azimuth_deg +
-                         360.0 * setup.lidar.rpm / 60.0 * NsToSec(r.t_true_ns)) *
-                        std::numbers::pi / 180.0;
-      const double om = setup.lidar.vertical_angles_deg[r.channel] * std::numbers::pi / 180.0;
       LidarPoint p;
-      p.xyz_m = (r.range_m * Eigen::Vector3d(std::cos(om) * std::sin(az),
-                                             std::cos(om) * std::cos(az), std::sin(om)))
-                    .cast<float>();
+      p.xyz_m = sim::SimDecodedPoint(setup.lidar, r.channel, r.t_true_ns, r.range_m).cast<float>();
       p.dt_ns = r.t_true_ns - scan.t_start_ns;
       scan.t_end_ns = r.t_true_ns;
       scan.points.push_back(p);

@@ -15,11 +15,11 @@ namespace {
 
 using test::At;
 
-TEST(RangeImage, ColumnIsTheAzimuthClockwiseFromY) {
+TEST(RangeImage, ColumnIsTheAzimuthClockwiseFromX) {
   RangeImage image(RangeImageConfig{});
-  EXPECT_EQ(image.Column({0.0f, 1.0f, 0.0f}), 900);   // forward (RS16 +y)
-  EXPECT_EQ(image.Column({1.0f, 0.0f, 0.0f}), 1350);  // right (+x)
-  EXPECT_EQ(image.Column({-1.0f, 0.0f, 0.0f}), 450);  // left
+  EXPECT_EQ(image.Column({1.0f, 0.0f, 0.0f}), 900);    // forward (+x)
+  EXPECT_EQ(image.Column({0.0f, -1.0f, 0.0f}), 1350);  // right (−y)
+  EXPECT_EQ(image.Column({0.0f, 1.0f, 0.0f}), 450);    // left (+y)
   EXPECT_EQ(image.Column(At(3, 17, 10.0).xyz_m), 17);
 }
 
@@ -33,13 +33,25 @@ TEST(RangeImage, FastAzimuthMatchesStdAtan2) {
   for (int n = 0; n < 200000; ++n) {
     const Eigen::Vector3d p(u(rng), u(rng), u(rng));
     const double bins =
-        (std::atan2(p.x(), p.y()) + std::numbers::pi) / (2.0 * std::numbers::pi) * 1800.0;
+        (std::atan2(-p.y(), p.x()) + std::numbers::pi) / (2.0 * std::numbers::pi) * 1800.0;
     if (std::abs(bins - std::round(bins)) < 0.001 / 0.2) continue;
     ASSERT_EQ(image.Column(p.cast<float>()), std::min(static_cast<int>(bins), 1799))
         << p.transpose();
     ++checked;
   }
   EXPECT_GT(checked, 190000);
+}
+
+// In the drivers' frame (x forward, y left): column 0 just behind the sensor on its left,
+// forward in the middle, and columns growing clockwise seen from above (right is 3/4).
+TEST(RangeImage, ColumnZeroIsBehindTheSensorAndColumnsGrowClockwise) {
+  RangeImage image(RangeImageConfig{});
+  EXPECT_EQ(image.Column(Eigen::Vector3f(-5.0f, 0.001f, 0.0f)), 0);
+  EXPECT_EQ(image.Column(Eigen::Vector3f(-5.0f, -0.001f, 0.0f)), 1799);
+  EXPECT_EQ(image.Column(Eigen::Vector3f(5.0f, 0.001f, 1.0f)), 899);
+  EXPECT_EQ(image.Column(Eigen::Vector3f(5.0f, -0.001f, 1.0f)), 900);
+  EXPECT_EQ(image.Column(Eigen::Vector3f(-0.001f, -5.0f, 0.0f)), 1350);  // right: +90°
+  EXPECT_EQ(image.Column(Eigen::Vector3f(-0.001f, 5.0f, 0.0f)), 449);    // left: −90°
 }
 
 TEST(RangeImage, CountsRejectsAndKeepsTheNearerOfColliding) {

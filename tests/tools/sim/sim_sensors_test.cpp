@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -55,9 +56,11 @@ TEST(SimLidar, PacketsDecodeBackToTheRayCastPoints) {
                          360.0 * setup.lidar.rpm / 60.0 * NsToSec(t.t_true_ns)) *
                         kDeg;
       const double om = setup.lidar.vertical_angles_deg[t.channel] * kDeg;
+      // rs_driver's formula: lens centre 3.825 cm out along the azimuth, x forward, y left.
       const Eigen::Vector3d expected =
-          t.range_m *
-          Eigen::Vector3d(std::cos(om) * std::sin(az), std::cos(om) * std::cos(az), std::sin(om));
+          0.03825 * Eigen::Vector3d(std::cos(az), -std::sin(az), 0.0) +
+          t.range_m * Eigen::Vector3d(std::cos(om) * std::cos(az), -std::cos(om) * std::sin(az),
+                                      std::sin(om));
       const Eigen::Vector3d got(r.x_m, r.y_m, r.z_m);
       EXPECT_LT((got - expected).norm(), 0.0026 + t.range_m * 0.021 * kDeg) << "slot " << r.slot;
       const double t_sensor_s = setup.lidar.clock.ToDevice(NsToSec(t.t_true_ns));
@@ -69,6 +72,46 @@ TEST(SimLidar, PacketsDecodeBackToTheRayCastPoints) {
     EXPECT_EQ(valid, summary.returns);
   }
   EXPECT_GT(checked, 50'000u);
+}
+
+/// Without range noise, a decoded return taken into the world with the LiDAR's true pose at its
+/// firing lies on the surface the simulator's ray hit: rays start at the lens centre the decoder
+/// adds, in the decoder's frame, and the extrinsic maps that frame.
+TEST(SimLidar, DecodedReturnsLieOnTheSurfacesHit) {
+  SimSetup setup = MakeSetupOrDie("aggressive", 5, 8.0);
+  setup.lidar.range_sigma_m = 0.0;
+  LidarSimulator lidar(setup.world.get(), setup.trajectory.get(), setup.lidar, 5);
+  drivers::Rs16Decoder decoder{drivers::LidarConfig{}};
+  drivers::LidarPacketDecoder::ReturnBuffer buffer;
+  SimPacket packet;
+  std::vector<SimReturn> truth;
+  size_t checked = 0;
+  double worst_m = 0.0;
+  for (size_t packets = 0; lidar.Next(&packet, &truth) && packets < 300;) {
+    if (decoder.Classify(packet.bytes) == drivers::LidarPacketKind::kInfo) {
+      ASSERT_EQ(decoder.DecodeInfo(packet.bytes), drivers::DecodeStatus::kOk);
+      continue;
+    }
+    drivers::LidarPacketSummary summary;
+    ASSERT_EQ(decoder.DecodeData(packet.bytes, buffer, &summary), drivers::DecodeStatus::kOk);
+    ++packets;
+    for (uint32_t i = 0; i < summary.returns; ++i) {
+      const drivers::LidarReturn& r = buffer[i];
+      const SimReturn& t = truth[r.slot];
+      const Kinematics k = setup.trajectory->At(NsToSec(t.t_true_ns));
+      Eigen::Isometry3d T_world_imu = Eigen::Isometry3d::Identity();
+      T_world_imu.linear() = k.R_world_body;
+      T_world_imu.translation() = k.p_world;
+      const Eigen::Vector3d p_world =
+          T_world_imu * setup.lidar.T_imu_lidar * Eigen::Vector3d(r.x_m, r.y_m, r.z_m);
+      const double err = (p_world - t.p_world).norm();
+      worst_m = std::max(worst_m, err);
+      EXPECT_LT(err, 0.0026 + t.range_m * 0.021 * kDeg) << "slot " << r.slot;
+      ++checked;
+    }
+  }
+  RecordProperty("worst_um", static_cast<int>(worst_m * 1e6));
+  EXPECT_GT(checked, 30'000u);
 }
 
 /// `SimPacket::t_header_s` is what the header time stands for: an MSOP's first firing, a
@@ -114,8 +157,14 @@ TEST(SimLidar, HitsAreSeenFromThePoseAtTheirOwnTime) {
       Eigen::Isometry3d T_world_imu = Eigen::Isometry3d::Identity();
       T_world_imu.linear() = k.R_world_body;
       T_world_imu.translation() = k.p_world;
-      const Eigen::Vector3d origin = (T_world_imu * setup.lidar.T_imu_lidar).translation();
-      EXPECT_NEAR((t.p_world - origin).norm(), t.true_range_m, 1e-3);
+      // Ranges start at the lens centre, 3.825 cm out along the firing azimuth.
+      const double az = (setup.lidar.initial_azimuth_deg +
+                         360.0 * setup.lidar.rpm / 60.0 * NsToSec(t.t_true_ns)) *
+                        kDeg;
+      const Eigen::Vector3d lens =
+          T_world_imu * setup.lidar.T_imu_lidar *
+          Eigen::Vector3d(0.03825 * std::cos(az), -0.03825 * std::sin(az), 0.0);
+      EXPECT_NEAR((t.p_world - lens).norm(), t.true_range_m, 1e-3);
       if (t.cls == SurfaceClass::kGround) {
         EXPECT_NEAR(t.p_world.z(), setup.world->terrain.SurfaceHeight(t.p_world.head<2>()), 1e-3);
         ++ground;

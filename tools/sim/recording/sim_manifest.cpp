@@ -7,16 +7,15 @@
 #include <vector>
 
 #include "recording/sim_recording.h"
+#include "swlio/core/exact_number.h"
 #include "swlio/core/lie.h"
+#include "swlio/drivers/recording_format.h"
 
 namespace swlio::sim {
 namespace {
 
-std::string Num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
+/// Every number exactly (shortest round trip): other programs read them.
+std::string Num(double v) { return ExactNumber(v); }
 
 template <typename Range>
 std::string List(const Range& values) {
@@ -104,18 +103,21 @@ std::string ManifestYaml(const SimSetup& setup,
   const ImuNoiseModel& n = setup.imu.noise;
   std::ostringstream y;
   y << "# swlio simulated recording\n"
-    << "format_version: 1\n"
+    << "# format_version 2: LiDAR points and extrinsic_T_imu_lidar in the LiDAR vendor driver's\n"
+    << "# frame (x forward, y left, z up), rays from the lens centre; version 1 (before swlio\n"
+    << "# issue 32) used the RoboSense manual's frame and no lens offset, and is refused.\n"
+    << "format_version: " << drivers::kRecordingFormatVersion << "\n"
     << "mode: " << mode << "\n"
     << "scenario: " << setup.scenario.name << "\n"
     << "description: \"" << setup.scenario.description << "\"\n"
     << "seed: " << setup.seed << "\n"
     << "world_seed: " << setup.world_seed << "\n"
     << "duration_s: " << Num(SimDuration(setup)) << "\n"
-    << "path_length_m: " << Num(setup.trajectory->length_m()) << "\n"
+    << "path_length_m: " << Num(setup.trajectory->DrivenLengthM()) << "  # in duration_s\n"
     << "# Host time (ns, CLOCK_MONOTONIC-like) of simulation time 0. pcap record times and\n"
     << "# imu.rx.csv are host receive times; groundtruth.tum stamps are host times of the pose.\n"
     << "host_start_ns: " << host_start_ns << "\n"
-    << "extrinsic_T_imu_lidar:  # maps LiDAR points (RoboSense manual frame) into the IMU frame\n"
+    << "extrinsic_T_imu_lidar:  # LiDAR points (x forward, y left, z up) into the IMU frame\n"
     << "  translation_m: " << List(std::array{t.x(), t.y(), t.z()}) << "\n"
     << "  quaternion_xyzw: " << List(std::array{q.x(), q.y(), q.z(), q.w()}) << "\n"
     << "  rotation_rpy_deg: " << List(std::array{rpy_deg.x(), rpy_deg.y(), rpy_deg.z()})
@@ -125,6 +127,7 @@ std::string ManifestYaml(const SimSetup& setup,
     << "  rpm: " << Num(setup.lidar.rpm) << "\n"
     << "  msop_port: " << setup.lidar.msop_port << "\n"
     << "  difop_port: " << setup.lidar.difop_port << "\n"
+    << "  lens_offset_m: " << Num(setup.lidar.lens_offset_m) << "  # rays start at the lens\n"
     << "  vertical_angles_deg_by_channel: " << List(setup.lidar.vertical_angles_deg) << "\n"
     << "  range_sigma_m: " << Num(setup.lidar.range_sigma_m) << "\n"
     << "  min_range_m: " << Num(setup.lidar.min_range_m) << "\n"

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "swlio/core/exact_number.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
 #include "swlio/drivers/pcap_file.h"
@@ -132,9 +133,11 @@ std::string TumLine(const SimSetup& setup, double t_s, int64_t host_ns) {
   const Kinematics k = setup.trajectory->At(t_s);
   const Eigen::Quaterniond q = lie::PositiveW(Eigen::Quaterniond(k.R_world_body));
   const int64_t t_ns = host_ns;
-  return Format("%" PRId64 ".%09" PRId64 " %.6f %.6f %.6f %.9f %.9f %.9f %.9f", t_ns / kNsPerSec,
-                t_ns % kNsPerSec, k.p_world.x(), k.p_world.y(), k.p_world.z(), q.x(), q.y(), q.z(),
-                q.w());
+  std::string line = Format("%" PRId64 ".%09" PRId64, t_ns / kNsPerSec, t_ns % kNsPerSec);
+  for (const double v : {k.p_world.x(), k.p_world.y(), k.p_world.z(), q.x(), q.y(), q.z(), q.w()}) {
+    line += ' ' + ExactNumber(v);  // the truth to the last bit: other programs read it
+  }
+  return line;
 }
 
 bool WriteRecording(const SimSetup& setup,

@@ -11,13 +11,14 @@ namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
-/// The LiDAR sits below the IMU (as in the paper's robot), its manual frame's y axis forward:
-/// a −90° yaw plus a little mounting error, and a lever arm of about 12 cm.
+/// The LiDAR sits below the IMU (as in the paper's robot), its x axis (azimuth 0 in the
+/// drivers' frame) forward like the IMU's: a little mounting error about zero, and a lever arm
+/// of about 12 cm.
 Eigen::Isometry3d TrueExtrinsic(Rng& rng) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = lie::QuatFromRpy(rng.Normal(0.8) * kDeg, rng.Normal(0.8) * kDeg,
-                                (-90.0 + rng.Normal(1.0)) * kDeg)
-                   .toRotationMatrix();
+  T.linear() =
+      lie::QuatFromRpy(rng.Normal(0.8) * kDeg, rng.Normal(0.8) * kDeg, rng.Normal(1.0) * kDeg)
+          .toRotationMatrix();
   T.translation() =
       Eigen::Vector3d(0.03 + rng.Normal(0.01), -0.01 + rng.Normal(0.01), -0.12 + rng.Normal(0.01));
   return T;

@@ -203,6 +203,17 @@ Eigen::Matrix3d Trajectory::Attitude(const Eigen::Vector2d& xy, double psi) cons
   return R;
 }
 
+double Trajectory::DrivenLengthM() const {
+  const auto arc_length_at = [this](double t_s) {
+    double s = 0.0, v = 0.0, a = 0.0;
+    SpeedAt(t_s, &s, &v, &a);
+    return s;
+  };
+  if (lap_period_s_ <= 0.0) return arc_length_at(duration_s_);
+  const double laps = std::floor(duration_s_ / lap_period_s_);
+  return laps * length_m_ + arc_length_at(duration_s_ - laps * lap_period_s_);
+}
+
 void Trajectory::Repeat(int laps, double period_s) {
   lap_period_s_ = std::max(period_s, duration_s_);
   duration_s_ = lap_period_s_ * std::max(laps, 1);

@@ -50,7 +50,10 @@ class Trajectory {
   double duration_s() const { return duration_s_; }
   /// Ends the timeline early (the robot simply stops being simulated at `duration_s`).
   void Truncate(double duration_s) { duration_s_ = std::min(duration_s_, duration_s); }
-  double length_m() const { return length_m_; }
+  double length_m() const { return length_m_; }  ///< of the route, driven once
+  /// Path length driven in [0, duration_s()]: less than length_m() when Truncate cut the
+  /// route, laps × length_m() after Repeat.
+  double DrivenLengthM() const;
   /// Drives the route `laps` times, one lap every `period_s` (≥ the route's duration; the robot
   /// stands at the end until the next lap starts). Only meaningful for a route that ends where
   /// and as it starts (see EndsWhereItStarts); the duration becomes laps · period_s.

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <numeric>
 
 #include "swlio/core/time.h"
@@ -62,8 +61,6 @@ bool LabelledScanSource::Next(LabelledScan* out, double t_min_s) {
     out->p_world.clear();
     out->T_world_lidar_end = LidarPose(NsToSec(out->scan.t_end_ns));
     const Eigen::Isometry3d T_end_world = out->T_world_lidar_end.inverse();
-    constexpr double kDegToRad = std::numbers::pi / 180.0;
-    const double rev_per_s = setup_->lidar.rpm / 60.0;
     Eigen::Isometry3d T_end_fire = Eigen::Isometry3d::Identity();
     int64_t pose_t_ns = -1;
     for (const SimReturn& r : sweep) {
@@ -73,13 +70,9 @@ bool LabelledScanSource::Next(LabelledScan* out, double t_min_s) {
         T_end_fire = T_end_world * LidarPose(t_s);
         pose_t_ns = r.t_true_ns;
       }
-      const double alpha =
-          (setup_->lidar.initial_azimuth_deg + 360.0 * rev_per_s * t_s) * kDegToRad;
-      const double omega = setup_->lidar.vertical_angles_deg[r.channel] * kDegToRad;
-      const Eigen::Vector3d dir(std::cos(omega) * std::sin(alpha),
-                                std::cos(omega) * std::cos(alpha), std::sin(omega));
-      LidarPoint p;
-      p.xyz_m = (T_end_fire * (r.range_m * dir)).cast<float>();
+      LidarPoint p;  // where the decoder puts it (lens centre + range along the ray)
+      p.xyz_m = (T_end_fire * SimDecodedPoint(setup_->lidar, r.channel, r.t_true_ns, r.range_m))
+                    .cast<float>();
       p.ring = ring_of_channel_[r.channel];
       p.dt_ns = r.t_true_ns - start_ns;
       out->scan.points.push_back(p);

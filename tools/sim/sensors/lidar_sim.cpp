@@ -20,6 +20,29 @@ double PacketStartS(uint64_t index) { return NsToSec(static_cast<int64_t>(index)
 
 }  // namespace
 
+double SimAzimuthDeg(const LidarSimConfig& config, double t_s) {
+  const double a = config.initial_azimuth_deg + 360.0 * config.rpm / 60.0 * t_s;
+  return a - 360.0 * std::floor(a / 360.0);
+}
+
+Eigen::Vector3d SimRayDirection(const LidarSimConfig& config, size_t channel, double azimuth_rad) {
+  const double omega = config.vertical_angles_deg[channel] * kDegToRad;
+  return {std::cos(omega) * std::cos(azimuth_rad), -std::cos(omega) * std::sin(azimuth_rad),
+          std::sin(omega)};
+}
+
+Eigen::Vector3d SimLensCentre(const LidarSimConfig& config, double azimuth_rad) {
+  return config.lens_offset_m * Eigen::Vector3d(std::cos(azimuth_rad), -std::sin(azimuth_rad), 0.0);
+}
+
+Eigen::Vector3d SimDecodedPoint(const LidarSimConfig& config,
+                                size_t channel,
+                                int64_t t_ns,
+                                double range_m) {
+  const double alpha = SimAzimuthDeg(config, NsToSec(t_ns)) * kDegToRad;
+  return SimLensCentre(config, alpha) + range_m * SimRayDirection(config, channel, alpha);
+}
+
 LidarSimulator::LidarSimulator(const World* world,
                                const Trajectory* trajectory,
                                const LidarSimConfig& config,
@@ -32,11 +55,6 @@ Eigen::Isometry3d LidarSimulator::LidarPose(double t_s) const {
   T_world_imu.linear() = k.R_world_body;
   T_world_imu.translation() = k.p_world;
   return T_world_imu * config_.T_imu_lidar;
-}
-
-double LidarSimulator::AzimuthDeg(double t_s) const {
-  const double a = config_.initial_azimuth_deg + 360.0 * config_.rpm / 60.0 * t_s;
-  return a - 360.0 * std::floor(a / 360.0);
 }
 
 int64_t LidarSimulator::MsopRxNs(uint64_t index) const {
@@ -91,7 +109,7 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
     const Eigen::Isometry3d pose_b = LidarPose(t_seq + NsToSec(kFiringPeriodNs));
     const Eigen::Vector3d dphi = lie::Log(pose_a.linear().transpose() * pose_b.linear());
     auto& block = content.blocks[static_cast<size_t>(f / 2)];
-    if (f % 2 == 0) block.azimuth_deg = AzimuthDeg(t_seq);
+    if (f % 2 == 0) block.azimuth_deg = SimAzimuthDeg(config_, t_seq);
     for (int laser = 0; laser < 16; ++laser) {
       // Pose at this laser's own time, interpolated inside the 55.5 µs firing sequence.
       const double frac = static_cast<double>(laser * kLaserSpacingNs) / kFiringPeriodNs;
@@ -99,12 +117,10 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
       const Eigen::Vector3d origin =
           (1.0 - frac) * pose_a.translation() + frac * pose_b.translation();
       const Eigen::Matrix3d R = pose_a.linear() * lie::Exp(frac * dphi);
-      const double alpha = AzimuthDeg(t_fire) * kDegToRad;
-      const double omega = config_.vertical_angles_deg[static_cast<size_t>(laser)] * kDegToRad;
-      const Eigen::Vector3d dir_lidar(std::cos(omega) * std::sin(alpha),
-                                      std::cos(omega) * std::cos(alpha), std::sin(omega));
-      const Eigen::Vector3d dir = R * dir_lidar;
-      const RayHit hit = world_->Cast(origin, dir, config_.max_range_m);
+      const double alpha = SimAzimuthDeg(config_, t_fire) * kDegToRad;
+      const Eigen::Vector3d dir = R * SimRayDirection(config_, static_cast<size_t>(laser), alpha);
+      const Eigen::Vector3d lens = origin + R * SimLensCentre(config_, alpha);
+      const RayHit hit = world_->Cast(lens, dir, config_.max_range_m);
       double range = 0.0;
       if (hit.range_m > 0.0 && rng_.Uniform() >= config_.dropout) {
         range = hit.range_m + rng_.Normal(config_.range_sigma_m);
@@ -117,7 +133,7 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
       if (returns != nullptr) {
         returns->push_back({SecToNs(t_fire), static_cast<uint8_t>(f / 2),
                             static_cast<uint8_t>(slot), static_cast<uint8_t>(laser), range,
-                            hit.range_m, hit.cls, origin + std::max(hit.range_m, 0.0) * dir});
+                            hit.range_m, hit.cls, lens + std::max(hit.range_m, 0.0) * dir});
       }
     }
     pose_a = pose_b;

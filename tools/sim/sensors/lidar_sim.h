@@ -3,7 +3,9 @@
 /// RS-LiDAR-16 emitter: casts every laser firing from the pose at its own time (per-firing
 /// timing of the real unit: 16 lasers 2.8 µs apart, a firing sequence every 55.5 µs, two per
 /// block, 12 blocks per MSOP packet) and writes real MSOP and DIFOP bytes with the drivers'
-/// encoder. Geometry is the RoboSense manual's sensor frame (see rs16_decoder.h).
+/// encoder. Geometry is the decoder's (rs16_decoder.h: rs_driver's frame, x forward at azimuth
+/// 0, y left, z up): each ray starts at the lens centre, `lens_offset_m` out along the firing
+/// azimuth, so that a decoded return is the cast point again (to the wire's quantization).
 
 #include <Eigen/Geometry>
 #include <array>
@@ -32,6 +34,8 @@ struct LidarSimConfig {
   double latency_s = 0.0003;  ///< last firing of a packet → host receive
   double latency_jitter_s = 0.0001;
   double initial_azimuth_deg = 0.0;  ///< motor angle at host time 0
+  /// Lens centre's distance from the rotation axis: the decoder's default (rs_driver's RX).
+  double lens_offset_m = drivers::rs16::kLensRxM;
   uint16_t msop_port = 6699;
   uint16_t difop_port = 7788;
 };
@@ -51,15 +55,32 @@ struct SimPacket {
 
 /// Ground truth of one simulated return, for tests.
 struct SimReturn {
-  int64_t t_true_ns = 0;  ///< host time of the firing
-  uint8_t block = 0;      ///< block index in its packet
-  uint8_t slot = 0;       ///< slot in its block (0–31)
-  uint8_t channel = 0;    ///< laser channel as transmitted
-  double range_m = 0.0;   ///< noisy range written to the packet (0 = no return)
-  double true_range_m = 0.0;
+  int64_t t_true_ns = 0;      ///< host time of the firing
+  uint8_t block = 0;          ///< block index in its packet
+  uint8_t slot = 0;           ///< slot in its block (0–31)
+  uint8_t channel = 0;        ///< laser channel as transmitted
+  double range_m = 0.0;       ///< noisy range written to the packet (0 = no return)
+  double true_range_m = 0.0;  ///< from the lens centre to the surface
   SurfaceClass cls = SurfaceClass::kNone;
   Eigen::Vector3d p_world = Eigen::Vector3d::Zero();  ///< true hit point
 };
+
+/// Motor azimuth at simulation time `t_s`, degrees in [0, 360), clockwise seen from above.
+double SimAzimuthDeg(const LidarSimConfig& config, double t_s);
+
+/// Unit ray of laser `channel` at azimuth `azimuth_rad`, LiDAR frame:
+/// (cos ω cos α, −cos ω sin α, sin ω).
+Eigen::Vector3d SimRayDirection(const LidarSimConfig& config, size_t channel, double azimuth_rad);
+
+/// The lens centre at azimuth `azimuth_rad`, LiDAR frame: L·(cos α, −sin α, 0).
+Eigen::Vector3d SimLensCentre(const LidarSimConfig& config, double azimuth_rad);
+
+/// Where the decoder puts a return of `range_m` fired by `channel` at host time `t_ns`, in the
+/// LiDAR frame at that firing: the lens centre plus the range along the ray.
+Eigen::Vector3d SimDecodedPoint(const LidarSimConfig& config,
+                                size_t channel,
+                                int64_t t_ns,
+                                double range_m);
 
 class LidarSimulator {
  public:
@@ -84,7 +105,6 @@ class LidarSimulator {
   void MakeMsop(SimPacket* out, std::vector<SimReturn>* returns);
   void MakeDifop(SimPacket* out);
   Eigen::Isometry3d LidarPose(double t_s) const;
-  double AzimuthDeg(double t_s) const;
   int64_t MsopRxNs(uint64_t index) const;
 
   const World* world_;

@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <ostream>
 
 #include "rng.h"
+#include "swlio/core/exact_number.h"
 #include "swlio/core/time.h"
 #include "swlio/drivers/bytes.h"
 #include "swlio/drivers/candump_log.h"
@@ -115,12 +116,9 @@ bool WriteWheelTruth(const std::vector<SimWheelSample>& samples,
                      int64_t host_start_ns,
                      std::ostream& out) {
   out << "t_ns,v_x_mps,yaw_rate_radps\n";
-  char line[96];
   for (const SimWheelSample& s : samples) {
-    const int64_t t_ns = host_start_ns + s.t_true_ns;
-    std::snprintf(line, sizeof line, "%lld,%.6f,%.6f\n", static_cast<long long>(t_ns),
-                  s.v_base_mps.x(), s.yaw_rate_radps);
-    out << line;
+    out << host_start_ns + s.t_true_ns << ',' << ExactNumber(s.v_base_mps.x()) << ','
+        << ExactNumber(s.yaw_rate_radps) << '\n';
   }
   return static_cast<bool>(out);
 }

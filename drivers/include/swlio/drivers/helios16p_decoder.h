@@ -11,6 +11,15 @@
 
 namespace swlio::drivers {
 
+namespace helios16p {
+/// Optical (lens) centre that RoboSense's drivers add along the firing's uncalibrated azimuth,
+/// as for RS16 (rs_driver `decoder_RSHELIOS_16P.hpp` `getConstParam` RX 0.03498, RY −0.015,
+/// RZ 0 and its formula L245–247 @ 4eeadac; nebula c60082d `robosense_helios16P_decoder.hpp`).
+inline constexpr double kLensRxM = 0.03498;
+/// Declared beside RX but applied by neither driver's Helios-16P formula, so not here either.
+inline constexpr double kLensRyUnusedM = -0.015;
+}  // namespace helios16p
+
 /// Per-laser angle calibration of a Helios-16P, in packet laser order (laser i is channel i and
 /// i + 16 of a block). Degrees; elevation positive up, horizontal offset positive clockwise seen
 /// from above (RoboSense convention, added to the block azimuth).
@@ -29,6 +38,8 @@ struct Helios16pOptions {
   double min_range_m = 0.2;          ///< returns below are dropped (rs_driver default 0.1–0.2 m)
   double max_range_m = 180.0;        ///< rs_driver's Helios maximum distance
   double rpm = 600.0;                ///< motor speed until DIFOP reports it
+  /// Lens offset along the firing's azimuth (see helios16p::kLensRxM), metres.
+  double lens_offset_m = helios16p::kLensRxM;
 };
 
 /// Fields of the last DIFOP packet (zeros until one arrives).

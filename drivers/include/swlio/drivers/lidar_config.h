@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "swlio/core/config_issue.h"
@@ -29,8 +30,18 @@ struct LidarConfig {
                                                 1,   3,   5,   7,  9,  11, 13, 15};
   /// Motor speed assumed until DIFOP reports it (300, 600 or 1200 rpm).
   double rpm = 600.0;
+  /// Distance of the optical centre from the rotation axis along the firing's azimuth, metres
+  /// in [0, 0.1], for a unit whose vendor calibration differs. NaN (absent): the model's vendor
+  /// value, VendorLensOffsetM(model).
+  double lens_offset_m = std::numeric_limits<double>::quiet_NaN();
 
+  /// The lens offset the decoder uses: lens_offset_m, or the model's vendor value when absent.
+  double EffectiveLensOffsetM() const;
   ConfigIssues Validate() const;
 };
+
+/// The lens offset the vendor's own driver applies for `model`: rs16 0.03825 m, helios16p
+/// 0.03498 m (rs_driver RX), vlp16 0 (velodyne); 0 for an unknown model.
+double VendorLensOffsetM(const std::string& model);
 
 }  // namespace swlio::drivers

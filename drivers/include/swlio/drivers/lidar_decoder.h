@@ -16,10 +16,13 @@
 namespace swlio::drivers {
 
 /// One return decoded from a data packet, before scan assembly.
-/// Frame: the vendor manual's sensor frame. RoboSense (RS-LiDAR-16 User Manual §8.1) and
-/// Velodyne manuals both use x = r·cos(ω)·sin(α), y = r·cos(ω)·cos(α), z = r·sin(ω): y forward
-/// (azimuth 0), x right, z up, azimuth clockwise seen from above. (ROS drivers rotate this to
-/// x forward, y left.)
+/// Frame: the one the vendor's own ROS driver publishes (REP 103): x forward (azimuth 0), y left,
+/// z up, azimuth growing clockwise seen from above. RoboSense rs_driver / rslidar_sdk
+/// (`decoder_RS16.hpp` L316–318 @ 4eeadac) and ros-drivers/velodyne (`rawdata.cc` "Use standard
+/// ROS coordinate system", L800–802 @ 29abd0e) both give x = r·cos ω·cos α, y = −r·cos ω·sin α,
+/// z = r·sin ω, plus RoboSense's lens offset along α. (The vendors' manuals draw y forward and
+/// x right instead: x_manual = −y, y_manual = x.) An extrinsic calibrated against those drivers'
+/// clouds applies to these points unchanged.
 struct LidarReturn {
   float x_m = 0.0f;
   float y_m = 0.0f;

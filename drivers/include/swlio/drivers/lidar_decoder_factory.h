@@ -9,8 +9,9 @@
 
 namespace swlio::drivers {
 
-/// The decoder for `config.model` with the config's range limits and rpm; nullptr for an
-/// unknown model (LidarConfig::Validate rejects those first).
+/// The decoder for `config.model` with the config's range limits, rpm and lens offset
+/// (EffectiveLensOffsetM: the vendor's unless configured); nullptr for an unknown model
+/// (LidarConfig::Validate rejects those first).
 std::unique_ptr<LidarPacketDecoder> MakeLidarDecoder(const LidarConfig& config);
 
 }  // namespace swlio::drivers

@@ -2,9 +2,16 @@
 /// @file
 /// RS-LiDAR-16 MSOP/DIFOP decoder (layout and sources in rs16_protocol.h).
 ///
-/// Geometry per return (RS-LiDAR-16 User Manual §8.1): x = r·cos ω·sin α, y = r·cos ω·cos α,
-/// z = r·sin ω, with ω the laser's vertical angle and α the firing's azimuth after horizontal
-/// calibration. Single return (strongest or last): a block holds two firing sequences of 55.5 µs
+/// Geometry per return, as RoboSense's rs_driver computes it (decoder_RS16.hpp L316–318 @
+/// 4eeadac), in its frame (x forward at azimuth 0, y left, z up; see rs16_protocol.h):
+///   x = r·cos ω·cos α_f + L·cos α,   y = −r·cos ω·sin α_f − L·sin α,   z = r·sin ω + RZ,
+/// with ω the laser's vertical angle, α the firing's interpolated azimuth, α_f = α + the laser's
+/// horizontal calibration (0 for RS16) and L the lens offset (rs16::kLensRxM by default).
+/// Deliberate differences from rs_driver, each below 1 cm + 0.025 % of range on the real
+/// capture (tests/drivers/rs16_vendor_geometry_test.cpp): doubles instead of its 0.01° integer
+/// angles and float tables; DIFOP elevations at their full 0.0001°; the last block's step is
+/// the previous measured one, not the nominal one.
+/// Single return (strongest or last): a block holds two firing sequences of 55.5 µs
 /// (slots 0–15, then 16–31); dual return: one firing sequence, slots 16–31 are the second return
 /// (rs_driver Rs16SingleReturnBlockIterator / Rs16DualReturnBlockIterator). Each slot's azimuth
 /// is interpolated between its block's azimuth and the next block's by its firing time; the
@@ -58,10 +65,10 @@ struct Rs16DecoderOptions {
   ReturnMode initial_return_mode = ReturnMode::kStrongest;
   /// Metres per distance code: 0 = 5 mm until a DIFOP names old (10 mm) firmware; else fixed.
   double distance_resolution_m = 0.0;
-  /// Horizontal distance of the optical centre from the rotation axis, along the firing
-  /// azimuth. 0 follows the manual's formula (§8.1); RoboSense's drivers add 0.03825 m for RS16
-  /// (rs_driver decoder_RS16.hpp RX, ros_rslidar Rx_). `range_m` stays the measured range.
-  double lens_offset_m = 0.0;
+  /// Horizontal distance of the optical centre from the rotation axis, along the firing's
+  /// uncalibrated azimuth: RoboSense's RX for RS16 by default (rs16_protocol.h). 0 gives the
+  /// manual's formula (§8.1), 3.8 cm off the vendor's points. `range_m` stays the measured range.
+  double lens_offset_m = rs16::kLensRxM;
 };
 
 class Rs16Decoder final : public LidarPacketDecoder {

@@ -34,8 +34,11 @@ struct Rs16MsopContent {
 /// a slot < 384).
 size_t FillRs16Slots(std::span<const LidarReturn> returns, Rs16MsopContent* content);
 
-/// Range of a point given in the sensor frame (metres), for simulators that produce points.
-float RangeOfPoint(float x_m, float y_m, float z_m);
+/// The range to encode for a point given in the decoder's frame (metres), for simulators that
+/// produce points: the distance from the lens centre, |p − L·(cos α, −sin α, 0)|, α being the
+/// firing's uncalibrated azimuth and L the lens offset the decoder will add (rs16_decoder.h).
+float RangeOfPoint(
+    float x_m, float y_m, float z_m, double azimuth_deg, double lens_offset_m = rs16::kLensRxM);
 
 /// Writes one 1248-byte MSOP packet. Returns false when `out` is not 1248 bytes or the time
 /// cannot be represented in the chosen format.

@@ -8,9 +8,13 @@
 /// in 0.0001°, negative for channels 0–7, return-mode byte 0 dual / 1 strongest / 2 last),
 /// rs_driver `basic_attr.hpp` (`RSMsopHeaderV1`, `RSEthNetV1`, `RSTimestampYMD`,
 /// `RSTimestampUTC`), and the RS-LiDAR-16 User Manual (§5.1.1 header: bytes 21–30 time, 31
-/// model, tail 4 reserved + 00 FF; App. B.7 pitch example 00 27 10 → 1°; App. B.10 time;
-/// §8.1 coordinate mapping). Every offset below was checked against the real capture in
-/// shared/data/rs16_washing_house.
+/// model, tail 4 reserved + 00 FF; App. B.7 pitch example 00 27 10 → 1°; App. B.10 time).
+/// Every offset below was checked against the real capture in shared/data/rs16_washing_house.
+///
+/// Point frame: the one RoboSense's drivers publish (rs_driver `decoder_RS16.hpp`
+/// `internDecodeMsopPkt`, commit 4eeadac L316–318; rslidar_sdk clouds): x forward (azimuth 0),
+/// y left, z up, azimuth clockwise seen from above. The manual's §8.1 formula is the same rays
+/// with x and y swapped (x_manual = −y, y_manual = x), as its Note 1 says of the ROS package.
 ///
 /// MSOP (1248 B, all fields big-endian):
 ///   0   8  id 55 AA 05 0A 5A A5 50 A0
@@ -53,6 +57,15 @@ inline constexpr size_t kTailOffset = 1242;
 inline constexpr double kDistanceResolutionM = 0.005;
 inline constexpr double kOldDistanceResolutionM = 0.01;
 inline constexpr double kAzimuthResolutionDeg = 0.01;
+/// Optical (lens) centre that RoboSense's drivers add to every point, along the firing's
+/// uncalibrated azimuth α: (RX cos α, −RX sin α, RZ) (rs_driver `decoder_RS16.hpp`
+/// `getConstParam` RX/RY/RZ and L316–318 @ 4eeadac; ros_rslidar `rawdata.cc` Rx_/Ry_/Rz_).
+inline constexpr double kLensRxM = 0.03825;
+inline constexpr double kLensRzM = 0.0;
+/// Declared by RoboSense beside RX but applied by none of its RS16 formulas (ros_rslidar
+/// `rawdata.h`: "for now not used"; rs_driver reads RY only for RSAIRY/RSFAIRY), so not here
+/// either: a vendor-exact point has no sideways lens term.
+inline constexpr double kLensRyUnusedM = -0.01088;
 inline constexpr uint16_t kNoReturnZero = 0x0000;
 inline constexpr uint16_t kNoReturnMax = 0xFFFF;
 

@@ -16,6 +16,10 @@ struct Vlp16Options {
   double max_range_m = 130.0;  ///< largest encodable range is 131.07 m
   double rpm = 600.0;          ///< for PacketsPerRevolution only (the VLP-16 sends no DIFOP)
   bool dual_return = false;    ///< expected mode, for PacketsPerRevolution only
+  /// Offset of the optical centre along the firing's azimuth, metres, added as for the
+  /// RoboSense models. 0: Velodyne's drivers add none (velodyne VLP16db.yaml and nebula's
+  /// VLP16.yaml have every offset correction 0).
+  double lens_offset_m = 0.0;
 };
 
 /// Decodes VLP-16 data packets (1206 bytes, UDP 2368). Velodyne sends no DIFOP on the data port,

@@ -77,7 +77,8 @@ struct RecordingStats {
 class RecordingReader {
  public:
   /// Opens `dir`; reads the IMU stream at once (small) and the LiDAR pcap lazily. Returns IMU
-  /// samples and scans only.
+  /// samples and scans only. Refuses a folder whose manifest is missing or of another
+  /// format_version (ManifestVersionProblem).
   static std::unique_ptr<RecordingReader> Open(const std::filesystem::path& dir,
                                                const drivers::LidarConfig& lidar,
                                                const drivers::ImuConfig& imu,
@@ -123,6 +124,13 @@ class RecordingReader {
   Scan pending_scan_;
   RecordingStats stats_;
 };
+
+/// Why the recording in `dir` cannot be read ("" when it can): its manifest.yaml must state
+/// `format_version:` drivers::kRecordingFormatVersion (recording_format.h). A version-1
+/// recording (LiDAR frame of the RoboSense manual, before issue 32) is refused with what to do:
+/// re-simulate it, or for a swliod recording the same extrinsic in the new frame. Open() refuses
+/// such a folder with this message.
+std::string ManifestVersionProblem(const std::filesystem::path& dir);
 
 /// T_imu_lidar as the recording's manifest.yaml states it (its `translation_m: [x, y, z]` and
 /// `quaternion_xyzw: [x, y, z, w]` lines); none when either is missing. A recording describes

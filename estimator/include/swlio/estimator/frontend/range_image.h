@@ -1,9 +1,10 @@
 #pragma once
 /// @file
 /// Range image of one de-skewed LiDAR sweep (paper §4.1, LeGO-LOAM style): rows are rings
-/// (0 = lowest beam), columns are azimuth bins. The column is computed from the point itself
-/// with atan2, so any sensor frame works; the image is just rotated in azimuth. With the RS16
-/// manual frame (y forward, x right) column 0 starts behind the sensor.
+/// (0 = lowest beam), columns are azimuth bins. The column is computed from the point itself:
+/// azimuth clockwise from +x (atan2(−y, x), the drivers' frame: x forward, y left, z up), so
+/// column 0 starts behind the sensor and columns grow clockwise seen from above, as the
+/// sensor turns.
 
 #include <Eigen/Core>
 #include <cstdint>
