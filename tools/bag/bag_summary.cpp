@@ -62,7 +62,8 @@ void Inspect(const bag::BagMessage& m, const bag::BagTopic& topic, Decoder& d, T
     if (t.decode_errors++ == 0) t.first_error = "#" + std::to_string(m.index) + ": " + error;
     return;
   }
-  if (bag::RoleOf(d.decoded.kind) == bag::TopicRole::kLidar) {
+  if (bag::RoleOf(d.decoded.kind) == bag::TopicRole::kLidar &&
+      d.decoded.kind != bag::RosMessageKind::kPointCloud2) {
     t.packets += d.decoded.packets.packets.size();
   }
   const std::optional<int64_t> stamp = HeaderStamp(d.decoded);

@@ -330,10 +330,16 @@ void McapReader::BuildTopics() {
       warnings_.Add(path_ + ": channel " + std::to_string(id) + " (" + ch.topic +
                     ") names schema " + std::to_string(ch.schema_id) + ", which is not defined");
     }
-    if (const auto md5 = ch.metadata.find("md5sum"); md5 != ch.metadata.end())
+    if (const auto md5 = ch.metadata.find("md5sum"); md5 != ch.metadata.end()) {
       t.md5sum = md5->second;
-    topic_of_channel[id] = static_cast<uint32_t>(topics_.size());
-    topics_.push_back(std::move(t));
+    }
+    // Channels of one topic, type and encoding (several publishers) are one topic.
+    const auto same = [&t](const BagTopic& o) {
+      return o.name == t.name && o.type == t.type && o.encoding_name == t.encoding_name;
+    };
+    auto it = std::find_if(topics_.begin(), topics_.end(), same);
+    if (it == topics_.end()) it = topics_.insert(topics_.end(), std::move(t));
+    topic_of_channel[id] = static_cast<uint32_t>(it - topics_.begin());
   }
   index_.Finish(topic_of_channel, &topics_, path_, &warnings_, &stats_);
 }

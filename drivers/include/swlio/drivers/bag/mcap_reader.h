@@ -15,7 +15,8 @@
 ///     is a warning: the messages' own chunks were checked), and compares the summary's
 ///     Statistics with what it found.
 /// A file that ends early (no DataEnd, no Footer, a record cut short) is read up to its last
-/// complete record, with a warning naming the offset. Messages come in log_time order
+/// complete record, with a warning naming the offset. Channels of one topic, schema name and
+/// encoding (several publishers) become one topic. Messages come in log_time order
 /// (IndexedMessages).
 
 #include <cstdint>
