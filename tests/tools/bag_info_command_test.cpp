@@ -56,13 +56,15 @@ TEST(BagInfoCommand, ReportsWhatIsWrong) {
   const uint16_t chatter =
       w->AddChannel(w->AddSchema("std_msgs/msg/String", "ros2msg", ""), "/chatter", "cdr");
   const int64_t t0 = 1'700'000'000'000'000'000;
+  int64_t log = t0;
   for (const int64_t stamp : {10, 20, 15, 15, 30}) {  // one backwards, one repeated (15, 15)
     bag::ImuMsg m;
     m.header = {t0 + stamp, "imu_link"};
-    w->Write(imu, t0 + stamp * 2, t0, bag::EncodeImu(m, bag::MessageEncoding::kCdr));
+    log += 1000;
+    w->Write(imu, log, t0, bag::EncodeImu(m, bag::MessageEncoding::kCdr));
   }
-  w->Write(imu, t0 + 100, t0, std::vector<uint8_t>{0, 1, 0, 0, 1, 2, 3});  // #5 cut short
-  w->Write(chatter, t0 + 101, t0, std::vector<uint8_t>{0, 1, 0, 0, 1, 0, 0, 0, 0});
+  w->Write(imu, log + 1000, t0, std::vector<uint8_t>{0, 1, 0, 0, 1, 2, 3});  // #5 cut short
+  w->Write(chatter, log + 2000, t0, std::vector<uint8_t>{0, 1, 0, 0, 1, 0, 0, 0, 0});
   std::string error;
   ASSERT_TRUE(w->Close(&error)) << error;
   const fs::path file = swlio::test::MakeTempDir("baginfo") / "bad.mcap";

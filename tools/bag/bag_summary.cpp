@@ -71,7 +71,7 @@ void Inspect(const bag::BagMessage& m, const bag::BagTopic& topic, Decoder& d, T
   int64_t& last = d.last_stamp[m.topic];
   if (last != std::numeric_limits<int64_t>::min() && *stamp < last) ++t.out_of_order;
   if (*stamp == last) ++t.duplicates;
-  last = std::max(last, *stamp);
+  last = *stamp;  // each stamp against the message just before it
 }
 
 std::string Pad(std::string s, size_t width) {

@@ -35,6 +35,10 @@ BagMessageStream::BagMessageStream(std::unique_ptr<BagReader> reader,
 std::unique_ptr<BagMessageStream> BagMessageStream::Create(std::unique_ptr<BagReader> reader,
                                                            const BagStreamOptions& options,
                                                            std::string* error) {
+  if (!reader) {
+    if (error->empty()) *error = "no bag";
+    return nullptr;
+  }
   std::unique_ptr<BagMessageStream> s(new BagMessageStream(std::move(reader), options));
   const std::vector<BagTopic>& topics = s->reader_->topics();
   if (!SelectTopics(topics, options.topics, &s->selected_, error)) {

@@ -85,6 +85,10 @@ Rosbag2Metadata SiblingMetadata(const fs::path& file) {
 std::unique_ptr<BagReader> OpenFile(const std::string& path,
                                     const BagReadLimits& limits,
                                     std::string* error) {
+  if (!fs::exists(path)) {
+    *error = path + ": no such file or folder";
+    return nullptr;
+  }
   if (EndsWith(path, ".zstd")) {
     *error = path + ": a file-compressed rosbag2 bag; decompress it first (zstd -d '" + path + "')";
     return nullptr;
@@ -114,8 +118,7 @@ std::unique_ptr<BagReader> OpenFile(const std::string& path,
     case BagFormat::kUnknown:
       break;
   }
-  *error = path + (fs::exists(path) ? ": not a bag (expected rosbag2 .db3, MCAP or ROS 1 .bag)"
-                                    : ": no such file or folder");
+  *error = path + ": not a bag (expected rosbag2 .db3, MCAP or ROS 1 .bag)";
   return nullptr;
 }
 

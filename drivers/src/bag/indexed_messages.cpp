@@ -26,16 +26,14 @@ void IndexedMessages::Finish(const std::unordered_map<uint32_t, uint32_t>& topic
                              const std::string& path,
                              WarningLog* warnings,
                              BagReadStats* stats) {
+  constexpr uint32_t kOrphan = 0xFFFFFFFFu;
   std::unordered_map<uint32_t, uint64_t> orphans;  // channel → messages
-  std::erase_if(entries_, [&](Entry& e) {
+  for (Entry& e : entries_) {
     const auto it = topic_of_channel.find(e.channel);
-    if (it == topic_of_channel.end()) {
-      ++orphans[e.channel];
-      return true;
-    }
-    e.channel = it->second;
-    return false;
-  });
+    if (it == topic_of_channel.end()) ++orphans[e.channel];
+    e.channel = it == topic_of_channel.end() ? kOrphan : it->second;
+  }
+  std::erase_if(entries_, [](const Entry& e) { return e.channel == kOrphan; });
   for (const auto& [channel, n] : orphans) {
     warnings->Add(path + ": " + std::to_string(n) + " messages of channel/connection " +
                   std::to_string(channel) + ", which the file never defines; skipped");
