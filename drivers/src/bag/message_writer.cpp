@@ -4,6 +4,8 @@
 
 #include <bit>
 
+#include "swlio/drivers/bag/message_reader.h"  // kNsPerS
+
 namespace swlio::drivers::bag {
 namespace {
 
