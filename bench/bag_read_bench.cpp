@@ -159,7 +159,7 @@ void WriteRos1(const fs::path& path) {
 }
 
 /// The synthetic bag of format `index`, written on first use.
-const std::string& SyntheticBag(int index) {
+const std::string& SyntheticBag(size_t index) {
   static std::vector<std::string> paths(5);
   static const char* kNames[] = {"bag.db3", "none.mcap", "zstd.mcap", "lz4.mcap", "lz4.bag"};
   if (!paths[index].empty()) return paths[index];
@@ -188,7 +188,7 @@ void Report(benchmark::State& state, uint64_t messages, uint64_t bytes, double r
 
 /// Open + read every message (no decoding).
 void BM_ReadBag(benchmark::State& state) {
-  const std::string& path = SyntheticBag(static_cast<int>(state.range(0)));
+  const std::string& path = SyntheticBag(static_cast<size_t>(state.range(0)));
   state.SetLabel(fs::path(path).filename().string());
   uint64_t messages = 0;
   uint64_t bytes = 0;
@@ -208,7 +208,7 @@ BENCHMARK(BM_ReadBag)->DenseRange(0, 4)->Unit(benchmark::kMillisecond)->UseRealT
 
 /// The whole input path: open, read, decode, check stamps (BagMessageStream).
 void BM_StreamBag(benchmark::State& state) {
-  const std::string& path = SyntheticBag(static_cast<int>(state.range(0)));
+  const std::string& path = SyntheticBag(static_cast<size_t>(state.range(0)));
   state.SetLabel(fs::path(path).filename().string());
   uint64_t messages = 0;
   uint64_t packets = 0;

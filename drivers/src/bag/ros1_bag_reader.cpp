@@ -219,7 +219,8 @@ void Ros1BagReader::AddMessage(const ros1::RecordHeader& h,
 
 void Ros1BagReader::BuildTopics() {
   std::unordered_map<uint32_t, uint32_t> topic_of_connection;
-  for (const auto& [id, c] : connections_) {
+  for (const auto& [id, connection] : connections_) {
+    const Connection& c = connection;  // a lambda cannot capture a structured binding (C++17)
     const auto same = [&c](const BagTopic& t) { return t.name == c.topic && t.type == c.type; };
     auto it = std::find_if(topics_.begin(), topics_.end(), same);
     if (it == topics_.end()) {

@@ -30,7 +30,8 @@ class Statement {
   std::string Text(int column) const {
     const unsigned char* t = sqlite3_column_text(stmt_, column);
     const int n = sqlite3_column_bytes(stmt_, column);
-    return t == nullptr ? std::string() : std::string(reinterpret_cast<const char*>(t), n);
+    return t == nullptr ? std::string()
+                        : std::string(reinterpret_cast<const char*>(t), static_cast<size_t>(n));
   }
   int64_t Int(int column) const { return sqlite3_column_int64(stmt_, column); }
 

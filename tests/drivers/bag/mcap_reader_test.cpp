@@ -254,7 +254,7 @@ TEST(McapReader, AnUnknownCompressionSkipsTheChunk) {
   std::vector<Expected> expected;
   Bytes file = WriteSample(o, &expected);
   const size_t name = FirstChunk(file) + 16 + 8 + 4 + 4;
-  ASSERT_EQ(std::string(file.begin() + name, file.begin() + name + 4), "zstd");
+  ASSERT_EQ(std::string(&file[name], &file[name] + 4), "zstd");
   file[name + 3] = 'X';
   std::string error;
   auto r = OpenBytes(file, &error);

@@ -18,7 +18,7 @@ using Bytes = std::vector<uint8_t>;
 
 void PutF64Be(Bytes& b, size_t at, double v) {
   const auto u = std::bit_cast<uint64_t>(v);
-  for (int i = 0; i < 8; ++i) b[at + i] = static_cast<uint8_t>(u >> (56 - 8 * i));
+  for (size_t i = 0; i < 8; ++i) b[at + i] = static_cast<uint8_t>(u >> (56 - 8 * i));
 }
 
 TEST(MessageReader, CdrAlignsRelativeToByteFour) {

@@ -165,7 +165,7 @@ TEST(PointCloudPoints, BigEndianData) {
   c.row_step = 12;
   Bytes data(12, 0);
   const auto be = std::bit_cast<uint32_t>(1.5f);
-  for (int i = 0; i < 4; ++i) data[i] = static_cast<uint8_t>(be >> (24 - 8 * i));
+  for (size_t i = 0; i < 4; ++i) data[i] = static_cast<uint8_t>(be >> (24 - 8 * i));
   c.data = data;
   CloudPoints out;
   std::string error;

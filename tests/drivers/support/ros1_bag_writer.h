@@ -76,19 +76,19 @@ class Ros1BagWriter {
   static std::pair<std::string, std::vector<uint8_t>> Op(uint8_t op) { return {"op", {op}}; }
   static std::pair<std::string, std::vector<uint8_t>> U32(const std::string& n, uint32_t v) {
     std::vector<uint8_t> b(4);
-    for (int i = 0; i < 4; ++i) b[i] = static_cast<uint8_t>(v >> (8 * i));
+    for (size_t i = 0; i < 4; ++i) b[i] = static_cast<uint8_t>(v >> (8 * i));
     return {n, b};
   }
   static std::pair<std::string, std::vector<uint8_t>> U64(const std::string& n, uint64_t v) {
     std::vector<uint8_t> b(8);
-    for (int i = 0; i < 8; ++i) b[i] = static_cast<uint8_t>(v >> (8 * i));
+    for (size_t i = 0; i < 8; ++i) b[i] = static_cast<uint8_t>(v >> (8 * i));
     return {n, b};
   }
   static std::vector<uint8_t> TimeBytes(int64_t t_ns) {
     const auto sec = static_cast<uint32_t>(t_ns / 1'000'000'000);
     const auto nsec = static_cast<uint32_t>(t_ns % 1'000'000'000);
     std::vector<uint8_t> b(8);
-    for (int i = 0; i < 4; ++i) {
+    for (size_t i = 0; i < 4; ++i) {
       b[i] = static_cast<uint8_t>(sec >> (8 * i));
       b[4 + i] = static_cast<uint8_t>(nsec >> (8 * i));
     }
