@@ -267,6 +267,15 @@ bool Rosbag2SqliteReader::TakeRow(BagMessage* message) {
     return false;
   }
   const uint64_t index = next_index_[it->second]++;  // skipped rows keep their place
+  const int64_t t_ns = sqlite3_column_int64(rows_, 2);
+  if (sqlite3_column_type(rows_, 2) != SQLITE_INTEGER) {
+    warnings_.Add(where() + ": timestamp is not an integer; skipped");
+    return false;
+  }
+  if (t_ns < last_time_ns_) {  // ORDER BY over a damaged index
+    warnings_.Add(where() + ": timestamp before the previous row's (damaged index?); skipped");
+    return false;
+  }
   if (sqlite3_column_type(rows_, 3) != SQLITE_BLOB) {
     warnings_.Add(where() + ": data is not a BLOB; skipped");
     return false;
@@ -288,7 +297,8 @@ bool Rosbag2SqliteReader::TakeRow(BagMessage* message) {
   }
   message->topic = it->second;
   message->index = index;
-  message->log_time_ns = sqlite3_column_int64(rows_, 2);
+  message->log_time_ns = t_ns;
+  last_time_ns_ = t_ns;
   message->data = data;
   ++stats_.messages_returned;
   stats_.bytes_returned += data.size();

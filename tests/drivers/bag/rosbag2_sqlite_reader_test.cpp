@@ -97,6 +97,27 @@ TEST(Rosbag2SqliteReader, SkipsAndCountsRowsOfUnknownTopicsAndNonBlobData) {
   EXPECT_NE(reader->warnings()[1].find(path.string()), std::string::npos);
 }
 
+TEST(Rosbag2SqliteReader, KeepsTimeOrderWhateverTheFileHolds) {
+  const auto path = test::MakeTempDir("db3") / "times.db3";
+  test::WriteDb3(path, 3, TwoTopics(), {{3, 10, {0, 1, 0, 0}}, {3, 20, {0, 1, 0, 0}}});
+  {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+    // A text timestamp sorts after every integer (SQLite's type order).
+    test::Db3Exec(db, "INSERT INTO messages(topic_id, timestamp, data) VALUES(3, 'late', x'00')");
+    sqlite3_close(db);
+  }
+  std::string error;
+  auto reader = Open(path, &error);
+  ASSERT_NE(reader, nullptr) << error;
+  const auto all = test::ReadAll(*reader);
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[0].log_time_ns, 10);
+  EXPECT_EQ(all[1].log_time_ns, 20);
+  ASSERT_EQ(reader->warnings().size(), 1u);
+  EXPECT_NE(reader->warnings()[0].find("timestamp is not an integer"), std::string::npos);
+}
+
 TEST(Rosbag2SqliteReader, RefusesFilesThatAreNotRosbag2Databases) {
   const auto dir = test::MakeTempDir("db3");
   std::string error;

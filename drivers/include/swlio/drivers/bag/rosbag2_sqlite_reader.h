@@ -14,7 +14,9 @@
 ///
 /// The file is opened read-only and immutable (no locks, no journal: the data folder may be
 /// read-only) in SQLite's defensive mode; `topics` and `messages` must be tables, not views,
-/// so a crafted file cannot make a query run forever. Messages come `ORDER BY timestamp, rowid`.
+/// so a crafted file cannot make a query run forever. Messages come `ORDER BY timestamp, rowid`;
+/// a row whose timestamp is no integer, or earlier than the one returned before it (a damaged
+/// index), is skipped with a warning, so the order holds whatever the file says.
 ///
 /// rosbag2's per-message compression (metadata.yaml `compression_mode: message`, zstd) is
 /// undone when the caller says so (`Rosbag2SqliteOptions`); a blob that fails is skipped.
@@ -93,6 +95,7 @@ class Rosbag2SqliteReader final : public BagReader {
   std::unordered_map<int64_t, uint32_t> topic_by_id_;
   std::vector<uint64_t> next_index_;
   std::vector<uint8_t> decompressed_;
+  int64_t last_time_ns_ = INT64_MIN;  ///< of the last message returned
   std::string error_;
   WarningLog warnings_{kMaxWarnings};
   BagReadStats stats_;
