@@ -70,7 +70,9 @@ class BagReader {
 
   /// "rosbag2 sqlite3 (db schema 3)", "mcap (profile ros2)", "ROS 1 bag v2.0", …
   virtual std::string StorageDescription() const = 0;
-  /// Every topic, including ones without messages. Counts and spans are exact.
+  /// Every topic, including ones without messages. Counts and spans: MCAP and ROS 1 count the
+  /// messages Next() will return (damaged chunks are already left out); .db3 counts rows, so a
+  /// row skipped while reading (stats().messages_skipped) is still in its topic's count.
   virtual const std::vector<BagTopic>& topics() const = 0;
   /// The next message in receive-time order (ties in file order). False at the end, or on an
   /// error that stops reading (then error() is non-empty).
