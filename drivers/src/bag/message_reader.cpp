@@ -49,7 +49,7 @@ bool MessageReader::Begin(std::span<const uint8_t> bytes,
 
 std::string MessageReader::Failure() const {
   if (ok()) return {};
-  const std::string at = "byte " + std::to_string(failed_pos_) + ": " + failed_at_;
+  std::string at = "byte " + std::to_string(failed_pos_) + ": " + failed_at_;
   switch (problem_) {
     case Problem::kShort:
       return at + " needs " + std::to_string(failed_need_) + " bytes, " +

@@ -161,14 +161,13 @@ void Ros1BagReader::ReadChunkRecords(std::span<const uint8_t> records,
                     " runs past the chunk's end; the rest of the chunk skipped");
       return;
     }
-    if (!h.Parse(r.header) || !h.U8("op", &op)) {
-      ++stats_.records_skipped;
-    } else if (op == ros1::kConnection) {
+    const bool parsed = h.Parse(r.header) && h.U8("op", &op);
+    if (parsed && op == ros1::kConnection) {
       AddConnection(h, r.data, offset);
-    } else if (op == ros1::kMessageData) {
+    } else if (parsed && op == ros1::kMessageData) {
       AddMessage(h, r.data, chunk, static_cast<uint64_t>(r.data.data() - records.data()), offset);
     } else {
-      ++stats_.records_skipped;
+      ++stats_.records_skipped;  // unreadable, or an op that has no place in a chunk
     }
     pos += r.size;
   }
