@@ -1,6 +1,8 @@
 // ROS bag reading throughput on one core (issue 32: "a 10-minute bag is read faster than 20×
-// real time"): messages/s and MB/s of the bag readers, and of the whole input path
-// (BagMessageStream: reading, decoding, stamp checks).
+// real time"): messages/s and MB/s of the bag readers, of the decoded message stream
+// (BagMessageStream: reading, decoding, stamp checks), and of the whole input of swlio-run
+// (BagInput: the stream, then the packets through the daemon's LiDAR decoder, clock model and
+// scan assembler, events ordered by time).
 //
 // Input: a synthetic recording of SWLIO_BAG_BENCH_SECONDS (default 60) of an RS16 and an IMU at
 // the rates of the target rig — 10 RslidarScan messages/s of 75 packets (94 KB each, the
@@ -21,6 +23,7 @@
 #include <vector>
 
 #include "ros1_bag_writer.h"  // tests/drivers/support
+#include "swlio/daemon/recording/bag_input.h"
 #include "swlio/drivers/bag/bag_message_stream.h"
 #include "swlio/drivers/bag/bag_open.h"
 #include "swlio/drivers/bag/mcap_writer.h"
@@ -225,6 +228,32 @@ void BM_StreamBag(benchmark::State& state) {
   Report(state, messages, packets * 1248, static_cast<double>(BenchSeconds() * state.iterations()));
 }
 BENCHMARK(BM_StreamBag)->DenseRange(0, 4)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// swlio-run's input: sweeps and IMU samples on the host clock (BagInput).
+void BM_BagInput(benchmark::State& state) {
+  const std::string& path = SyntheticBag(static_cast<size_t>(state.range(0)));
+  state.SetLabel(fs::path(path).filename().string());
+  uint64_t events = 0;
+  uint64_t points = 0;
+  for (auto _ : state) {
+    std::string error;
+    auto input = swlio::daemon::OpenBagInput(path, {}, {}, &error);
+    if (!input) {
+      state.SkipWithError(error.c_str());
+      return;
+    }
+    swlio::daemon::RecordingEvent e;
+    while (input->Next(&e)) {
+      ++events;
+      points += e.scan.points.size();
+      e.scan.points.clear();
+    }
+  }
+  state.counters["points_per_s"] =
+      benchmark::Counter(static_cast<double>(points), benchmark::Counter::kIsRate);
+  Report(state, events, 0, static_cast<double>(BenchSeconds() * state.iterations()));
+}
+BENCHMARK(BM_BagInput)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// The real washing_house bag (3.9 s, 80 messages, 3.8 MB) through the stream.
 void BM_StreamWashingHouse(benchmark::State& state) {

@@ -31,7 +31,10 @@ set(_swlio_release_only
   # MapLocalizer cases that verify dozens of relocalization hypotheses (3–12 s each in Release);
   # the relocalization, look-alike bay and lost-pose cases stay.
   "\\.MapLocalizer\\.(NeverLocalizesInTheMapOfAnotherPlace|WaitsWhereEveryPlaceHasALookAlike)"
-  "\\.MapLocalizer\\.(KeepsTrackingWhereTheSceneChanged|ThrottlesRelocalizationWhileAmbiguous)")
+  "\\.MapLocalizer\\.(KeepsTrackingWhereTheSceneChanged|ThrottlesRelocalizationWhileAmbiguous)"
+  # Three drives, each exported to a bag and run four times; the bag readers, the bag input
+  # and the real bag's LiDAR-only run stay under ASan.
+  "/BagInputOnDrive\\.")
 
 set(_swlio_no_tsan
   # The Fast DDS subscriber (a test tool) trips TSan inside Fast DDS's timed mutexes, which live

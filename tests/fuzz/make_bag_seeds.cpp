@@ -3,6 +3,8 @@
 //   - always: one synthetic message of every kind (CDR and ROS 1), and small MCAP files (none,
 //     zstd, lz4; with and without summary; unchunked) and ROS 1 bags (none, bz2, lz4; closed
 //     and unclosed) holding them — the kept corpora under tests/fuzz/corpus/ are this output;
+//   - always: an MCAP laid out as `swlio-bag export` writes one (ros2msg schema texts, QoS-less
+//     channels, an rslidar_sdk cloud of a short sweep, Imu, /tf_static);
 //   - with DATA_DIR: the same from the first messages of each real .db3 bag (LiDAR messages cut
 //     to 3 packets), which scripts/fuzz adds at run time (real data stays out of the repo).
 // Usage: make_bag_seeds OUT_DIR [DATA_DIR]   (writes OUT_DIR/{mcap,ros1bag,bag_message}/)
@@ -19,6 +21,8 @@
 #include "swlio/drivers/bag/mcap_writer.h"
 #include "swlio/drivers/bag/message_decoder.h"
 #include "swlio/drivers/bag/message_encoder.h"
+#include "swlio/drivers/bag/point_cloud_writer.h"
+#include "swlio/drivers/bag/ros2msg_schema.h"
 
 namespace {
 
@@ -134,6 +138,67 @@ std::vector<Sample> FromBag(const std::string& path, size_t per_topic) {
   return out;
 }
 
+/// An exported recording's messages in miniature: /tf_static, a 12-point rslidar_sdk cloud,
+/// two Imu samples (kinds without an encoder for ROS 1 keep only their CDR).
+std::vector<Sample> ExportStyle() {
+  std::vector<Sample> out;
+  const int64_t t = 1'764'000'000'000'000'000;
+  const auto cdr = bag::MessageEncoding::kCdr;
+  bag::TransformStampedMsg tf;
+  tf.header = {t, "imu_link"};
+  tf.child_frame_id = "rslidar";
+  tf.translation_m = {0.1, 0.0, 0.2};
+  const std::vector<bag::TransformStampedMsg> tfs = {tf};
+  out.push_back({"/tf_static",
+                 "tf2_msgs/msg/TFMessage",
+                 bag::RosMessageKind::kUnknown,
+                 t,
+                 bag::EncodeTfMessage(tfs, cdr),
+                 {}});
+  swlio::Scan scan;
+  scan.t_start_ns = t;
+  for (int i = 0; i < 12; ++i) {
+    swlio::LidarPoint p;
+    p.xyz_m = {1.0f + static_cast<float>(i), 0.5f, -0.2f};
+    p.ring = static_cast<uint16_t>(i % 16);
+    p.dt_ns = i * 3456;
+    scan.points.push_back(p);
+  }
+  bag::OwnedPointCloud2 cloud;
+  bag::RslidarCloudFromScan(scan, "rslidar", &cloud);
+  out.push_back({"/rslidar_points", "sensor_msgs/msg/PointCloud2",
+                 bag::RosMessageKind::kPointCloud2, t + 100'000'000,
+                 bag::EncodePointCloud2(cloud.msg, cdr),
+                 bag::EncodePointCloud2(cloud.msg, bag::MessageEncoding::kRos1)});
+  for (int i = 0; i < 2; ++i) {
+    bag::ImuMsg imu;
+    imu.header = {t + i * 5'000'000, "imu_link"};
+    imu.orientation_covariance[0] = -1.0;
+    imu.linear_acceleration_mps2 = {0.0, 0.0, 9.81};
+    out.push_back({"/imu/data", "sensor_msgs/msg/Imu", bag::RosMessageKind::kImu,
+                   imu.header.stamp_ns, bag::EncodeImu(imu, cdr),
+                   bag::EncodeImu(imu, bag::MessageEncoding::kRos1)});
+  }
+  return out;
+}
+
+/// The exported-style samples as `swlio-bag export` writes them: schemas with their texts.
+Bytes ExportStyleMcap(const std::vector<Sample>& samples) {
+  auto w = bag::McapWriter::CreateInMemory({});
+  std::map<std::string, uint16_t> channels;
+  for (const Sample& s : samples) {
+    auto [it, added] = channels.emplace(s.topic, 0);
+    if (added) {
+      it->second = w->AddChannel(w->AddSchema(s.type, "ros2msg", bag::Ros2MsgSchema(s.type)),
+                                 s.topic, "cdr");
+    }
+    w->Write(it->second, s.t_ns, s.t_ns, s.cdr);
+  }
+  std::string error;
+  w->Close(&error);
+  return w->bytes();
+}
+
 Bytes Mcap(const std::vector<Sample>& samples, bag::Compression c, bool summary, uint64_t chunk) {
   bag::McapWriterOptions o;
   o.compression = c;
@@ -197,6 +262,7 @@ int main(int argc, char** argv) {
   }
   const fs::path out = argv[1];
   WriteSet(out, "synthetic", Synthetic());
+  Write(out / "mcap" / "export_style.mcap", ExportStyleMcap(ExportStyle()));
   if (argc > 2) {
     const fs::path data = argv[2];
     const std::pair<const char*, const char*> bags[] = {{"rs16", "rs16_washing_house"},

@@ -117,7 +117,7 @@ TEST_F(ReplayCommand, RefusesAFolderWithoutARecording) {
   const std::string out = test::RunCommand(
       replay.string() + " " + dir.string() + " --out " + (dir / "x.tum").string() + " 2>&1", &code);
   EXPECT_EQ(code, 1) << out;
-  EXPECT_NE(out.find("cannot read"), std::string::npos) << out;
+  EXPECT_NE(out.find("neither a recording folder"), std::string::npos) << out;
 }
 
 }  // namespace

@@ -16,24 +16,6 @@ namespace {
 
 namespace bag = drivers::bag;
 
-std::optional<int64_t> HeaderStamp(const bag::DecodedMessage& d) {
-  switch (d.kind) {
-    case bag::RosMessageKind::kPointCloud2:
-      return d.cloud.header.stamp_ns;
-    case bag::RosMessageKind::kImu:
-      return d.imu.header.stamp_ns;
-    case bag::RosMessageKind::kNavSatFix:
-      return d.fix.header.stamp_ns;
-    case bag::RosMessageKind::kOdometry:
-      return d.odometry.header.stamp_ns;
-    case bag::RosMessageKind::kTwistStamped:
-      return d.twist.header.stamp_ns;
-    default:
-      if (d.packets.has_header) return d.packets.header.stamp_ns;
-      return std::nullopt;
-  }
-}
-
 std::string Seconds(int64_t t_ns) {
   char b[40];
   const int64_t s = t_ns / 1'000'000'000;
@@ -66,7 +48,7 @@ void Inspect(const bag::BagMessage& m, const bag::BagTopic& topic, Decoder& d, T
       d.decoded.kind != bag::RosMessageKind::kPointCloud2) {
     t.packets += d.decoded.packets.packets.size();
   }
-  const std::optional<int64_t> stamp = HeaderStamp(d.decoded);
+  const std::optional<int64_t> stamp = bag::HeaderStamp(d.decoded);
   if (!stamp) return;
   int64_t& last = d.last_stamp[m.topic];
   if (last != std::numeric_limits<int64_t>::min() && *stamp < last) ++t.out_of_order;

@@ -1,4 +1,5 @@
-// swlio-replay: feeds a recording folder (swliod --record, or the simulator's) through the same
+// swlio-replay: feeds a recording folder (swliod --record, or the simulator's) or a ROS bag
+// (bag_input.h) through the same
 // decoders, clock models and estimator as the live daemon, writes the trajectory (TUM, IMU
 // frame, sweep ends) and, with --dds-config, publishes the odometry and keyframe path on the
 // daemon's topics.
@@ -16,11 +17,12 @@
 #include <string>
 #include <thread>
 
+#include "../common/bag_options.h"
 #include "swlio/daemon/config/config_loader.h"
 #include "swlio/daemon/output/message_conversion.h"
 #include "swlio/daemon/output/tum_output.h"
 #include "swlio/daemon/pipeline/estimator_runner.h"
-#include "swlio/daemon/recording/recording_reader.h"
+#include "swlio/daemon/recording/input_open.h"
 #include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
@@ -32,6 +34,7 @@ struct Options {
   int64_t domain = 0;
   double speed = 1.0;
   bool deterministic = false;
+  swlio::tools::BagCliOptions bag;
 };
 
 /// Publishes what the daemon's publisher thread would for each sweep.
@@ -73,8 +76,9 @@ int Run(const Options& opt) {
     config = loaded.config;
   }
   std::string error;
-  auto reader = swlio::daemon::RecordingReader::Open(
-      opt.dir, swlio::daemon::WithManifestPorts(opt.dir, config.lidar), config.imu, &error);
+  swlio::daemon::SensorInputOptions read;
+  read.bag = swlio::tools::ToBagInputOptions(opt.bag);
+  auto reader = swlio::daemon::OpenSensorInput(opt.dir, config.lidar, config.imu, read, &error);
   if (!reader) return std::cerr << "swlio-replay: " << error << "\n", 1;
   DdsOut dds;
   const bool publish = !opt.dds_config.empty();
@@ -118,6 +122,7 @@ int Run(const Options& opt) {
     }
   }
   const swlio::daemon::RecordingStats& s = reader->stats();
+  std::cerr << reader->Report();
   std::printf(
       "{\"sweeps\": %zu, \"imu_samples\": %llu, \"lidar_packets\": %llu, \"missing_packets\": "
       "%llu, \"imu_checksum_errors\": %llu}\n",
@@ -129,11 +134,15 @@ int Run(const Options& opt) {
 }
 
 int Main(int argc, char** argv) {
-  CLI::App app{"swlio-replay: a recording through the daemon's decoders, clocks and estimator"};
+  CLI::App app{
+      "swlio-replay: a recording or a ROS bag through the daemon's decoders, clocks and estimator"};
   Options opt;
-  app.add_option("dir", opt.dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")
+  app.add_option("input", opt.dir,
+                 "recording folder (lidar.pcap, imu.xbus, imu.rx.csv), or a ROS bag: rosbag2 "
+                 "folder or .db3, .mcap, ROS 1 .bag")
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(CLI::ExistingPath);
+  swlio::tools::AddBagOptions(app, &opt.bag);
   app.add_option("--out", opt.out, "trajectory (TUM, IMU frame, sweep ends)")->required();
   app.add_option("--config", opt.config, "swlio YAML (estimator options; ports from the manifest)");
   app.add_option("--dds-config", opt.dds_config,

@@ -5,8 +5,13 @@ namespace {
 
 bool SetUpWheel(const std::filesystem::path& dir,
                 daemon::DaemonConfig* config,
-                daemon::RecordingReadOptions* read,
+                daemon::SensorInputOptions* read,
                 std::string* error) {
+  config->window.wheel.enabled = true;
+  if (!daemon::IsRecordingFolder(dir.string())) {  // a bag: its Odometry topic, --config's frame
+    read->bag.wheel = true;
+    return true;
+  }
   std::optional<drivers::CanConfig> can = daemon::ManifestWheelCan(dir);
   if (!can && config->can.ValidateLayout().empty()) can = config->can;
   if (!can) {
@@ -15,8 +20,7 @@ bool SetUpWheel(const std::filesystem::path& dir,
         "a valid can: section in --config)";
     return false;
   }
-  read->wheel = can;
-  config->window.wheel.enabled = true;
+  read->recording.wheel = can;
   if (const auto T = daemon::ManifestWheelExtrinsic(dir)) {
     config->window.wheel.T_imu_base = estimator::ExtrinsicConfig::FromIsometry(*T);
   }
@@ -25,10 +29,11 @@ bool SetUpWheel(const std::filesystem::path& dir,
 
 void SetUpGnss(const std::filesystem::path& dir,
                daemon::DaemonConfig* config,
-               daemon::RecordingReadOptions* read) {
+               daemon::SensorInputOptions* read) {
   estimator::GnssConfig& g = config->loop_closure.gnss;
   g.enabled = true;
-  read->gnss = true;
+  read->recording.gnss = true;
+  read->bag.gnss = true;
   if (const auto m = daemon::ManifestGnssSetup(dir)) {
     g.origin_lat_deg = m->origin.lat_deg;
     g.origin_lon_deg = m->origin.lon_deg;
@@ -43,7 +48,7 @@ bool SetUpAuxSensors(const std::filesystem::path& dir,
                      bool wheel,
                      bool gnss,
                      daemon::DaemonConfig* config,
-                     daemon::RecordingReadOptions* read,
+                     daemon::SensorInputOptions* read,
                      std::string* error) {
   if (wheel && !SetUpWheel(dir, config, read, error)) return false;
   if (gnss) SetUpGnss(dir, config, read);

@@ -1,6 +1,7 @@
 // swlio-run: runs the estimator offline on a recording folder (simulator output or a daemon
-// recording) through the same decoders and clock models as the daemon, and writes the IMU-frame
-// trajectory in TUM format (stamped at each sweep's end, host time) and per-scan stage timings.
+// recording) or a ROS bag through the same decoders and clock models as the daemon, and writes
+// the IMU-frame trajectory in TUM format (stamped at each sweep's end, host time) and per-scan
+// stage timings.
 
 #include <CLI/CLI.hpp>
 
@@ -15,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/bag_options.h"
 #include "aux_sensors.h"
 #include "localization_run.h"
 #include "loop_closure_run.h"
@@ -22,7 +24,7 @@
 #include "swlio/daemon/config/config_loader.h"
 #include "swlio/daemon/output/tum_output.h"
 #include "swlio/daemon/pipeline/estimator_runner.h"
-#include "swlio/daemon/recording/recording_reader.h"
+#include "swlio/daemon/recording/input_open.h"
 #include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/estimator/registration/lidar_odometry.h"
 #include "swlio/estimator/window/window_estimator.h"
@@ -60,6 +62,7 @@ struct Options {
   double end_s = 0.0;           ///< 0: to the end of the recording
   double calibrate_s = 0.0;     ///< window.calibrate_extrinsic_s (0: off)
   std::set<std::string> given;  ///< window flags present on the command line
+  swlio::tools::BagCliOptions bag;
 };
 
 void WriteTimings(std::ostream& out, const OdometryResult& r, int64_t t_ns) {
@@ -293,7 +296,8 @@ int Run(const Options& opt) {
   }
   if (!manifest_extrinsic && opt.config.empty()) {
     std::cerr << "swlio-run: no extrinsic in " << opt.dir
-              << "/manifest.yaml and no --config; using identity\n";
+              << (swlio::daemon::IsRecordingFolder(opt.dir) ? "/manifest.yaml" : "")
+              << " and no --config; using identity\n";
   }
   std::string error;
   // --wheel / --gnss win over the configuration's switches (both off by default).
@@ -303,14 +307,14 @@ int Run(const Options& opt) {
       opt.given.count("--gnss") > 0 ? opt.gnss == "on" : daemon_config.loop_closure.gnss.enabled;
   daemon_config.window.wheel.enabled = false;
   daemon_config.loop_closure.gnss.enabled = false;
-  swlio::daemon::RecordingReadOptions read;
+  swlio::daemon::SensorInputOptions read;
+  read.bag = swlio::tools::ToBagInputOptions(opt.bag);
   if (!swlio::tools::SetUpAuxSensors(opt.dir, wheel, gnss, &daemon_config, &read, &error)) {
     std::cerr << "swlio-run: " << error << "\n";
     return 1;
   }
-  auto reader = swlio::daemon::RecordingReader::Open(
-      opt.dir, swlio::daemon::WithManifestPorts(opt.dir, daemon_config.lidar), daemon_config.imu,
-      read, &error);
+  auto reader =
+      swlio::daemon::OpenSensorInput(opt.dir, daemon_config.lidar, daemon_config.imu, read, &error);
   if (!reader) {
     std::cerr << "swlio-run: " << error << "\n";
     return 1;
@@ -428,11 +432,7 @@ int Run(const Options& opt) {
   // decoders and clock models do: as a daemon started while the robot is already driving).
   int64_t start_ns = -1;
   while (reader->Next(&e)) {
-    const bool imu = e.kind == swlio::daemon::RecordingEvent::Kind::kImu;
-    const int64_t t_ns = imu                                                    ? e.imu.t_ns
-                         : e.kind == swlio::daemon::RecordingEvent::Kind::kScan ? e.scan.t_start_ns
-                         : e.kind == swlio::daemon::RecordingEvent::Kind::kGnss ? e.gnss.t_ns
-                                                                                : e.wheel.t_ns;
+    const int64_t t_ns = e.t_ns();
     if (start_ns < 0) {
       start_ns = t_ns + static_cast<int64_t>(opt.start_s * 1e9);
       if (localization) localization->SetStart(t_ns);
@@ -486,6 +486,7 @@ int Run(const Options& opt) {
   summary.lidar_clock_jumps = reader->stats().lidar_clock.jumps;
   summary.imu_clock_jumps = reader->stats().imu_clock.jumps;
   WarnClockJumps(reader->stats());
+  std::cerr << reader->Report();
   summary.Print();
   if (tightly_coupled && window_config.calibrate_extrinsic_s > 0.0) {
     PrintCalibration(*runner.window(), T_imu_lidar_given);
@@ -498,9 +499,13 @@ int Run(const Options& opt) {
 }
 
 int Main(int argc, char** argv) {
-  CLI::App app{"swlio-run: the estimator offline on a recording folder"};
+  CLI::App app{"swlio-run: the estimator offline on a recording folder or a ROS bag"};
   Options opt;
-  app.add_option("dir", opt.dir, "recording folder (lidar.pcap, imu.xbus, imu.rx.csv)")->required();
+  app.add_option("input", opt.dir,
+                 "recording folder (lidar.pcap, imu.xbus, imu.rx.csv), or a ROS bag: rosbag2 "
+                 "folder or .db3, .mcap, ROS 1 .bag")
+      ->required();
+  swlio::tools::AddBagOptions(app, &opt.bag);
   app.add_option("--mode", opt.mode, "estimator mode")
       ->check(CLI::IsMember({"tightly-coupled", "lidar-only"}))
       ->capture_default_str();
@@ -559,15 +564,17 @@ int Main(int argc, char** argv) {
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   app.add_option("--wheel", opt.wheel,
-                 "wheel odometry from the recording's can.log as a velocity factor "
-                 "(tightly-coupled; estimator.window.wheel; the manifest's wheel: block gives the "
-                 "CAN layout and the base frame, else --config's can: section)")
+                 "wheel odometry from the recording's can.log (a bag: its Odometry or "
+                 "TwistStamped topic) as a velocity factor (tightly-coupled; "
+                 "estimator.window.wheel; the manifest's wheel: block gives the CAN layout and "
+                 "the base frame, else --config's can: section and T_imu_base)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   app.add_option("--gnss", opt.gnss,
-                 "GNSS fixes from imu.xbus (GnssPvtData) as position factors in the pose graph "
-                 "(estimator.loop_closure.gnss; the manifest's gnss: block gives the ENU origin "
-                 "and the lever arm); runs the graph even with --loop-closure off")
+                 "GNSS fixes from imu.xbus (GnssPvtData; a bag: its NavSatFix topic) as position "
+                 "factors in the pose graph (estimator.loop_closure.gnss; the manifest's gnss: "
+                 "block gives the ENU origin and the lever arm, else --config); runs the graph "
+                 "even with --loop-closure off")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   app.add_option("--out-enu", opt.out_enu,

@@ -5,28 +5,6 @@
 #include <limits>
 
 namespace swlio::drivers::bag {
-namespace {
-
-/// header.stamp of a decoded message, or nullopt for the header-less legacy packet type.
-std::optional<int64_t> HeaderStamp(const DecodedMessage& d) {
-  switch (d.kind) {
-    case RosMessageKind::kPointCloud2:
-      return d.cloud.header.stamp_ns;
-    case RosMessageKind::kImu:
-      return d.imu.header.stamp_ns;
-    case RosMessageKind::kNavSatFix:
-      return d.fix.header.stamp_ns;
-    case RosMessageKind::kOdometry:
-      return d.odometry.header.stamp_ns;
-    case RosMessageKind::kTwistStamped:
-      return d.twist.header.stamp_ns;
-    default:
-      if (d.packets.has_header) return d.packets.header.stamp_ns;
-      return std::nullopt;
-  }
-}
-
-}  // namespace
 
 BagMessageStream::BagMessageStream(std::unique_ptr<BagReader> reader,
                                    const BagStreamOptions& options)

@@ -61,4 +61,22 @@ bool DecodeMessage(RosMessageKind kind,
   return false;
 }
 
+std::optional<int64_t> HeaderStamp(const DecodedMessage& d) {
+  switch (d.kind) {
+    case RosMessageKind::kPointCloud2:
+      return d.cloud.header.stamp_ns;
+    case RosMessageKind::kImu:
+      return d.imu.header.stamp_ns;
+    case RosMessageKind::kNavSatFix:
+      return d.fix.header.stamp_ns;
+    case RosMessageKind::kOdometry:
+      return d.odometry.header.stamp_ns;
+    case RosMessageKind::kTwistStamped:
+      return d.twist.header.stamp_ns;
+    default:
+      if (d.packets.has_header) return d.packets.header.stamp_ns;
+      return std::nullopt;
+  }
+}
+
 }  // namespace swlio::drivers::bag

@@ -162,4 +162,18 @@ std::vector<uint8_t> EncodeTwistStamped(const TwistStampedMsg& msg, MessageEncod
   return w.Take();
 }
 
+std::vector<uint8_t> EncodeTfMessage(std::span<const TransformStampedMsg> transforms,
+                                     MessageEncoding encoding) {
+  MessageWriter w(encoding);
+  w.U32(static_cast<uint32_t>(transforms.size()));
+  for (const TransformStampedMsg& t : transforms) {
+    w.Header(t.header.stamp_ns, t.header.frame_id);
+    w.String(t.child_frame_id);
+    Vector3(w, t.translation_m);
+    Quaternion(w, t.rotation);
+  }
+  w.PadToFour();
+  return w.Take();
+}
+
 }  // namespace swlio::drivers::bag

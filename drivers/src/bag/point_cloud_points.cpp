@@ -145,9 +145,12 @@ std::optional<int64_t> PointTime(double v, PointTimeConvention c, int64_t stamp_
   if (!std::isfinite(v)) return std::nullopt;
   switch (c) {
     case PointTimeConvention::kAbsoluteSeconds: {
-      const double ns = v > kNsThreshold ? v : v * 1e9;
-      if (ns < 0.0 || ns > 9e18) return std::nullopt;
-      return std::llround(ns);
+      if (v > kNsThreshold) return v > 9e18 ? std::nullopt : std::optional(std::llround(v));
+      if (v < 0.0 || v > 9e9) return std::nullopt;
+      // Whole seconds and their fraction apart: both exact in double, so the only error left
+      // is the value's own rounding (half a step: 119 ns in 2026), not a second one from ×1e9.
+      const double whole = std::floor(v);
+      return static_cast<int64_t>(whole) * 1'000'000'000 + std::llround((v - whole) * 1e9);
     }
     case PointTimeConvention::kRelativeSeconds:
       v *= 1e9;

@@ -34,20 +34,13 @@
 #include "swlio/core/geodetic.h"
 #include "swlio/core/types.h"
 #include "swlio/daemon/pipeline/time_scale.h"
+#include "swlio/daemon/recording/sensor_input.h"
 #include "swlio/drivers/can_config.h"
 #include "swlio/drivers/clock_model.h"
 #include "swlio/drivers/imu_config.h"
 #include "swlio/drivers/lidar_config.h"
 
 namespace swlio::daemon {
-
-struct RecordingEvent {
-  enum class Kind { kImu, kScan, kGnss, kWheel } kind = Kind::kImu;
-  ImuSample imu;
-  Scan scan;            ///< host times; points' dt_ns from t_start_ns
-  GnssFix gnss;         ///< kGnss (RecordingReadOptions::gnss)
-  WheelOdometry wheel;  ///< kWheel (RecordingReadOptions::wheel)
-};
 
 /// Which optional streams to return besides IMU samples and scans (none by default).
 struct RecordingReadOptions {
@@ -57,24 +50,7 @@ struct RecordingReadOptions {
   std::optional<drivers::CanConfig> wheel;
 };
 
-struct RecordingStats {
-  uint64_t imu_samples = 0;
-  uint64_t imu_checksum_errors = 0;
-  uint64_t imu_skipped_bytes = 0;
-  uint64_t lidar_packets = 0;
-  uint64_t scans = 0;
-  uint64_t partial_scans = 0;
-  uint64_t missing_packets = 0;
-  drivers::ClockModelStats imu_clock;
-  drivers::ClockModelStats lidar_clock;
-  uint64_t gnss_fixes = 0;            ///< kGnss events
-  uint64_t gnss_rejected = 0;         ///< items without a usable fix, or without an IMU time
-  uint64_t wheel_samples = 0;         ///< kWheel events
-  uint64_t wheel_frames_dropped = 0;  ///< unreadable lines, unusable frames, unpaired or late
-  uint64_t wheel_log_missing = 0;     ///< 1 when wheel odometry was asked for and no can.log
-};
-
-class RecordingReader {
+class RecordingReader : public SensorInput {
  public:
   /// Opens `dir`; reads the IMU stream at once (small) and the LiDAR pcap lazily. Returns IMU
   /// samples and scans only. Refuses a folder whose manifest is missing or of another
@@ -90,14 +66,14 @@ class RecordingReader {
                                                const drivers::ImuConfig& imu,
                                                const RecordingReadOptions& options,
                                                std::string* error);
-  ~RecordingReader();
+  ~RecordingReader() override;
   RecordingReader(const RecordingReader&) = delete;
   RecordingReader& operator=(const RecordingReader&) = delete;
 
   /// The next event; false at the end of both streams.
-  bool Next(RecordingEvent* event);
+  bool Next(RecordingEvent* event) override;
 
-  const RecordingStats& stats() const { return stats_; }
+  const RecordingStats& stats() const override { return stats_; }
 
  private:
   struct Lidar;

@@ -11,6 +11,8 @@
 /// Decoding allocates only when a packet or field list outgrows what an earlier message of the
 /// same struct needed: reuse one `DecodedMessage` for a whole bag.
 
+#include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -43,6 +45,9 @@ bool DecodeMessage(RosMessageKind kind,
                    std::span<const uint8_t> bytes,
                    DecodedMessage* out,
                    std::string* error);
+
+/// header.stamp of a decoded message; nullopt for the header-less legacy packet type.
+std::optional<int64_t> HeaderStamp(const DecodedMessage& message);
 
 /// The decoders behind DecodeMessage, one per family, on a reader already past Begin().
 bool DecodeLidarPackets(RosMessageKind kind, MessageReader& r, LidarPacketsMsg* out);

@@ -5,6 +5,7 @@
 /// to a multiple of 4 bytes, as the ROS 2 RMWs write it.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "swlio/drivers/bag/bag_reader.h"
@@ -23,5 +24,8 @@ std::vector<uint8_t> EncodeImu(const ImuMsg& msg, MessageEncoding encoding);
 std::vector<uint8_t> EncodeNavSatFix(const NavSatFixMsg& msg, MessageEncoding encoding);
 std::vector<uint8_t> EncodeOdometry(const OdometryMsg& msg, MessageEncoding encoding);
 std::vector<uint8_t> EncodeTwistStamped(const TwistStampedMsg& msg, MessageEncoding encoding);
+/// tf2_msgs/TFMessage: geometry_msgs/TransformStamped[] transforms.
+std::vector<uint8_t> EncodeTfMessage(std::span<const TransformStampedMsg> transforms,
+                                     MessageEncoding encoding);
 
 }  // namespace swlio::drivers::bag

@@ -111,6 +111,14 @@ struct TwistStampedMsg {
   Eigen::Vector3d angular_velocity_radps = Eigen::Vector3d::Zero();
 };
 
+/// geometry_msgs/TransformStamped: the pose of child_frame_id in header.frame_id.
+struct TransformStampedMsg {
+  RosHeader header;
+  std::string_view child_frame_id;
+  Eigen::Vector3d translation_m = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+};
+
 /// sensor_msgs/PointField datatypes.
 enum class PointFieldType : uint8_t {
   kInt8 = 1,
