@@ -29,12 +29,12 @@ namespace fs = std::filesystem;
 namespace bag = drivers::bag;
 
 /// The messages of `mcap` re-encoded for ROS 1 (the types swlio reads; /tf_static is left
-/// out), written as a bz2-compressed .bag, and copied as they are into a schema-3 .db3.
+/// out), written as an LZ4-compressed .bag, and copied as they are into a schema-3 .db3.
 void ConvertMcap(const fs::path& mcap, const fs::path& ros1, const fs::path& db3) {
   std::string error;
   auto reader = bag::OpenBag(mcap.string(), {}, &error);
   ASSERT_NE(reader, nullptr) << error;
-  test::Ros1BagWriter writer("bz2", 1 << 20);
+  test::Ros1BagWriter writer("lz4", 1 << 20);
   std::vector<test::Db3Topic> topics;
   std::vector<test::Db3Message> rows;
   std::vector<bag::RosMessageKind> kinds;
