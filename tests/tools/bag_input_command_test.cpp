@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
@@ -149,6 +150,42 @@ INSTANTIATE_TEST_SUITE_P(Scenarios,
                                            Drive{"aggressive", 20.0},
                                            Drive{"loop943", 20.0}),
                          [](const auto& info) { return std::string(info.param.scenario); });
+
+std::string ReadFile(const fs::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// swlio-replay on an exported bag: --deterministic gives byte-identical trajectories, and the
+// same poses as swlio-run on that bag (both run the one EstimatorRunner on the one input).
+TEST(BagInputCommand, DeterministicReplayOfABagMatchesSwlioRun) {
+  const std::string run = test::ToolPath("swlio-run").string();
+  const std::string replay = test::ToolPath("swlio-replay").string();
+  const std::string export_tool = test::ToolPath("swlio-bag").string();
+  if (run.empty() || replay.empty() || export_tool.empty()) GTEST_SKIP() << "tools not built";
+  std::string error;
+  const fs::path rec = test::SharedSimRecording("short", 1, 25.0, &error);
+  ASSERT_FALSE(rec.empty()) << error;
+  const fs::path out = test::MakeTempDir("swlio_bag_replay");
+  int code = 0;
+  std::string log = test::RunCommand(
+      export_tool + " export " + rec.string() + " " + (out / "d.mcap").string() + " 2>&1", &code);
+  ASSERT_EQ(code, 0) << log;
+  const std::string bag =
+      (out / "d.mcap").string() + " --config " + (out / "d.swlio.yaml").string();
+  for (const char* name : {"a.tum", "b.tum"}) {
+    log = test::RunCommand(
+        replay + " " + bag + " --deterministic --out " + (out / name).string() + " 2>&1", &code);
+    ASSERT_EQ(code, 0) << log;
+  }
+  log = test::RunCommand(
+      run + " " + bag + " --loop-closure off --out " + (out / "run.tum").string() + " 2>&1", &code);
+  ASSERT_EQ(code, 0) << log;
+  const std::string a = ReadFile(out / "a.tum");
+  EXPECT_GT(a.size(), 10'000u);
+  EXPECT_EQ(a, ReadFile(out / "b.tum"));
+  EXPECT_EQ(a, ReadFile(out / "run.tum"));
+}
 
 // The real washing_house bag holds the LiDAR alone; its sweeps are checked against its capture
 // in daemon.BagInput.WashingHouseBagGivesThePcapSweeps. Both estimator modes need an IMU.

@@ -67,8 +67,13 @@ void LidarStage::Flush() { assembler_.Flush(); }
 bool LidarStage::Pop(HostSweep* out) {
   if (!assembler_.PopScan(&assembled_)) return false;
   std::swap(out->scan, assembled_.scan);
+  // The points' dt_ns stay on the sensor's scale, so the end is the last point's time on the
+  // same terms: start + span. Mapping the end through the drift too would put it up to
+  // drift × 0.1 s (0.6 µs at 6 ppm) away from the last point, and a consumer that rebuilds the
+  // sweep from its points (a PointCloud2 in a bag) could not tell.
+  const int64_t span_ns = out->scan.t_end_ns - out->scan.t_start_ns;
   out->scan.t_start_ns = clock_.ToHost(out->scan.t_start_ns);
-  out->scan.t_end_ns = clock_.ToHost(out->scan.t_end_ns);
+  out->scan.t_end_ns = out->scan.t_start_ns + span_ns;
   const int64_t overlap_ns = last_end_ns_ - out->scan.t_start_ns;
   if (overlap_ns > 0 && overlap_ns <= kMaxAbsorbedOverlapNs) {
     out->scan.t_start_ns += overlap_ns;  // points keep their dt_ns from the start

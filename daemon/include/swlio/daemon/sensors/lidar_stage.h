@@ -37,7 +37,9 @@ struct LidarStageCounters {
 
 /// A sweep on the host clock with what the assembler knew about it.
 struct HostSweep {
-  Scan scan;  ///< t_start_ns / t_end_ns host time; points' dt_ns from t_start_ns
+  /// t_start_ns host time; points' dt_ns from it on the sensor clock; t_end_ns = t_start_ns +
+  /// the sweep's span on the sensor clock (the last point's time).
+  Scan scan;
   int64_t host_rx_last_ns = 0;
   uint32_t missing_packets = 0;
 };
