@@ -101,7 +101,7 @@ bag::OdometryMsg WheelMessage(const WheelOdometry& w) {
   m.header = {w.t_ns, kOdomFrame};
   m.child_frame_id = kBaseFrame;
   // Twist only: the pose is not integrated here, so its variance is given as huge.
-  for (int i = 0; i < 6; ++i) m.pose_covariance[static_cast<size_t>(i * 7)] = 1e9;
+  for (size_t i = 0; i < 6; ++i) m.pose_covariance[i * 7] = 1e9;
   m.linear_velocity_mps = Eigen::Vector3d(w.linear_velocity_mps, 0.0, 0.0);
   m.angular_velocity_radps = Eigen::Vector3d(0.0, 0.0, w.yaw_rate_radps);
   return m;

@@ -77,7 +77,8 @@ std::set<std::string> Dependencies(const std::string& text, const std::string& p
     std::string type = line.substr(0, line.find(' '));
     type = type.substr(0, type.find('['));
     if (type.empty() || IsPrimitive(type)) continue;
-    out.insert(type.find('/') == std::string::npos ? package + "/" + type : type);
+    if (type.find('/') == std::string::npos) type.insert(0, package + "/");
+    out.insert(type);
   }
   return out;
 }
