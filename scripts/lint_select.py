@@ -33,7 +33,9 @@ def expand(entries):
 
 
 def ninja_deps(build):
-    """Every object's dependency list from ninja (its source first)."""
+    """Every object's dependency list from ninja (its source first), as absolute paths: ninja
+    stores them as the compiler wrote them, relative to the build directory when ccache's
+    CCACHE_BASEDIR rewrote the include paths (scripts/ccache-env), else absolute."""
     text = subprocess.run(["ninja", "-C", build, "-t", "deps"], capture_output=True,
                           text=True, check=False).stdout
     blocks, deps = [], []
@@ -43,7 +45,7 @@ def ninja_deps(build):
                 blocks.append(deps)
             deps = []
         elif line.strip():
-            deps.append(line.strip())
+            deps.append(os.path.normpath(os.path.join(os.path.abspath(build), line.strip())))
     if deps:
         blocks.append(deps)
     return blocks
