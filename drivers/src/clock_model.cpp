@@ -116,9 +116,12 @@ int64_t ClockModel::Observe(int64_t sensor_t_ns, int64_t host_rx_ns) {
     if (!young && std::abs(residual) > static_cast<double>(config_.jump_threshold_ns)) {
       jump_run_ = (sign == jump_sign_) ? jump_run_ + 1 : 1;
       jump_sign_ = sign;
-      if (jump_run_ == 1) jump_run_start_x_ = x;
-      const bool lasted =
-          sign < 0 || x - jump_run_start_x_ >= static_cast<double>(config_.late_jump_confirm_ns);
+      if (jump_run_ == 1) {
+        jump_run_start_x_ = x;
+        jump_run_min_residual_ = residual;
+      }
+      jump_run_min_residual_ = std::min(jump_run_min_residual_, residual);
+      const bool lasted = sign < 0 || x - jump_run_start_x_ >= LateConfirmNs();
       if (jump_run_ < config_.jump_confirm_samples || !lasted) {
         ++stats_.rejected;
         return ToHost(sensor_t_ns);
@@ -136,6 +139,13 @@ int64_t ClockModel::Observe(int64_t sensor_t_ns, int64_t host_rx_ns) {
                      static_cast<double>(config_.fixed_latency_ns);
   stats_.drift_ppm = c1_ * 1e6;
   return ToHost(sensor_t_ns);
+}
+
+double ClockModel::LateConfirmNs() const {
+  const bool backlog =
+      config_.backlog_ns > 0 && jump_run_min_residual_ <= static_cast<double>(config_.backlog_ns);
+  return static_cast<double>(backlog ? std::max(config_.late_jump_confirm_ns, config_.backlog_ns)
+                                     : config_.late_jump_confirm_ns);
 }
 
 int64_t ClockModel::ToHost(int64_t sensor_t_ns) const {

@@ -253,12 +253,16 @@ int Run(int argc, char** argv) {
   auto u = [](uint64_t v) { return static_cast<unsigned long long>(v); };
   std::printf(
       "{\"udp_sent\": %llu, \"udp_errors\": %llu, \"imu_bytes\": %llu, "
-      "\"imu_bytes_dropped\": %llu, \"max_lateness_ms\": %.3f, \"faults\": {\"msop_lost\": %llu, "
+      "\"imu_bytes_dropped\": %llu, \"imu_bytes_delayed\": %llu, \"imu_backlog_max_bytes\": %llu, "
+      "\"imu_backlog_max_wait_ms\": %.1f, \"lateness_ms\": {\"p50\": %.3f, \"p99\": %.3f, "
+      "\"max\": %.3f}, \"late_sends\": %llu, \"faults\": {\"msop_lost\": %llu, "
       "\"msop_withheld\": %llu, \"difop_dropped\": %llu, \"difop_corrupted\": %llu, "
       "\"msop_one_range\": %llu, \"imu_withheld\": %llu, \"imu_nonfinite\": %llu, "
       "\"garbage_bytes\": %llu, \"unplugs\": %llu}}\n",
       u(stats.udp_sent), u(stats.udp_errors), u(stats.imu_bytes), u(stats.imu_bytes_dropped),
-      stats.max_lateness_ms, u(f.msop_lost), u(f.msop_withheld), u(f.difop_dropped),
+      u(stats.imu_bytes_delayed), u(stats.imu_backlog_max_bytes), stats.imu_backlog_max_wait_ms,
+      stats.lateness_p50_ms, stats.lateness_p99_ms, stats.max_lateness_ms, u(stats.late_sends),
+      u(f.msop_lost), u(f.msop_withheld), u(f.difop_dropped),
       u(f.difop_corrupted), u(f.msop_one_range), u(f.imu_withheld), u(f.imu_nonfinite),
       u(f.garbage_bytes), u(f.unplugs));
   return 0;

@@ -138,12 +138,13 @@ class Section {
   /// A list of mappings: calls `each(Section)` for every item, whose path is "key[i]";
   /// absent → no call. Items that are not mappings are reported.
   template <typename Each>
-  void ForEachChild(const char* key, Each each) {
+  /// Calls `each` for every item of the list at `key`; false when the key is absent.
+  bool ForEachChild(const char* key, Each each) {
     const YAML::Node value = Take(key);
-    if (!value) return;
+    if (!value) return false;
     if (!value.IsSequence()) {
       ctx_->Error(value.Mark(), Path(key), "expected a list of mappings, got " + Describe(value));
-      return;
+      return true;
     }
     for (size_t i = 0; i < value.size(); ++i) {
       const std::string item_path = Path(key) + "[" + std::to_string(i) + "]";
@@ -155,6 +156,7 @@ class Section {
       ctx_->marks[item_path] = item.Mark();
       each(Section(item, item_path, ctx_));
     }
+    return true;
   }
 
   /// A key removed from the schema because nothing read it: when present, an error that says
@@ -577,14 +579,16 @@ void Bind(Section s, RealtimeConfig& c) {
   s.Get("enabled", c.enabled);
   s.Get("lock_memory", c.lock_memory);
   s.Get("max_sweep_lag_s", c.max_sweep_lag_s);
-  s.ForEachChild("threads", [&](Section item) {
-    ThreadSchedConfig& t = c.threads.emplace_back();
+  std::vector<ThreadSchedConfig> listed;
+  const bool present = s.ForEachChild("threads", [&](Section item) {
+    ThreadSchedConfig& t = listed.emplace_back();
     item.Get("name", t.name);
     item.Get("priority", t.priority);
     item.Get("cpu", t.cpu);
     item.Get("nice", t.nice);
     item.Finish();
   });
+  if (present) c.threads = std::move(listed);  // the YAML's list replaces the default one
   s.Finish();
 }
 

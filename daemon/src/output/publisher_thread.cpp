@@ -110,6 +110,7 @@ void PublisherThread::WritePose(const ImuRatePose& pose) {
   }
   m.covariance = pose.pose_covariance;
   Count(publisher_ == nullptr || publisher_->PublishPose(m), &poses_);
+  pose_latency_.Add(MonotonicNowNs() - pose.rx_ns);
 }
 
 void PublisherThread::WriteOdometry(const SweepEstimate& e) {
@@ -165,6 +166,7 @@ PublisherCounters PublisherThread::counters() const {
   c.failures = failures_.load(kRelaxed);
   c.non_finite = non_finite_.load(kRelaxed);
   c.held = held_.load(kRelaxed);
+  c.pose_latency = pose_latency_.Snapshot();
   return c;
 }
 

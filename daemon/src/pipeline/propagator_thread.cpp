@@ -60,6 +60,7 @@ void PropagatorThread::Handle(const ImuRaw& raw) {
   scaled.t_rx_ns = time_.ToDaemon(raw.t_rx_ns);
   const std::optional<ImuSample> sample = stage_.Map(scaled);
   if (!sample) return;
+  read_lag_.Add(raw.t_rx_ns - time_.ToHost(sample->t_ns));
   last_sample_t_ns_ = sample->t_ns;
   q_.imu_out->Push(*sample);
   if (raw.has_gnss_pvt && q_.gnss_out != nullptr) {
@@ -110,6 +111,7 @@ PropagatorCounters PropagatorThread::counters() const {
   c.last_sample_t_ns = a_last_sample_t_ns_.load(kRelaxed);
   c.gnss_fixes = a_gnss_fixes_.load(kRelaxed);
   c.gnss_unusable = a_gnss_unusable_.load(kRelaxed);
+  c.read_lag = read_lag_.Snapshot();
   return c;
 }
 

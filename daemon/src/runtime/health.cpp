@@ -45,7 +45,10 @@ ipc::DiagnosticStatus LidarStatus(const HealthSnapshot& s, const HealthRates& r)
               {"partial_sweeps", Count(l.partial_sweeps)},
               {"clock_offset_s", Num(s.optimizer.lidar_clock.offset_ns * 1e-9, "%.6f")},
               {"clock_drift_ppm", Num(s.optimizer.lidar_clock.drift_ppm, "%.2f")},
-              {"clock_jumps", Count(s.optimizer.lidar_clock.jumps)}};
+              {"clock_jumps", Count(s.optimizer.lidar_clock.jumps)},
+              {"read_lag_ms_p50", Num(r.lidar_read_lag.p50_ms, "%.2f")},
+              {"read_lag_ms_p99", Num(r.lidar_read_lag.p99_ms, "%.2f")},
+              {"read_lag_ms_max", Num(r.lidar_read_lag.max_ms, "%.2f")}};
   return d;
 }
 
@@ -72,7 +75,10 @@ ipc::DiagnosticStatus ImuStatus(const HealthSnapshot& s, const HealthRates& r) {
               {"config_failures", Count(s.imu_rx.config_failures)},
               {"clock_offset_s", Num(s.propagator.clock_offset_ns * 1e-9, "%.6f")},
               {"clock_drift_ppm", Num(s.propagator.clock_drift_ppm, "%.2f")},
-              {"clock_jumps", Count(s.propagator.clock_jumps)}};
+              {"clock_jumps", Count(s.propagator.clock_jumps)},
+              {"read_lag_ms_p50", Num(r.imu_read_lag.p50_ms, "%.2f")},
+              {"read_lag_ms_p99", Num(r.imu_read_lag.p99_ms, "%.2f")},
+              {"read_lag_ms_max", Num(r.imu_read_lag.max_ms, "%.2f")}};
   return d;
 }
 
@@ -190,6 +196,11 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
     d.message += std::string(": re-initializing after ") + s.optimizer.last_divergence;
   if (s.optimizer.imu_only_s > 0.0)
     d.message += ": no LiDAR sweeps, IMU only for " + Num(s.optimizer.imu_only_s, "%.1f") + " s";
+  if (r.sweeps_skipped_behind > 0) {  // the IMU-rate pose still flows; sweeps are shed
+    if (d.level == ipc::DiagnosticLevel::kOk) d.level = ipc::DiagnosticLevel::kWarn;
+    d.message += "; degraded: CPU (" + Count(r.sweeps_skipped_behind) +
+                 " sweeps skipped, the estimator fell behind)";
+  }
   d.values = {
       {"state", ToString(t)},
       {"sweeps", Count(s.optimizer.processed)},
@@ -197,6 +208,9 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
       {"solve_ms", Num(s.optimizer.last_update_ms, "%.2f")},
       {"solve_ms_max", Num(s.optimizer.max_update_ms, "%.2f")},
       {"pose_rate_hz", Num(r.poses_hz, "%.1f")},
+      {"pose_latency_ms_p50", Num(r.pose_latency.p50_ms, "%.2f")},
+      {"pose_latency_ms_p99", Num(r.pose_latency.p99_ms, "%.2f")},
+      {"pose_latency_ms_max", Num(r.pose_latency.max_ms, "%.2f")},
       {"sweeps_without_imu_dropped", Count(s.optimizer.dropped_waiting)},
       {"sweeps_skipped_behind", Count(s.optimizer.skipped_behind)},
       {"local_map_points", Count(s.optimizer.map_points)},
@@ -262,6 +276,10 @@ HealthRates HealthReporter::Rates(const HealthSnapshot& now) {
   const HealthSnapshot& before = have_previous_ ? previous_ : HealthSnapshot{};
   r.lidar_clock_jumps = Since(now.optimizer.lidar_clock.jumps, before.optimizer.lidar_clock.jumps);
   r.imu_clock_jumps = Since(now.propagator.clock_jumps, before.propagator.clock_jumps);
+  r.sweeps_skipped_behind = Since(now.optimizer.skipped_behind, before.optimizer.skipped_behind);
+  r.imu_read_lag = Summarize(now.propagator.read_lag, before.propagator.read_lag);
+  r.lidar_read_lag = Summarize(now.lidar_rx.read_lag, before.lidar_rx.read_lag);
+  r.pose_latency = Summarize(now.publisher.pose_latency, before.publisher.pose_latency);
   previous_ = now;
   have_previous_ = true;
   return r;
@@ -288,7 +306,8 @@ std::string StatusLine(const HealthSnapshot& now, const HealthRates& r) {
   std::snprintf(line, sizeof line,
                 "status %s | lidar %.0f pkt/s %.1f sweeps/s, missing %llu | imu %.0f Hz, "
                 "checksum errors %llu, gaps %llu | pose %.0f Hz | update %.1f ms (max %.1f) | "
-                "drops %llu | skipped behind %llu | reinit %llu",
+                "drops %llu | skipped behind %llu | reinit %llu | clock jumps lidar %llu imu "
+                "%llu | lag p99 imu read %.1f ms, lidar read %.1f ms, read to pose %.1f ms",
                 ToString(now.optimizer.tracking), r.lidar_packets_hz, r.sweeps_hz,
                 static_cast<unsigned long long>(now.optimizer.lidar.missing_packets), r.imu_hz,
                 static_cast<unsigned long long>(now.imu_rx.checksum_errors),
@@ -296,7 +315,10 @@ std::string StatusLine(const HealthSnapshot& now, const HealthRates& r) {
                 now.optimizer.last_update_ms, now.optimizer.max_update_ms,
                 static_cast<unsigned long long>(TotalDrops(now)),
                 static_cast<unsigned long long>(now.optimizer.skipped_behind),
-                static_cast<unsigned long long>(now.optimizer.reinitializations));
+                static_cast<unsigned long long>(now.optimizer.reinitializations),
+                static_cast<unsigned long long>(now.optimizer.lidar_clock.jumps),
+                static_cast<unsigned long long>(now.propagator.clock_jumps), r.imu_read_lag.p99_ms,
+                r.lidar_read_lag.p99_ms, r.pose_latency.p99_ms);
   return line;
 }
 

@@ -51,7 +51,10 @@ void LidarRx::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
 }
 
 void LidarRx::Drain(drivers::UdpReceiver& receiver, bool difop) {
-  for (const drivers::ReceivedDatagram& d : receiver.Receive(0)) {
+  const std::span<const drivers::ReceivedDatagram> batch = receiver.Receive(0);
+  const int64_t now_ns = batch.empty() ? 0 : MonotonicNowNs();
+  for (const drivers::ReceivedDatagram& d : batch) {
+    read_lag_.Add(now_ns - d.t_ns);
     if (d.truncated || d.payload.size() > LidarPacket::kMaxBytes) {
       ++truncated_;
       continue;
@@ -80,6 +83,7 @@ LidarRxCounters LidarRx::counters() const {
   c.truncated = truncated_total_.load(std::memory_order_relaxed);
   c.errors = errors_.load(std::memory_order_relaxed);
   c.stamp_fallbacks = stamp_fallbacks_.load(std::memory_order_relaxed);
+  c.read_lag = read_lag_.Snapshot();
   return c;
 }
 

@@ -97,7 +97,9 @@ TEST(HealthReporter, SaysWhyTheEstimatorIsLostWhileItReinitializes) {
   HealthReporter r;
   const ipc::DiagnosticArray d = r.Diagnostics(s);
   EXPECT_EQ(d.status[2].level, ipc::DiagnosticLevel::kError);
-  EXPECT_EQ(d.status[2].message, "lost: re-initializing after speed out of bounds");
+  EXPECT_EQ(d.status[2].message,
+            "lost: re-initializing after speed out of bounds; degraded: CPU (7 sweeps skipped, "
+            "the estimator fell behind)");
   bool counted = false;
   for (const auto& kv : d.status[2].values)
     counted |= kv.key == "reinitializations" && kv.value == "2";

@@ -3,6 +3,7 @@
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <pty.h>
 #include <sys/ioctl.h>
 #include <sys/socket.h>
@@ -17,6 +18,7 @@
 #include <optional>
 #include <vector>
 
+#include "live/serial_backlog.h"
 #include "recording/sim_recording.h"
 #include "scenarios/sim_laps.h"
 #include "swlio/core/time.h"
@@ -135,12 +137,64 @@ void SendUdp(int fd, uint16_t port, std::span<const uint8_t> bytes, LiveStats* s
   (n == static_cast<ssize_t>(bytes.size()) ? stats->udp_sent : stats->udp_errors)++;
 }
 
-void WritePty(int fd, std::span<const uint8_t> bytes, LiveStats* stats) {
-  if (fd < 0 || bytes.empty()) return;  // unplugged
-  const ssize_t n = write(fd, bytes.data(), bytes.size());
-  const size_t written = n > 0 ? static_cast<size_t>(n) : 0;
-  stats->imu_bytes += written;
-  stats->imu_bytes_dropped += bytes.size() - written;
+/// Sleeps until `t_ns`; meanwhile, bytes waiting for room in the pty go out as it empties.
+void SleepWriting(int64_t t_ns, int fd, SerialBacklog* backlog) {
+  while (!backlog->empty() && fd >= 0) {
+    const int64_t left_ns = t_ns - MonotonicNs();
+    if (left_ns <= 0) return;
+    pollfd p{fd, POLLOUT, 0};
+    if (poll(&p, 1, static_cast<int>((left_ns + kNsPerMs - 1) / kNsPerMs)) <= 0) break;
+    backlog->Flush(fd, MonotonicNs());
+  }
+  SleepUntil(t_ns);
+}
+
+/// After the last sample: what still waits goes out, for up to `timeout_s`.
+void DrainBacklog(int fd, SerialBacklog* backlog, double timeout_s) {
+  const int64_t deadline = MonotonicNs() + SecToNs(timeout_s);
+  while (!backlog->empty() && fd >= 0 && MonotonicNs() < deadline) {
+    SleepWriting(std::min(deadline, MonotonicNs() + 100 * kNsPerMs), fd, backlog);
+  }
+}
+
+/// How late the sends were against their schedule, for the report.
+void SummarizeLateness(std::vector<float>* lateness_ms, LiveStats* stats) {
+  if (lateness_ms->empty()) return;
+  std::sort(lateness_ms->begin(), lateness_ms->end());
+  auto at = [&](double q) {
+    return static_cast<double>(
+        (*lateness_ms)[static_cast<size_t>(q * static_cast<double>(lateness_ms->size() - 1))]);
+  };
+  stats->lateness_p50_ms = at(0.5);
+  stats->lateness_p99_ms = at(0.99);
+  stats->max_lateness_ms = static_cast<double>(lateness_ms->back());
+  stats->late_sends = static_cast<uint64_t>(
+      lateness_ms->end() - std::upper_bound(lateness_ms->begin(), lateness_ms->end(),
+                                            static_cast<float>(LiveStats::kLateMs)));
+}
+
+/// imu_writes.csv: per IMU sample, when it was taken and when its frame went into the pty (host
+/// CLOCK_MONOTONIC ns; 0: never written). Pose age from the serial line to a subscriber is
+/// measured against it (scripts/live_figures.py).
+template <typename HostNs>
+void WriteImuWrites(const std::filesystem::path& path,
+                    const std::vector<SimImuSample>& imu,
+                    HostNs host_ns,
+                    const std::vector<int64_t>& written_ns) {
+  std::ofstream f(path);
+  f << "t_sample_ns,t_written_ns\n";
+  for (size_t k = 0; k < imu.size(); ++k) {
+    f << host_ns(imu[k].t_true_ns) << ',' << (k < written_ns.size() ? written_ns[k] : 0) << '\n';
+  }
+}
+
+void Report(const SerialBacklog& backlog, LiveStats* stats) {
+  const SerialBacklogStats& b = backlog.stats();
+  stats->imu_bytes = b.written;
+  stats->imu_bytes_dropped = b.dropped;
+  stats->imu_bytes_delayed = b.delayed;
+  stats->imu_backlog_max_bytes = b.max_backlog;
+  stats->imu_backlog_max_wait_ms = static_cast<double>(b.max_wait_ns) * 1e-6;
 }
 
 }  // namespace
@@ -191,16 +245,21 @@ bool RunLive(const SimSetup& setup,
   size_t i = 0;
   std::vector<uint8_t> burst;
   std::array<uint8_t, 512> frame{};
+  SerialBacklog backlog;
+  std::vector<int64_t> written_ns;
+  backlog.ReportWritesTo(options.imu_write_ns != nullptr ? options.imu_write_ns : &written_ns);
+  std::vector<float> lateness_ms;
+  lateness_ms.reserve(imu.size() + 1024);
   while (!*stop && (have_packet || i < imu.size())) {
     const bool lidar_first = have_packet && (i >= imu.size() || packet.t_rx_ns <= imu[i].t_rx_ns);
     const int64_t due = host_ns(lidar_first ? packet.t_rx_ns : imu[i].t_rx_ns);
-    SleepUntil(due);
-    stats->max_lateness_ms =
-        std::max(stats->max_lateness_ms, static_cast<double>(MonotonicNs() - due) * 1e-6);
+    SleepWriting(due, ep.pty_master, &backlog);
+    lateness_ms.push_back(static_cast<float>(static_cast<double>(MonotonicNs() - due) * 1e-6));
     const double t_s = NsToSec(lidar_first ? packet.t_rx_ns : imu[i].t_rx_ns);
     if (!FollowPlug(options, faults.Unplugged(t_s), &ep, faults.mutable_counts(), error)) {
       return false;
     }
+    if (ep.pty_master < 0) backlog.Clear();  // unplugged: the adapter's buffer went with it
     if (lidar_first) {
       const bool difop = packet.dst_port != setup.lidar.msop_port;
       if (faults.PassDatagram(t_s, difop, packet.bytes)) {
@@ -218,13 +277,11 @@ bool RunLive(const SimSetup& setup,
       const size_t n = EncodeImuFrame(sample, frame, PvtForSample(fixes, i, &next_fix));
       burst.insert(burst.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(n));
     }
-    if (options.imu_write_ns != nullptr) {
-      options.imu_write_ns->resize(imu.size(), 0);
-      const int64_t now = MonotonicNs();
-      for (size_t k = first; k < i; ++k) (*options.imu_write_ns)[k] = now;
-    }
-    WritePty(ep.pty_master, burst, stats);
+    if (ep.pty_master >= 0) backlog.Send(ep.pty_master, burst, first, i, MonotonicNs());
   }
+  DrainBacklog(ep.pty_master, &backlog, 30.0);
+  Report(backlog, stats);
+  SummarizeLateness(&lateness_ms, stats);
   stats->faults = faults.counts();
   if (ep.pty_slave >= 0) WaitForPtyDrained(ep.pty_slave, 2.0);
   if (!options.out_dir.empty()) {
@@ -235,6 +292,8 @@ bool RunLive(const SimSetup& setup,
       const double t = static_cast<double>(k) / setup.gt_rate_hz;
       gt << TumLine(setup, t, start_ns + SecToNs(t / options.speed)) << '\n';
     }
+    WriteImuWrites(options.out_dir / "imu_writes.csv", imu, host_ns,
+                   options.imu_write_ns != nullptr ? *options.imu_write_ns : written_ns);
     RecordingStats rs;
     rs.msop_packets = laps ? laps->msop_packets() : once->msop_packets();
     rs.difop_packets = laps ? laps->difop_packets() : once->difop_packets();

@@ -31,7 +31,7 @@ struct LiveOptions {
   /// always cast ahead (its first lap).
   bool precast = false;
   /// If set, receives for every IMU sample (in SimulateImu's order) the CLOCK_MONOTONIC time
-  /// just before its frame was written to the pty (0: not written), for latency measurements.
+  /// its frame went into the pty (0: not written), for latency measurements.
   std::vector<int64_t>* imu_write_ns = nullptr;
   LiveFaults faults;  ///< none by default
 };
@@ -39,9 +39,19 @@ struct LiveOptions {
 struct LiveStats {
   uint64_t udp_sent = 0;
   uint64_t udp_errors = 0;
-  uint64_t imu_bytes = 0;
-  uint64_t imu_bytes_dropped = 0;  ///< pty buffer full (nobody reading)
-  double max_lateness_ms = 0.0;    ///< how late the worst send was against its schedule
+  /// Sends later than this (ms) against their schedule are counted in `late_sends`.
+  static constexpr double kLateMs = 10.0;
+  uint64_t imu_bytes = 0;          ///< written to the pty
+  /// Lost: more than a real adapter's buffer held unread (serial_backlog.h). Bytes are never
+  /// reordered; those that wait for room are `imu_bytes_delayed`.
+  uint64_t imu_bytes_dropped = 0;
+  uint64_t imu_bytes_delayed = 0;
+  uint64_t imu_backlog_max_bytes = 0;    ///< the most bytes waiting for the reader at once
+  double imu_backlog_max_wait_ms = 0.0;  ///< the longest a frame waited for room in the pty
+  double max_lateness_ms = 0.0;  ///< how late the worst send was against its schedule
+  double lateness_p50_ms = 0.0;  ///< ... the median send
+  double lateness_p99_ms = 0.0;
+  uint64_t late_sends = 0;  ///< sends (datagrams, IMU bursts) more than kLateMs late
   /// Host time (CLOCK_MONOTONIC) of simulation time 0: a sample due at simulation time t is
   /// sent at start_ns + t / speed.
   int64_t start_ns = 0;

@@ -35,6 +35,11 @@ struct ClockModelConfig {
   /// hundreds of ms). A jump to later is therefore confirmed only once its candidates have
   /// lasted this long in sensor time; until then they are mapped by the model as it stands.
   int64_t late_jump_confirm_ns = 1'000'000'000;
+  /// How late a backlog can make a sample (what the buffers between sensor and reader hold, in
+  /// time); 0: no allowance. Candidates at most this late are a jump only once they have lasted
+  /// `backlog_ns` too: a reader starved for seconds on a busy host is not a clock that stepped
+  /// back, while a step back by more than any buffer holds is still confirmed quickly.
+  int64_t backlog_ns = 0;
   /// A fitted drift beyond this is not a clock's (crystals: tens of ppm) but late arrivals
   /// filling the first windows after a start (a loaded host); the previous drift is kept.
   double max_drift_ppm = 1000.0;
@@ -75,6 +80,8 @@ class ClockModel {
   void Restart(int64_t sensor_unwrapped, int64_t host_rx_ns);
   void AddToEnvelope(double x, double d);
   void Fit();
+  /// How long a run of late candidates must last to be a jump (sensor ns).
+  double LateConfirmNs() const;
   /// Drift from the first `count` windows (see clock_model.cpp).
   double HullSlope(size_t count) const;
   double Predict(double x) const { return c0_ + c1_ * x; }
@@ -93,6 +100,7 @@ class ClockModel {
   int jump_run_ = 0;
   int jump_sign_ = 0;
   double jump_run_start_x_ = 0.0;  ///< sensor time (x) of the run's first candidate
+  double jump_run_min_residual_ = 0.0;  ///< the run's least late candidate (ns)
 };
 
 }  // namespace swlio::drivers

@@ -36,7 +36,9 @@ struct LoggingConfig {
 
 /// Scheduling of one daemon thread (YAML `realtime.threads[i]`).
 struct ThreadSchedConfig {
-  std::string name;      ///< lidar_rx, imu_rx, can_rx, propagator, optimizer, publisher or recorder
+  /// lidar_rx, imu_rx, can_rx, propagator, optimizer, publisher, recorder, loop_closure or
+  /// localization
+  std::string name;
   int64_t priority = 0;  ///< SCHED_FIFO priority 1–99; 0 keeps normal (SCHED_OTHER) scheduling
   int64_t cpu = -1;      ///< pin to this CPU; −1: any
   /// Nice value −20..19 under normal scheduling, applied even when `enabled` is false (Linux
@@ -44,6 +46,13 @@ struct ThreadSchedConfig {
   /// (LimitNICE), or CAP_SYS_NICE; ignored for a thread given a SCHED_FIFO priority.
   int64_t nice = 0;
 };
+
+/// The schedule swliod runs with unless the YAML lists its own: the sensor-to-pose path
+/// (lidar_rx, imu_rx, propagator, publisher) at nice −10 (what swliod.service's LimitNICE
+/// allows without a capability), so that on a busy computer its threads, which sleep most of
+/// the time, run as soon as they wake; loop closure at nice 5, below the optimizer (0). The
+/// SCHED_FIFO priorities apply only with `enabled` (docs/scheduling.md).
+std::vector<ThreadSchedConfig> DefaultThreadSchedule();
 
 /// Real-time options (YAML `realtime`). Scheduling and memory locking are off by default; they
 /// need the capabilities the systemd drop-in swliod-realtime.conf grants (CAP_SYS_NICE,
@@ -55,7 +64,8 @@ struct RealtimeConfig {
   /// ago, sensor time), it skips every other sweep until it has caught up (sweep_shedding.h);
   /// 0 never skips, and the packet queue overflows instead.
   double max_sweep_lag_s = 0.5;
-  std::vector<ThreadSchedConfig> threads;
+  /// A `threads` list in the YAML replaces this one as a whole.
+  std::vector<ThreadSchedConfig> threads = DefaultThreadSchedule();
   ConfigIssues Validate() const;
 };
 

@@ -23,6 +23,7 @@
 #include "swlio/daemon/pipeline/live_types.h"
 #include "swlio/daemon/pipeline/spsc_queue.h"
 #include "swlio/daemon/pipeline/time_scale.h"
+#include "swlio/daemon/runtime/latency_histogram.h"
 #include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/estimator/loop/correction_slew.h"
 #include "swlio/ipc/publisher.h"
@@ -48,6 +49,8 @@ struct PublisherCounters {
   /// Poses and odometry not published because the pose was not yet localized in the saved map
   /// (HoldUntilLocalized): the planner gets map-frame poses only.
   uint64_t held = 0;
+  /// From the read(2) that returned an IMU sample to its pose's DDS write (host clock).
+  LatencyHistogram::Counts pose_latency{};
 };
 
 class PublisherThread {
@@ -98,6 +101,7 @@ class PublisherThread {
   bool path_changed_ = false;
   bool holding_ = false;
   Eigen::Vector3d last_gyro_imu_radps_ = Eigen::Vector3d::Zero();
+  LatencyHistogram pose_latency_;
   std::atomic<uint64_t> poses_{0}, odometry_{0}, health_count_{0}, paths_{0}, failures_{0},
       non_finite_{0}, held_{0};
 };

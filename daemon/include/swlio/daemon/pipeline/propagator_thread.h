@@ -16,6 +16,7 @@
 #include "swlio/daemon/pipeline/live_types.h"
 #include "swlio/daemon/pipeline/spsc_queue.h"
 #include "swlio/daemon/pipeline/time_scale.h"
+#include "swlio/daemon/runtime/latency_histogram.h"
 #include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/daemon/sensors/imu_stage.h"
 #include "swlio/estimator/imu/imu_rate_propagator.h"
@@ -43,6 +44,10 @@ struct PropagatorCounters {
   int64_t last_sample_t_ns = 0;  ///< host time of the newest sample
   uint64_t gnss_fixes = 0;       ///< usable GnssPvtData items passed on
   uint64_t gnss_unusable = 0;    ///< items without a fix (or with impossible values)
+  /// How late each sample was read: the read(2) that returned its frame, after the time it was
+  /// taken (host clock). Serial delivery (the adapter's bursts), the kernel's tty worker and
+  /// the imu_rx thread's own scheduling all add to it.
+  LatencyHistogram::Counts read_lag{};
 };
 
 class PropagatorThread {
@@ -73,6 +78,7 @@ class PropagatorThread {
   std::atomic<uint64_t> a_samples_{0}, a_dropped_{0}, a_invalid_{0}, a_poses_{0}, a_states_{0},
       a_jumps_{0}, a_gnss_fixes_{0}, a_gnss_unusable_{0};
   std::atomic<int64_t> a_last_sample_t_ns_{0};
+  LatencyHistogram read_lag_;
   std::atomic<double> a_offset_ns_{0.0}, a_drift_ppm_{0.0};
 };
 

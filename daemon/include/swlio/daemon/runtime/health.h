@@ -48,6 +48,13 @@ struct HealthRates {
   /// since the start.
   uint64_t lidar_clock_jumps = 0;
   uint64_t imu_clock_jumps = 0;
+  /// Sweeps skipped because the estimator fell behind (SweepShedding), since the previous
+  /// report: the CPU does not suffice.
+  uint64_t sweeps_skipped_behind = 0;
+  /// Latencies over the last interval (on the first report, since the start).
+  LatencySummary imu_read_lag;    ///< sample taken → read(2) (PropagatorCounters::read_lag)
+  LatencySummary lidar_read_lag;  ///< kernel receive stamp → recvmmsg(2)
+  LatencySummary pose_latency;    ///< IMU read → pose written to DDS
 };
 
 class HealthReporter {

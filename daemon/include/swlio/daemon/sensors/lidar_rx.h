@@ -13,6 +13,7 @@
 
 #include "swlio/daemon/pipeline/live_types.h"
 #include "swlio/daemon/pipeline/spsc_queue.h"
+#include "swlio/daemon/runtime/latency_histogram.h"
 #include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/drivers/lidar_config.h"
 #include "swlio/drivers/udp_receiver.h"
@@ -25,6 +26,8 @@ struct LidarRxCounters {
   uint64_t truncated = 0;  ///< longer than LidarPacket::kMaxBytes
   uint64_t errors = 0;     ///< poll / recvmmsg failures
   uint64_t stamp_fallbacks = 0;
+  /// From each datagram's kernel receive stamp to the recvmmsg(2) that took it.
+  LatencyHistogram::Counts read_lag{};
 };
 
 class LidarRx {
@@ -57,6 +60,7 @@ class LidarRx {
   std::atomic<uint64_t> truncated_total_{0};
   std::atomic<uint64_t> errors_{0};
   std::atomic<uint64_t> stamp_fallbacks_{0};
+  LatencyHistogram read_lag_;
 };
 
 }  // namespace swlio::daemon
