@@ -53,7 +53,7 @@ ConfigIssues LoggingConfig::Validate() const {
 }
 
 std::vector<ThreadSchedConfig> DefaultThreadSchedule() {
-  return {{"lidar_rx", 80, -1, -10},  {"imu_rx", 80, -1, 0},   {"propagator", 70, -1, -10},
+  return {{"lidar_rx", 80, -1, -10},  {"imu_rx", 80, -1, -10},   {"propagator", 70, -1, -10},
           {"publisher", 60, -1, -10}, {"optimizer", 0, -1, 0},   {"loop_closure", 0, -1, 5}};
 }
 

@@ -30,6 +30,15 @@ int WaitForStopSignal() {
   return sig > 0 ? sig : 0;
 }
 
+/// The estimator fell behind and shed sweeps: the CPU it gets does not suffice.
+void LogCpuDegraded(const HealthRates& rates) {
+  if (rates.sweeps_skipped_behind == 0) return;
+  spdlog::warn(
+      "degraded: CPU: {} sweeps skipped since the last status (the estimator fell behind the "
+      "LiDAR); the IMU-rate pose continues. A busy computer or a CPU quota: docs/scheduling.md",
+      rates.sweeps_skipped_behind);
+}
+
 void LogDrops(const HealthSnapshot& s) {
   for (const QueueCounters& q : s.queues) {
     if (q.dropped > 0) {
@@ -87,6 +96,7 @@ int RunDaemon(const DaemonConfig& config, const RuntimeOptions& options, int64_t
       notifier.Status(line);
       LogDrops(s);
       for (const std::string& w : ClockJumpWarnings(s, rates)) spdlog::warn("{}", w);
+      LogCpuDegraded(rates);
     }
     if (max_run_ns > 0 && now - start_ns >= max_run_ns) break;
   }

@@ -89,7 +89,7 @@ TEST(ConfigPrinter, MinimalConfigPrintsEveryDefault) {
   EXPECT_THAT(printed, HasSubstr("dds_config_file: /etc/swlio/cyclonedds-loopback.xml\n"));
   EXPECT_THAT(printed, HasSubstr("    window_size: 5\n"));
   EXPECT_THAT(printed, HasSubstr("  signals: []\n"));
-  EXPECT_THAT(printed, HasSubstr("    - {name: imu_rx, priority: 80, cpu: -1, nice: 0}\n"));
+  EXPECT_THAT(printed, HasSubstr("    - {name: imu_rx, priority: 80, cpu: -1, nice: -10}\n"));
   EXPECT_THAT(printed, HasSubstr("  save_path: \"\"\n"));
   // The GNSS origin is absent by default: not a key to print, and said so.
   EXPECT_THAT(printed, Not(HasSubstr("origin_lat_deg:")));
