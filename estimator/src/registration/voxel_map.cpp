@@ -81,10 +81,10 @@ constexpr std::array<std::array<size_t, 3>, 27> kSearchSides = [] {
 }  // namespace
 
 // A query's cost is memory, not arithmetic: the 27 cells' index slots are hashed to random
-// places in a table of megabytes, and probed one after the other every miss waited for the
-// last (perf: a quarter of Nearest's cycles on the slot load alone). So the search first
-// starts the loads of every slot a cell within the distance bound may need, then probes them
-// as before: the misses overlap. The reads and their order are those of a plain search, so the
+// places in a table of megabytes, and probed one after the other each miss waited for the one
+// before (perf: a quarter of Nearest's cycles on the slot load alone). So the search first
+// starts the loads of the slots of every cell within the distance bound, then probes them as
+// before: the misses overlap. The reads and their order are those of a plain search, so the
 // result is the same.
 size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
                          size_t k,
