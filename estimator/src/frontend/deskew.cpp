@@ -1,6 +1,7 @@
 #include "swlio/estimator/frontend/deskew.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <limits>
 
@@ -9,6 +10,26 @@ namespace swlio::estimator {
 void PoseTrack::Add(int64_t t_ns, const Eigen::Isometry3d& T_world_imu) {
   samples_.push_back(
       {t_ns, Eigen::Quaterniond(T_world_imu.linear()).normalized(), T_world_imu.translation()});
+  if (samples_.size() < 2) return;
+  Sample& a = samples_[samples_.size() - 2];
+  a.dot_next = a.q.dot(samples_.back().q);
+  a.theta_next = std::acos(std::abs(a.dot_next));
+  a.sin_theta_next = std::sin(a.theta_next);
+}
+
+// Eigen's QuaternionBase::slerp (Eigen 3.4, Geometry/Quaternion.h) term for term, with its dot
+// product, acos and first sin taken from `a`: the same operations on the same values.
+Eigen::Quaterniond PoseTrack::Slerp(const Sample& a, const Sample& b, double u) {
+  const double one = 1.0 - std::numeric_limits<double>::epsilon();
+  const double abs_dot = std::abs(a.dot_next);
+  double scale0 = 1.0 - u;
+  double scale1 = u;
+  if (abs_dot < one) {
+    scale0 = std::sin((1.0 - u) * a.theta_next) / a.sin_theta_next;
+    scale1 = std::sin(u * a.theta_next) / a.sin_theta_next;
+  }
+  if (a.dot_next < 0.0) scale1 = -scale1;
+  return Eigen::Quaterniond(scale0 * a.q.coeffs() + scale1 * b.q.coeffs());
 }
 
 std::pair<const PoseTrack::Sample*, const PoseTrack::Sample*> PoseTrack::Around(
@@ -33,7 +54,9 @@ bool PoseTrack::At(int64_t t_ns, int64_t max_gap_ns, Eigen::Isometry3d* T_world_
   const double span = static_cast<double>(b.t_ns - a.t_ns);
   const double u = span > 0.0 ? static_cast<double>(t_ns - a.t_ns) / span : 0.0;
   T_world_imu->setIdentity();
-  T_world_imu->linear() = a.q.slerp(u, b.q).toRotationMatrix();
+  // A single sample (a is b) has no kept terms.
+  const Eigen::Quaterniond q = pa == pb ? a.q.slerp(u, b.q) : Slerp(a, b, u);
+  T_world_imu->linear() = q.toRotationMatrix();
   T_world_imu->translation() = (1.0 - u) * a.p + u * b.p;
   return true;
 }
@@ -48,17 +71,19 @@ void PoseTrack::DropBefore(int64_t t_ns) {
   samples_.erase(samples_.begin(), first);
 }
 
-DeskewResult Deskew(const Scan& scan,
-                    const PoseTrack& track,
-                    const Eigen::Isometry3d& T_imu_lidar,
-                    std::vector<Eigen::Vector3d>* out) {
+namespace {
+
+/// The de-skew of every point of `scan`: `write(i, p)` receives point i in the LiDAR frame at
+/// `scan.t_end_ns` (as measured when the track does not cover its time).
+template <typename Write>
+DeskewResult DeskewEach(const Scan& scan,
+                        const PoseTrack& track,
+                        const Eigen::Isometry3d& T_imu_lidar,
+                        Write write) {
   DeskewResult result;
-  out->resize(scan.points.size());
   Eigen::Isometry3d T_world_imu_end;
   if (!track.At(scan.t_end_ns, &T_world_imu_end)) {
-    for (size_t i = 0; i < scan.points.size(); ++i) {
-      (*out)[i] = scan.points[i].xyz_m.cast<double>();
-    }
+    for (size_t i = 0; i < scan.points.size(); ++i) write(i, scan.points[i].xyz_m.cast<double>());
     result.uncovered = scan.points.size();
     return result;
   }
@@ -80,14 +105,43 @@ DeskewResult Deskew(const Scan& scan,
     }
     const Eigen::Vector3d p = pt.xyz_m.cast<double>();
     if (cached_ok && t_ns >= track.begin_ns() && t_ns <= track.end_ns()) {
-      (*out)[i] = T_end_point * p;
+      write(i, T_end_point * p);
     } else {
-      (*out)[i] = p;
+      write(i, p);
       ++result.uncovered;
     }
   }
   result.points = scan.points.size();
   return result;
+}
+
+}  // namespace
+
+DeskewResult Deskew(const Scan& scan,
+                    const PoseTrack& track,
+                    const Eigen::Isometry3d& T_imu_lidar,
+                    std::vector<Eigen::Vector3d>* out) {
+  out->resize(scan.points.size());
+  return DeskewEach(scan, track, T_imu_lidar,
+                    [out](size_t i, const Eigen::Vector3d& p_lidar) { (*out)[i] = p_lidar; });
+}
+
+DeskewResult DeskewScan(const Scan& scan,
+                        const PoseTrack& track,
+                        const Eigen::Isometry3d& T_imu_lidar,
+                        Scan* out) {
+  out->t_start_ns = scan.t_start_ns;
+  out->t_end_ns = scan.t_end_ns;
+  out->seq = scan.seq;
+  out->partial = scan.partial;
+  out->points.resize(scan.points.size());  // capacity kept from the last sweep: no allocation
+  LidarPoint* points = out->points.data();
+  const LidarPoint* in = scan.points.data();
+  return DeskewEach(scan, track, T_imu_lidar,
+                    [points, in](size_t i, const Eigen::Vector3d& p_lidar) {
+                      points[i] = in[i];
+                      points[i].xyz_m = p_lidar.cast<float>();
+                    });
 }
 
 }  // namespace swlio::estimator

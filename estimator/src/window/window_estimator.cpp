@@ -211,10 +211,8 @@ bool WindowEstimator::PropagateAndExtract(const Scan& scan, OdometryResult* resu
     propagator_.Add(s);
   }
   propagator_.ExtrapolateTo(scan.t_end_ns);
-  const DeskewResult deskew = Deskew(scan, propagator_.track(), T_imu_lidar(), &xyz_);
+  const DeskewResult deskew = DeskewScan(scan, propagator_.track(), T_imu_lidar(), &deskewed_);
   result->points_uncovered = deskew.uncovered;
-  deskewed_ = scan;
-  for (size_t i = 0; i < xyz_.size(); ++i) deskewed_.points[i].xyz_m = xyz_[i].cast<float>();
   front_end_.Process(deskewed_, &features_);
   return true;
 }
@@ -232,18 +230,21 @@ std::unique_ptr<WindowEstimator::Frame> WindowEstimator::NewFrame(int64_t t_ns,
   return f;
 }
 
-bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) const {
-  std::vector<ImuSample> s;
+bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) {
+  // The samples over [from, to]: the last one before `from` (else the first one, held back to
+  // `from`), those in between, and the first at or after `to` (else the last one, held).
+  std::vector<ImuSample>& s = imu_interval_;  // reused: no allocation per sweep
+  s.clear();
   for (const ImuSample& x : imu_) {
     if (x.t_ns < from.t_ns) {
-      s.assign(1, x);  // the last sample before the interval
+      s.assign(1, x);
       continue;
     }
+    if (s.empty() && x.t_ns > from.t_ns) s.push_back(At(x, from.t_ns));
     s.push_back(x);
     if (x.t_ns >= to->t_ns) break;
   }
   if (s.empty()) return false;
-  if (s.front().t_ns > from.t_ns) s.insert(s.begin(), At(s.front(), from.t_ns));
   if (s.back().t_ns < to->t_ns) s.push_back(At(s.back(), to->t_ns));  // hold the last rates
   to->pre = std::make_unique<Preintegrator>(config_.odometry.estimator.imu_noise, from.BiasGyro(),
                                             from.BiasAcc());

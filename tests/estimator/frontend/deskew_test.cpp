@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "scenarios/sim_setup.h"
 #include "sensors/imu_sim.h"
@@ -135,6 +137,83 @@ TEST(Deskew, PointsOutsideTheTrackAreCountedNotMoved) {
   const DeskewResult r = Deskew(scan, track, Eigen::Isometry3d::Identity(), &out);
   EXPECT_EQ(r.uncovered, 1u);
   EXPECT_TRUE(out[0].isApprox(Eigen::Vector3d(1, 2, 3)));
+}
+
+/// A track of `n` poses 2.5 ms apart turning at up to 2 rad/s about a wobbling axis, and a
+/// sweep of `points` points spread over it (16 per 55.5 µs firing sequence, as the RS16).
+struct TrackAndSweep {
+  PoseTrack track;
+  std::vector<Eigen::Isometry3d> poses;
+  Scan scan;
+};
+
+TrackAndSweep Turning(int n, size_t points, uint32_t seed) {
+  TrackAndSweep out;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d axis = Eigen::Vector3d(0.2 * unit(rng), 0.2 * unit(rng), 1.0);
+    T.linear() = T.linear() *
+                 Eigen::AngleAxisd(0.005 * (1.0 + unit(rng)), axis.normalized()).toRotationMatrix();
+    T.translation() += Eigen::Vector3d(0.004, 0.001 * unit(rng), 0.0);
+    out.poses.push_back(T);
+    out.track.Add(int64_t{i} * 2'500'000, T);
+  }
+  out.scan.t_start_ns = 1'000'000;
+  out.scan.t_end_ns = int64_t{n - 1} * 2'500'000 - 1'000'000;
+  const int64_t span_ns = out.scan.t_end_ns - out.scan.t_start_ns;
+  for (size_t i = 0; i < points; ++i) {
+    LidarPoint p;
+    p.xyz_m = Eigen::Vector3f(static_cast<float>(20.0 * unit(rng)),
+                              static_cast<float>(20.0 * unit(rng)), static_cast<float>(unit(rng)));
+    p.ring = static_cast<uint16_t>(i % 16);
+    p.intensity = static_cast<float>(i % 256);
+    p.dt_ns = std::min<int64_t>(
+        span_ns, static_cast<int64_t>(i / 16) * 55'500 + static_cast<int64_t>(i % 16) * 3'470);
+    out.scan.points.push_back(p);
+  }
+  return out;
+}
+
+// The track keeps each segment's dot product, angle and sine for its slerp: the interpolated
+// pose must be Eigen's slerp to the last bit, anywhere in a segment and at its ends.
+TEST(PoseTrack, InterpolationIsEigensSlerpToTheLastBit) {
+  const TrackAndSweep ts = Turning(41, 0, 3);
+  for (int64_t t = 0; t <= 40 * 2'500'000; t += 7'919) {
+    Eigen::Isometry3d T;
+    ASSERT_TRUE(ts.track.At(t, &T));
+    const auto i = static_cast<size_t>(std::min<int64_t>(t / 2'500'000, 39));
+    const double u = static_cast<double>(t - static_cast<int64_t>(i) * 2'500'000) / 2'500'000.0;
+    const Eigen::Quaterniond qa = Eigen::Quaterniond(ts.poses[i].linear()).normalized();
+    const Eigen::Quaterniond qb = Eigen::Quaterniond(ts.poses[i + 1].linear()).normalized();
+    const Eigen::Matrix3d R = qa.slerp(u, qb).toRotationMatrix();
+    ASSERT_EQ(T.linear(), R) << "t " << t;
+  }
+}
+
+// DeskewScan (the window's) writes what Deskew does, rounded to float, beside the points'
+// other fields, and a scan reused for the next sweep holds nothing of the last one.
+TEST(Deskew, IntoAScanEqualsTheVectorFormAndReuseLeavesNothingBehind) {
+  const TrackAndSweep big = Turning(41, 16'000, 5);
+  const TrackAndSweep small = Turning(41, 9'000, 6);
+  Scan reused;
+  for (const TrackAndSweep* ts : {&big, &small}) {
+    std::vector<Eigen::Vector3d> xyz;
+    const DeskewResult a = Deskew(ts->scan, ts->track, Eigen::Isometry3d::Identity(), &xyz);
+    const DeskewResult b = DeskewScan(ts->scan, ts->track, Eigen::Isometry3d::Identity(), &reused);
+    EXPECT_EQ(a.points, b.points);
+    EXPECT_EQ(a.uncovered, b.uncovered);
+    ASSERT_EQ(reused.points.size(), ts->scan.points.size());
+    EXPECT_EQ(reused.t_start_ns, ts->scan.t_start_ns);
+    EXPECT_EQ(reused.t_end_ns, ts->scan.t_end_ns);
+    for (size_t i = 0; i < xyz.size(); ++i) {
+      ASSERT_EQ(reused.points[i].xyz_m, Eigen::Vector3f(xyz[i].cast<float>())) << i;
+      ASSERT_EQ(reused.points[i].dt_ns, ts->scan.points[i].dt_ns);
+      ASSERT_EQ(reused.points[i].ring, ts->scan.points[i].ring);
+      ASSERT_EQ(reused.points[i].intensity, ts->scan.points[i].intensity);
+    }
+  }
 }
 
 }  // namespace

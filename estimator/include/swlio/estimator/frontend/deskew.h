@@ -43,7 +43,16 @@ class PoseTrack {
     int64_t t_ns;
     Eigen::Quaterniond q;
     Eigen::Vector3d p;
+    /// The geodesic to the next sample's rotation, as Eigen's slerp computes it: the dot
+    /// product of the two quaternions, the angle acos|dot| and its sine (set when the next
+    /// sample is added). A de-skew interpolates thousands of times between the same ~40
+    /// samples; these three cost an acos and a sin each time.
+    double dot_next = 1.0;
+    double theta_next = 0.0;
+    double sin_theta_next = 0.0;
   };
+  /// `a.q.slerp(u, b.q)` to the last bit, from `a`'s kept terms (b follows a).
+  static Eigen::Quaterniond Slerp(const Sample& a, const Sample& b, double u);
   /// The two samples around t (t inside the track, which is not empty); the second may equal t.
   std::pair<const Sample*, const Sample*> Around(int64_t t_ns) const;
   std::vector<Sample> samples_;
@@ -59,5 +68,13 @@ DeskewResult Deskew(const Scan& scan,
                     const PoseTrack& track,
                     const Eigen::Isometry3d& T_imu_lidar,
                     std::vector<Eigen::Vector3d>* out);
+
+/// The same into a whole scan: `out` becomes `scan` with every point's `xyz_m` de-skewed (the
+/// double result rounded to float), in one pass and, once `out` has the capacity, without
+/// allocation. `out` must not be `&scan`.
+DeskewResult DeskewScan(const Scan& scan,
+                        const PoseTrack& track,
+                        const Eigen::Isometry3d& T_imu_lidar,
+                        Scan* out);
 
 }  // namespace swlio::estimator

@@ -8,6 +8,7 @@
 /// Deterministic: results depend only on insertion order, never on hash-table iteration order.
 
 #include <Eigen/Core>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -79,9 +80,21 @@ class VoxelMap {
     uint32_t count = 0;  ///< its points: pool_[Begin(v)], …, pool_[Begin(v) + count − 1]
   };
 
+  /// The cells around a query nearer than a bound, in search order: each one's key, squared
+  /// distance from the query and home slot (whose load has been started).
+  struct NearCells {
+    std::array<Key, 27> key;
+    std::array<double, 27> box_sq;
+    std::array<size_t, 27> home;
+    size_t size = 0;
+  };
   Key KeyOf(const Eigen::Vector3d& p) const;
-  size_t Home(const Key& key) const;    ///< first probe of `key` in slots_
-  uint32_t Find(const Key& key) const;  ///< voxel index, or kNoVoxel
+  static uint64_t AxisHash(size_t axis, int32_t cell);  ///< one axis's term of a key's hash
+  size_t HomeOf(uint64_t hash) const;                   ///< the slot of a key's hash
+  size_t Home(const Key& key) const;                    ///< first probe of `key` in slots_
+  /// Voxel index of `key`, or kNoVoxel, probing from its home slot (slots_ not empty).
+  uint32_t FindFrom(const Key& key, size_t home) const;
+  NearCells CellsWithin(const Eigen::Vector3d& query, double bound_sq) const;
   uint32_t FindOrAdd(const Key& key);
   void Reindex(size_t slot_count);
   size_t Begin(uint32_t voxel) const { return size_t{voxel} * config_.max_points_per_voxel; }

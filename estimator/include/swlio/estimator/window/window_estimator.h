@@ -119,7 +119,7 @@ class WindowEstimator {
 
   bool PropagateAndExtract(const Scan& scan, OdometryResult* result);
   std::unique_ptr<Frame> NewFrame(int64_t t_ns, const State& predicted);
-  bool Preintegrate(const Frame& from, Frame* to) const;
+  bool Preintegrate(const Frame& from, Frame* to);
   using LidarFactors = std::vector<std::unique_ptr<ceres::CostFunction>>;
   void Associate(Frame* frame);     ///< into planes_ / lines_
   void BuildFactors(Frame* frame);  ///< factors_ from planes_ / lines_
@@ -214,8 +214,8 @@ class WindowEstimator {
   size_t standstill_frames_ = 0;
   FrontEnd front_end_;
   FrontEndOutput features_;
-  Scan deskewed_;
-  std::vector<Eigen::Vector3d> xyz_;
+  Scan deskewed_;                        ///< the sweep being processed, de-skewed (reused)
+  std::vector<ImuSample> imu_interval_;  ///< Preintegrate's samples (reused)
   VoxelMap plane_map_;
   VoxelMap edge_map_;
   ScanMatcher matcher_;
