@@ -262,9 +262,8 @@ int Run(int argc, char** argv) {
       u(stats.udp_sent), u(stats.udp_errors), u(stats.imu_bytes), u(stats.imu_bytes_dropped),
       u(stats.imu_bytes_delayed), u(stats.imu_backlog_max_bytes), stats.imu_backlog_max_wait_ms,
       stats.lateness_p50_ms, stats.lateness_p99_ms, stats.max_lateness_ms, u(stats.late_sends),
-      u(f.msop_lost), u(f.msop_withheld), u(f.difop_dropped),
-      u(f.difop_corrupted), u(f.msop_one_range), u(f.imu_withheld), u(f.imu_nonfinite),
-      u(f.garbage_bytes), u(f.unplugs));
+      u(f.msop_lost), u(f.msop_withheld), u(f.difop_dropped), u(f.difop_corrupted),
+      u(f.msop_one_range), u(f.imu_withheld), u(f.imu_nonfinite), u(f.garbage_bytes), u(f.unplugs));
   return 0;
 }
 

@@ -53,24 +53,23 @@ ConfigIssues LoggingConfig::Validate() const {
 }
 
 std::vector<ThreadSchedConfig> DefaultThreadSchedule() {
-  return {{"lidar_rx", 80, -1, -10},  {"imu_rx", 80, -1, -10},   {"propagator", 70, -1, -10},
-          {"publisher", 60, -1, -10}, {"optimizer", 0, -1, 0},   {"loop_closure", 0, -1, 5}};
+  return {{"lidar_rx", 80, -1, -10},  {"imu_rx", 80, -1, -10}, {"propagator", 70, -1, -10},
+          {"publisher", 60, -1, -10}, {"optimizer", 0, -1, 0}, {"loop_closure", 0, -1, 5}};
 }
 
 ConfigIssues RealtimeConfig::Validate() const {
   ConfigIssues issues;
-  constexpr std::array<const char*, 9> kThreads = {
-      "lidar_rx",  "imu_rx",   "can_rx",       "propagator",  "optimizer",
-      "publisher", "recorder", "loop_closure", "localization"};
+  constexpr std::array<const char*, 9> kThreads = {"lidar_rx",   "imu_rx",       "can_rx",
+                                                   "propagator", "optimizer",    "publisher",
+                                                   "recorder",   "loop_closure", "localization"};
   for (size_t i = 0; i < threads.size(); ++i) {
     const ThreadSchedConfig& t = threads[i];
     const std::string key = "threads[" + std::to_string(i) + "]";
     const bool known = std::find(kThreads.begin(), kThreads.end(), t.name) != kThreads.end();
-    CheckThat(
-        issues, known, key + ".name",
-        "must be lidar_rx, imu_rx, can_rx, propagator, optimizer, publisher, recorder, "
-        "loop_closure or localization, got '" +
-            t.name + "'");
+    CheckThat(issues, known, key + ".name",
+              "must be lidar_rx, imu_rx, can_rx, propagator, optimizer, publisher, recorder, "
+              "loop_closure or localization, got '" +
+                  t.name + "'");
     CheckInRange<int64_t>(issues, key + ".priority", t.priority, 0, 99);
     CheckInRange<int64_t>(issues, key + ".cpu", t.cpu, -1, 1023);
     CheckInRange<int64_t>(issues, key + ".nice", t.nice, -20, 19);

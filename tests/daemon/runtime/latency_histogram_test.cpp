@@ -8,13 +8,15 @@ namespace swlio::daemon {
 namespace {
 
 TEST(LatencyHistogram, BinsAreUpperBoundsWithinAQuarterOctave) {
-  for (const int64_t ns : {int64_t{0}, int64_t{30'000}, int64_t{1'000'000}, int64_t{2'500'000'000}}) {
+  for (const int64_t ns :
+       {int64_t{0}, int64_t{30'000}, int64_t{1'000'000}, int64_t{2'500'000'000}}) {
     const int bin = LatencyHistogram::Bin(ns);
     EXPECT_GE(LatencyHistogram::UpperEdgeNs(bin), ns) << ns;
     if (bin > 0) {
       EXPECT_LT(LatencyHistogram::UpperEdgeNs(bin - 1), ns) << ns;
     }
-    EXPECT_LE(static_cast<double>(LatencyHistogram::UpperEdgeNs(bin)), 1.19 * static_cast<double>(ns) + 25000.0);
+    EXPECT_LE(static_cast<double>(LatencyHistogram::UpperEdgeNs(bin)),
+              1.19 * static_cast<double>(ns) + 25000.0);
   }
   EXPECT_EQ(LatencyHistogram::Bin(int64_t{3600} * 1'000'000'000), LatencyHistogram::kBins - 1);
   EXPECT_EQ(LatencyHistogram::Bin(-5), 0);

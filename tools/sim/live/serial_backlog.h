@@ -19,11 +19,11 @@
 namespace swlio::sim {
 
 struct SerialBacklogStats {
-  uint64_t written = 0;         ///< bytes the pty took
-  uint64_t dropped = 0;         ///< bytes beyond the adapter's limit, lost
-  uint64_t delayed = 0;         ///< bytes that had to wait here for room in the pty
-  size_t max_backlog = 0;       ///< the most bytes waiting here at once
-  int64_t max_wait_ns = 0;      ///< the longest a byte waited here
+  uint64_t written = 0;     ///< bytes the pty took
+  uint64_t dropped = 0;     ///< bytes beyond the adapter's limit, lost
+  uint64_t delayed = 0;     ///< bytes that had to wait here for room in the pty
+  size_t max_backlog = 0;   ///< the most bytes waiting here at once
+  int64_t max_wait_ns = 0;  ///< the longest a byte waited here
 };
 
 class SerialBacklog {
@@ -43,7 +43,10 @@ class SerialBacklog {
   /// Writes what waits, as far as `fd` takes it.
   void Flush(int fd, int64_t now_ns);
   /// Drops everything waiting (the adapter was unplugged: its buffer went with it).
-  void Clear() { chunks_.clear(); bytes_ = 0; }
+  void Clear() {
+    chunks_.clear();
+    bytes_ = 0;
+  }
   bool empty() const { return chunks_.empty(); }
   const SerialBacklogStats& stats() const { return stats_; }
   /// Receives, per IMU sample index, the time its frame's last byte went into the pty.

@@ -41,15 +41,15 @@ struct LiveStats {
   uint64_t udp_errors = 0;
   /// Sends later than this (ms) against their schedule are counted in `late_sends`.
   static constexpr double kLateMs = 10.0;
-  uint64_t imu_bytes = 0;          ///< written to the pty
+  uint64_t imu_bytes = 0;  ///< written to the pty
   /// Lost: more than a real adapter's buffer held unread (serial_backlog.h). Bytes are never
   /// reordered; those that wait for room are `imu_bytes_delayed`.
   uint64_t imu_bytes_dropped = 0;
   uint64_t imu_bytes_delayed = 0;
   uint64_t imu_backlog_max_bytes = 0;    ///< the most bytes waiting for the reader at once
   double imu_backlog_max_wait_ms = 0.0;  ///< the longest a frame waited for room in the pty
-  double max_lateness_ms = 0.0;  ///< how late the worst send was against its schedule
-  double lateness_p50_ms = 0.0;  ///< ... the median send
+  double max_lateness_ms = 0.0;          ///< how late the worst send was against its schedule
+  double lateness_p50_ms = 0.0;          ///< ... the median send
   double lateness_p99_ms = 0.0;
   uint64_t late_sends = 0;  ///< sends (datagrams, IMU bursts) more than kLateMs late
   /// Host time (CLOCK_MONOTONIC) of simulation time 0: a sample due at simulation time t is

@@ -99,7 +99,7 @@ class ClockModel {
   mutable std::vector<const WindowMin*> hull_;  ///< HullSlope's scratch (no allocation per call)
   int jump_run_ = 0;
   int jump_sign_ = 0;
-  double jump_run_start_x_ = 0.0;  ///< sensor time (x) of the run's first candidate
+  double jump_run_start_x_ = 0.0;       ///< sensor time (x) of the run's first candidate
   double jump_run_min_residual_ = 0.0;  ///< the run's least late candidate (ns)
 };
 
