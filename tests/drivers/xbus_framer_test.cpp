@@ -194,5 +194,27 @@ TEST_F(EinrideStream, GarbageInsideFramesLosesOnlyTheDamagedFrames) {
   EXPECT_EQ(stats.bytes_in, stats.bytes_in_frames + stats.skipped_bytes);
 }
 
+// A protocol phase ends after a frame (the configuration handshake's last reply): the bytes
+// behind it go back out, as if never fed, for the stream's own framer.
+TEST(XbusFramer, TakeBufferedGivesBackTheUnframedRest) {
+  const std::vector<uint8_t> ack = Frame(mid::kGoToMeasurementAck, {});
+  const std::vector<uint8_t> next = Frame(mid::kMtData2, {0x10, 0x20, 0x02, 0x00, 0x07});
+  std::vector<uint8_t> bytes = ack;
+  bytes.insert(bytes.end(), next.begin(), next.begin() + 6);
+  XbusFramer framer;
+  ASSERT_EQ(framer.Feed(bytes), bytes.size());
+  XbusFrame f;
+  ASSERT_TRUE(framer.Next(&f));
+  EXPECT_EQ(f.mid, mid::kGoToMeasurementAck);
+  const std::span<const uint8_t> rest = framer.TakeBuffered();
+  EXPECT_EQ(std::vector<uint8_t>(rest.begin(), rest.end()),
+            std::vector<uint8_t>(next.begin(), next.begin() + 6));
+  EXPECT_EQ(framer.buffered(), 0u);
+  EXPECT_FALSE(framer.Next(&f));
+  framer.Flush();
+  EXPECT_EQ(framer.stats().bytes_in, ack.size());
+  EXPECT_EQ(framer.stats().bytes_in, framer.stats().bytes_in_frames + framer.stats().skipped_bytes);
+}
+
 }  // namespace
 }  // namespace swlio::drivers::xsens

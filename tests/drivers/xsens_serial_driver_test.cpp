@@ -8,7 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <optional>
+#include <span>
 
 #include "swlio/drivers/xsens/xbus_messages.h"
 #include "swlio/drivers/xsens/xsens_serial_driver.h"
@@ -56,6 +59,7 @@ class FakeMti {
       std::vector<uint8_t> payload(f.payload.begin(), f.payload.end());
       if (f.mid == mid::kReqDid) payload = {0x07, 0x70, 0x12, 0x34};
       Send(static_cast<uint8_t>(f.mid + 1), payload);
+      if (f.mid == mid::kGoToMeasurement && sample_after_ack) SendSample(*sample_after_ack);
     }
   }
 
@@ -79,6 +83,8 @@ class FakeMti {
   }
 
   std::vector<uint8_t> requests;
+  /// Streams this sample right behind the GoToMeasurement acknowledgement (as a real MTi does).
+  std::optional<uint16_t> sample_after_ack;
 
  private:
   int master_ = -1;
@@ -168,6 +174,57 @@ TEST(XsensSerialDriver, SilentDeviceFailsConfigurationButStillStreams) {
   PollUntil(driver, dev, [&] { return !rx.counters.empty(); });
   ASSERT_EQ(rx.counters.size(), 1u);
   EXPECT_EQ(rx.counters[0], 7);
+}
+
+// With a hand-over the driver decodes nothing while streaming: the bytes from the end of the
+// handshake on (those behind the acknowledgement in the same read too) go out with their read
+// time and the port's open epoch, and a decoder fed with them elsewhere sees the samples, the
+// lost packet and the reconnect where they happened.
+TEST(XsensSerialDriver, WithAHandoverTheStreamGoesOutUndecoded) {
+  if (!PtyAvailable()) GTEST_SKIP() << "no pseudo-terminals (openpty failed)";
+  const fs::path link = test::MakeTempDir("xsens_driver") / "ttyMTI";
+  auto dev = std::make_unique<FakeMti>(link);
+  dev->sample_after_ack = 9;
+  Received here, decoded;
+  XsensSerialDriver driver(Config(link), Collect(&here));
+  XsensStreamDecoder decoder(Collect(&decoded));
+  std::vector<uint32_t> epochs;
+  driver.SetStreamHandover([&](std::span<const uint8_t> bytes, int64_t t, uint32_t epoch) {
+    epochs.push_back(epoch);
+    decoder.Process(bytes, t, epoch);
+  });
+  PollUntil(driver, *dev, [&] { return driver.state() == XsensDriverState::kStream; });
+  ASSERT_EQ(driver.state(), XsensDriverState::kStream);
+  for (uint16_t c = 10; c <= 30; ++c) {
+    if (c != 20) dev->SendSample(c);  // packet 20 lost
+  }
+  PollUntil(driver, *dev, [&] { return decoded.counters.size() >= 21; });
+  ASSERT_EQ(decoded.counters.size(), 21u);
+  EXPECT_EQ(decoded.counters.front(), 9) << "the sample behind the acknowledgement";
+  EXPECT_EQ(decoded.counters.back(), 30);
+  EXPECT_TRUE(here.counters.empty()) << "the driver decoded the stream itself";
+  EXPECT_EQ(driver.stats().samples, 0u);
+  EXPECT_EQ(decoder.stats().missing_packets, 1u);
+  EXPECT_EQ(decoder.stats().counter_gaps, 1u);
+  EXPECT_EQ(std::count(epochs.begin(), epochs.end(), 1u), static_cast<long>(epochs.size()));
+
+  dev.reset();  // unplugged
+  for (int i = 0; i < 20 && driver.state() != XsensDriverState::kOpen; ++i) driver.Poll(5 * kMs);
+  dev = std::make_unique<FakeMti>(link);  // plugged back in, its counter elsewhere
+  dev->sample_after_ack = 500;
+  PollUntil(driver, *dev, [&] { return driver.stats().configurations == 2; });
+  dev->SendSample(501);
+  PollUntil(driver, *dev, [&] { return decoded.counters.back() == 501; });
+  EXPECT_EQ(decoded.counters.back(), 501);
+  EXPECT_EQ(decoded.counters[decoded.counters.size() - 2], 500);
+  EXPECT_EQ(epochs.back(), 2u);
+  EXPECT_EQ(driver.epoch(), 2u);
+  EXPECT_EQ(decoder.stats().restarts, 1u);
+  EXPECT_EQ(decoder.stats().missing_packets, 1u) << "a reconnect is not a loss";
+  EXPECT_EQ(decoder.stats().counter_gaps, 1u);
+  EXPECT_EQ(decoder.stats().framer.checksum_errors, 0u);
+  EXPECT_EQ(driver.stats().framer.checksum_errors, 0u);
+  EXPECT_TRUE(here.counters.empty());
 }
 
 }  // namespace

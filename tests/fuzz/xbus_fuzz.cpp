@@ -1,7 +1,9 @@
 // libFuzzer target: arbitrary bytes through the Xbus framer (in input-chosen split sizes),
 // every frame through the MTData2 decoder and re-encoder, and the configurator's frame
-// handling. Invariants checked: framer byte accounting, frame checksum, re-encode of a decoded
-// payload never overflows and decodes again to the same item list.
+// handling; then the same bytes through the stream decoder, the device re-opened (a new epoch)
+// at an input-chosen byte. Invariants checked: framer byte accounting (across the restart too),
+// frame checksum, re-encode of a decoded payload never overflows and decodes again to the same
+// item list.
 
 #include <array>
 #include <cstddef>
@@ -11,6 +13,7 @@
 #include "swlio/drivers/xsens/configurator.h"
 #include "swlio/drivers/xsens/mtdata2.h"
 #include "swlio/drivers/xsens/xbus.h"
+#include "swlio/drivers/xsens/xsens_stream_decoder.h"
 
 namespace xs = swlio::drivers::xsens;
 
@@ -65,5 +68,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const xs::XbusFramerStats& s = framer.stats();
   Check(s.bytes_in == size);
   Check(s.bytes_in == s.bytes_in_frames + s.skipped_bytes);
+
+  static xs::XsensStreamDecoder decoder;
+  decoder = xs::XsensStreamDecoder{};
+  const size_t cut = size > 1 ? data[1] % size : 0;
+  decoder.Process({data, cut}, 1, 1);
+  decoder.Process({data + cut, size - cut}, 2, 2);
+  decoder.Restart();
+  const xs::XsensStreamStats& d = decoder.stats();
+  Check(d.restarts == 1);
+  Check(d.framer.bytes_in == size);
+  Check(d.framer.bytes_in == d.framer.bytes_in_frames + d.framer.skipped_bytes);
+  Check(d.samples + d.error_messages + d.other_messages == d.framer.frames);
   return 0;
 }

@@ -17,23 +17,39 @@ PropagatorThread::PropagatorThread(int64_t imu_baud,
                                    const estimator::ImuRatePropagatorConfig& config,
                                    const PropagatorQueues& queues,
                                    const TimeScale& time)
-    : q_(queues), time_(time), stage_(imu_baud), propagator_(config) {}
+    : q_(queues),
+      time_(time),
+      decoder_([this](const drivers::xsens::MtData2Sample& sample, int64_t t_rx_ns) {
+        OnSample(sample, t_rx_ns);
+      }),
+      stage_(imu_baud),
+      propagator_(config) {}
 
 void PropagatorThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
-  ImuRaw raw;
+  SerialChunk chunk;
+  auto decode = [this, &chunk] {
+    decoder_.Process({chunk.bytes.data(), chunk.size}, chunk.t_rx_ns, chunk.epoch);
+  };
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
     ApplyStates();
-    if (!q_.imu_in->WaitPop(&raw, 50'000)) {
+    if (!q_.serial_in->WaitPop(&chunk, 50'000)) {
       Publish();
       continue;
     }
-    Handle(raw);
-    if (stage_.counters().samples % 100 == 0) Publish();
+    decode();
+    if (since_publish_ >= 100) Publish();
   }
-  ApplyStates();  // stopping: the rx threads have stopped; finish what they queued
-  while (q_.imu_in->Pop(&raw)) Handle(raw);
+  // Stopping: the rx threads have stopped; finish what they queued.
+  while (q_.serial_in->Pop(&chunk)) decode();
+  ApplyStates();
   Publish();
+}
+
+void PropagatorThread::OnSample(const drivers::xsens::MtData2Sample& sample, int64_t t_rx_ns) {
+  ++since_publish_;
+  ApplyStates();  // a chunk may hold several samples: a new state applies before the next
+  Handle(ToImuRaw(sample, t_rx_ns, decoder_.last_frame_bytes()));
 }
 
 void PropagatorThread::ApplyStates() {
@@ -83,6 +99,14 @@ void PropagatorThread::Handle(const ImuRaw& raw) {
 
 void PropagatorThread::Publish() {
   constexpr auto kRelaxed = std::memory_order_relaxed;
+  since_publish_ = 0;
+  const drivers::xsens::XsensStreamStats& d = decoder_.stats();
+  a_decoded_.store(d.samples, kRelaxed);
+  a_checksum_errors_.store(d.framer.checksum_errors, kRelaxed);
+  a_skipped_bytes_.store(d.framer.skipped_bytes, kRelaxed);
+  a_missing_packets_.store(d.missing_packets, kRelaxed);
+  a_counter_gaps_.store(d.counter_gaps, kRelaxed);
+  a_restarts_.store(d.restarts, kRelaxed);
   const ImuStageCounters& c = stage_.counters();
   a_samples_.store(c.samples, kRelaxed);
   a_dropped_.store(c.no_sample_time + c.incomplete + c.out_of_order, kRelaxed);
@@ -100,6 +124,12 @@ void PropagatorThread::Publish() {
 PropagatorCounters PropagatorThread::counters() const {
   constexpr auto kRelaxed = std::memory_order_relaxed;
   PropagatorCounters c;
+  c.decode.samples = a_decoded_.load(kRelaxed);
+  c.decode.checksum_errors = a_checksum_errors_.load(kRelaxed);
+  c.decode.skipped_bytes = a_skipped_bytes_.load(kRelaxed);
+  c.decode.missing_packets = a_missing_packets_.load(kRelaxed);
+  c.decode.counter_gaps = a_counter_gaps_.load(kRelaxed);
+  c.decode.restarts = a_restarts_.load(kRelaxed);
   c.samples = a_samples_.load(kRelaxed);
   c.dropped = a_dropped_.load(kRelaxed);
   c.invalid = a_invalid_.load(kRelaxed);

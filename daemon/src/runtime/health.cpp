@@ -64,10 +64,10 @@ ipc::DiagnosticStatus ImuStatus(const HealthSnapshot& s, const HealthRates& r) {
     d.message = "streaming; clock jumped";
   }
   d.values = {{"rate_hz", Num(r.imu_hz, "%.1f")},
-              {"samples", Count(s.imu_rx.samples)},
-              {"checksum_errors", Count(s.imu_rx.checksum_errors)},
-              {"skipped_bytes", Count(s.imu_rx.skipped_bytes)},
-              {"missing_packets", Count(s.imu_rx.missing_packets)},
+              {"samples", Count(s.propagator.decode.samples)},
+              {"checksum_errors", Count(ImuChecksumErrors(s))},
+              {"skipped_bytes", Count(ImuSkippedBytes(s))},
+              {"missing_packets", Count(s.propagator.decode.missing_packets)},
               {"dropped_samples", Count(s.propagator.dropped)},
               {"invalid_samples", Count(s.propagator.invalid)},
               {"disconnects", Count(s.imu_rx.disconnects)},
@@ -310,8 +310,8 @@ std::string StatusLine(const HealthSnapshot& now, const HealthRates& r) {
                 "%llu | lag p99 imu read %.1f ms, lidar read %.1f ms, read to pose %.1f ms",
                 ToString(now.optimizer.tracking), r.lidar_packets_hz, r.sweeps_hz,
                 static_cast<unsigned long long>(now.optimizer.lidar.missing_packets), r.imu_hz,
-                static_cast<unsigned long long>(now.imu_rx.checksum_errors),
-                static_cast<unsigned long long>(now.imu_rx.missing_packets), r.poses_hz,
+                static_cast<unsigned long long>(ImuChecksumErrors(now)),
+                static_cast<unsigned long long>(now.propagator.decode.missing_packets), r.poses_hz,
                 now.optimizer.last_update_ms, now.optimizer.max_update_ms,
                 static_cast<unsigned long long>(TotalDrops(now)),
                 static_cast<unsigned long long>(now.optimizer.skipped_behind),
@@ -320,6 +320,14 @@ std::string StatusLine(const HealthSnapshot& now, const HealthRates& r) {
                 static_cast<unsigned long long>(now.propagator.clock_jumps), r.imu_read_lag.p99_ms,
                 r.lidar_read_lag.p99_ms, r.pose_latency.p99_ms);
   return line;
+}
+
+uint64_t ImuChecksumErrors(const HealthSnapshot& s) {
+  return s.imu_rx.checksum_errors + s.propagator.decode.checksum_errors;
+}
+
+uint64_t ImuSkippedBytes(const HealthSnapshot& s) {
+  return s.imu_rx.skipped_bytes + s.propagator.decode.skipped_bytes;
 }
 
 uint64_t TotalDrops(const HealthSnapshot& s) {

@@ -18,7 +18,10 @@ namespace swlio::daemon {
 struct Runtime::Queues {
   // 4096 packets ≈ 5 s of RS16 single return (750 packets/s): a slow solve never drops.
   SpscQueue<LidarPacket> lidar{"lidar_packets", "lidar_rx", "optimizer", 4096};
-  SpscQueue<ImuRaw> imu_raw{"imu_raw", "imu_rx", "propagator", 1024};
+  // The stream's bytes, decoded on the propagator: one chunk per read(2) of 50–500 bytes, at
+  // worst one per 400 Hz sample, so 2048 chunks (~2 MB) hold ≥ 5 s (≥ 2.5 s of reads split in
+  // two per sample).
+  SpscQueue<SerialChunk> imu_serial{"imu_serial", "imu_rx", "propagator", 2048};
   SpscQueue<ImuSample> imu{"imu_samples", "propagator", "optimizer", 2048};
   SpscQueue<SweepEstimate> states{"states", "optimizer", "propagator", 64};
   SpscQueue<SweepEstimate> odometry{"odometry", "optimizer", "publisher", 64};
@@ -40,9 +43,10 @@ struct Runtime::Queues {
   }
 
   std::vector<QueueCounters> Counters() const {
-    return {lidar.Counters(),    imu_raw.Counters(), imu.Counters(),       states.Counters(),
-            odometry.Counters(), poses.Counters(),   keyframes.Counters(), corrections.Counters(),
-            gnss.Counters(),     wheel.Counters()};
+    return {lidar.Counters(),     imu_serial.Counters(),  imu.Counters(),
+            states.Counters(),    odometry.Counters(),    poses.Counters(),
+            keyframes.Counters(), corrections.Counters(), gnss.Counters(),
+            wheel.Counters()};
   }
 };
 
@@ -70,7 +74,7 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
     rt->publisher_ = ipc::Publisher::Create(*rt->participant_, config.ipc, error);
     if (!rt->publisher_) return nullptr;
   }
-  rt->imu_rx_ = std::make_unique<ImuRx>(config.imu, &q.imu_raw);
+  rt->imu_rx_ = std::make_unique<ImuRx>(config.imu, &q.imu_serial);
   if (config.can.enabled) {
     int fd = options.can_fd;
     if (fd < 0) fd = rt->can_socket_ = drivers::OpenCanRawSocket(config.can.interface, error);
@@ -109,7 +113,7 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   propagator.gravity_mps2 = config.estimator.gravity_mps2;
   rt->propagator_ = std::make_unique<PropagatorThread>(
       config.imu.baud, propagator,
-      PropagatorQueues{&q.imu_raw, &q.states, &q.imu, &q.poses, gnss ? &q.gnss : nullptr}, time);
+      PropagatorQueues{&q.imu_serial, &q.states, &q.imu, &q.poses, gnss ? &q.gnss : nullptr}, time);
   const bool wheel = setup.window.wheel.enabled && tight && rt->can_rx_ != nullptr;
   if (wheel) rt->can_rx_->SendTo(&q.wheel);
   if (config.loop_closure.enabled && !tight)

@@ -4,24 +4,37 @@
 
 namespace swlio::daemon {
 
-ImuRx::ImuRx(const drivers::ImuConfig& config, SpscQueue<ImuRaw>* out)
-    : out_(out),
-      driver_(config, [this](const drivers::xsens::MtData2Sample& sample, int64_t t_host_ns) {
-        out_->Push(ToImuRaw(sample, t_host_ns, driver_.last_frame_bytes()));
-      }) {}
+ImuRx::ImuRx(const drivers::ImuConfig& config, SpscQueue<SerialChunk>* out)
+    : out_(out), driver_(config, {}) {
+  driver_.SetStreamHandover(
+      [this](std::span<const uint8_t> bytes, int64_t t_rx_ns, uint32_t epoch) {
+        chunks_ += Push(out_, bytes, t_rx_ns, epoch);
+      });
+}
 
 void ImuRx::RecordTo(SpscQueue<SerialChunk>* record) {
   record_ = record;
-  driver_.SetRawSink([this](std::span<const uint8_t> bytes, int64_t t_host_ns) {
-    while (!bytes.empty()) {  // a read longer than a chunk goes as several with its time
-      const size_t n = std::min(bytes.size(), SerialChunk::kMaxBytes);
-      std::copy_n(bytes.begin(), n, chunk_.bytes.begin());
-      chunk_.size = static_cast<uint16_t>(n);
-      chunk_.t_rx_ns = t_host_ns;
-      record_->Push(chunk_);
-      bytes = bytes.subspan(n);
-    }
+  driver_.SetRawSink([this](std::span<const uint8_t> bytes, int64_t t_rx_ns) {
+    Push(record_, bytes, t_rx_ns, driver_.epoch());
   });
+}
+
+size_t ImuRx::Push(SpscQueue<SerialChunk>* q,
+                   std::span<const uint8_t> bytes,
+                   int64_t t_rx_ns,
+                   uint32_t epoch) {
+  size_t chunks = 0;
+  while (!bytes.empty()) {  // a read longer than a chunk goes as several with its time
+    const size_t n = std::min(bytes.size(), SerialChunk::kMaxBytes);
+    std::copy_n(bytes.begin(), n, chunk_.bytes.begin());
+    chunk_.size = static_cast<uint16_t>(n);
+    chunk_.epoch = epoch;
+    chunk_.t_rx_ns = t_rx_ns;
+    q->Push(chunk_);  // full: dropped and counted by the queue
+    ++chunks;
+    bytes = bytes.subspan(n);
+  }
+  return chunks;
 }
 
 void ImuRx::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
@@ -38,11 +51,10 @@ void ImuRx::Publish() {
   const drivers::xsens::XsensDriverStats& s = driver_.stats();
   const drivers::SerialPortStats& p = driver_.port().stats();
   constexpr auto kRelaxed = std::memory_order_relaxed;
-  samples_.store(s.samples, kRelaxed);
   bytes_.store(p.bytes_read, kRelaxed);
-  checksum_errors_.store(s.framer.checksum_errors, kRelaxed);
-  skipped_bytes_.store(s.framer.skipped_bytes, kRelaxed);
-  missing_packets_.store(s.missing_packets, kRelaxed);
+  chunks_published_.store(chunks_, kRelaxed);
+  checksum_errors_.store(s.config_framer.checksum_errors, kRelaxed);
+  skipped_bytes_.store(s.config_framer.skipped_bytes, kRelaxed);
   disconnects_.store(p.disconnects, kRelaxed);
   opens_.store(p.opens, kRelaxed);
   configurations_.store(s.configurations, kRelaxed);
@@ -52,11 +64,10 @@ void ImuRx::Publish() {
 ImuRxCounters ImuRx::counters() const {
   constexpr auto kRelaxed = std::memory_order_relaxed;
   ImuRxCounters c;
-  c.samples = samples_.load(kRelaxed);
   c.bytes = bytes_.load(kRelaxed);
+  c.chunks = chunks_published_.load(kRelaxed);
   c.checksum_errors = checksum_errors_.load(kRelaxed);
   c.skipped_bytes = skipped_bytes_.load(kRelaxed);
-  c.missing_packets = missing_packets_.load(kRelaxed);
   c.disconnects = disconnects_.load(kRelaxed);
   c.opens = opens_.load(kRelaxed);
   c.configurations = configurations_.load(kRelaxed);

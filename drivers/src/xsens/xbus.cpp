@@ -97,6 +97,13 @@ void XbusFramer::Flush() {
   begin_ = end_ = 0;
 }
 
+std::span<const uint8_t> XbusFramer::TakeBuffered() {
+  const std::span<const uint8_t> rest{buf_ + begin_, end_ - begin_};
+  stats_.bytes_in -= rest.size();
+  begin_ = end_ = 0;
+  return rest;
+}
+
 size_t EncodeXbusFrame(uint8_t mid, std::span<const uint8_t> payload, std::span<uint8_t> out) {
   if (payload.size() > kXbusMaxPayload) return 0;
   const bool extended = payload.size() >= kXbusExtendedLen;

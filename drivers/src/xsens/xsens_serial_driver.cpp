@@ -13,31 +13,35 @@ XsensSerialDriver::XsensSerialDriver(const ImuConfig& config, XsensSampleSink si
       write_timeout_ns_(config.reply_timeout_ms * 1'000'000),
       port_(SerialPortOptions{config.device, config.baud, 200'000'000}),
       configurator_(ConfiguratorOptionsFromConfig(config)),
-      sink_(std::move(sink)) {}
+      decoder_(std::move(sink)) {}
 
 const XsensDriverStats& XsensSerialDriver::stats() const {
   stats_view_ = stats_;
-  const XbusFramerStats& f = framer_.stats();
-  XbusFramerStats& v = stats_view_.framer;
-  v.bytes_in += f.bytes_in;
-  v.frames += f.frames;
-  v.bytes_in_frames += f.bytes_in_frames;
-  v.checksum_errors += f.checksum_errors;
-  v.skipped_bytes += f.skipped_bytes;
-  v.oversize += f.oversize;
-  v.bad_bid += f.bad_bid;
+  XsensDriverStats& v = stats_view_;
+  Accumulate(config_framer_.stats(), &v.config_framer);
+  const XsensStreamStats& d = decoder_.stats();
+  v.samples = d.samples;
+  v.truncated = d.truncated;
+  v.unknown_items = d.unknown_items;
+  v.bad_size_items = d.bad_size_items;
+  v.counter_gaps = d.counter_gaps;
+  v.missing_packets = d.missing_packets;
+  v.error_messages = d.error_messages;
+  v.other_messages = d.other_messages;
+  v.framer = v.config_framer;
+  Accumulate(d.framer, &v.framer);
   return stats_view_;
 }
 
-void XsensSerialDriver::AccumulateFramer() {
-  framer_.Flush();
-  stats_.framer = stats().framer;
-  framer_ = XbusFramer{};
+void XsensSerialDriver::ResetConfigFramer() {
+  config_framer_.Flush();
+  Accumulate(config_framer_.stats(), &stats_.config_framer);
+  config_framer_ = XbusFramer{};
 }
 
 void XsensSerialDriver::Connected(int64_t now_ns) {
-  AccumulateFramer();
-  last_counter_.reset();
+  ResetConfigFramer();
+  ++epoch_;
   configured_ = false;
   if (configure_on_start_) {
     configurator_.Start(now_ns);
@@ -49,7 +53,10 @@ void XsensSerialDriver::Connected(int64_t now_ns) {
 }
 
 void XsensSerialDriver::Disconnected() {
-  AccumulateFramer();
+  ResetConfigFramer();
+  // The old stream's partial frame counts as skipped now; a hand-over's decoder drops it when
+  // the next epoch's bytes arrive.
+  decoder_.Restart();
   state_ = XsensDriverState::kOpen;
 }
 
@@ -77,6 +84,7 @@ XsensDriverState XsensSerialDriver::Poll(int64_t timeout_ns) {
       Connected(r.t_host_ns);
       return state_;
     case SerialReadStatus::kData:
+      last_read_ns_ = r.t_host_ns;
       if (raw_sink_) raw_sink_({rx_.data(), r.bytes}, r.t_host_ns);
       Process({rx_.data(), r.bytes}, r.t_host_ns);
       break;
@@ -91,53 +99,48 @@ XsensDriverState XsensSerialDriver::Poll(int64_t timeout_ns) {
       stats_.last_config_failure = configurator_.failure();
       stats_.last_failed_step = configurator_.failed_step();
       state_ = XsensDriverState::kStream;
+      Stream(config_framer_.TakeBuffered(), last_read_ns_);  // a partial frame, if any
     }
   }
   return state_;
 }
 
 void XsensSerialDriver::Process(std::span<const uint8_t> bytes, int64_t t_host_ns) {
-  size_t pos = 0;
-  XbusFrame frame;
-  while (pos < bytes.size()) {
-    pos += framer_.Feed(bytes.subspan(pos));
-    while (framer_.Next(&frame)) {
-      if (state_ == XsensDriverState::kConfigure) {
-        configurator_.OnFrame(frame, t_host_ns);
-        Transmit();
-        if (configurator_.done()) {
-          ++stats_.configurations;
-          configured_ = true;
-          state_ = XsensDriverState::kStream;
-        }
-        continue;
-      }
-      OnStreamFrame(frame, t_host_ns);
-    }
+  if (state_ == XsensDriverState::kConfigure) {
+    Configure(bytes, t_host_ns);
+  } else {
+    Stream(bytes, t_host_ns);
   }
 }
 
-void XsensSerialDriver::OnStreamFrame(const XbusFrame& frame, int64_t t_host_ns) {
-  if (frame.mid != mid::kMtData2) {
-    ++(frame.mid == mid::kError ? stats_.error_messages : stats_.other_messages);
-    return;
-  }
-  if (DecodeMtData2(frame.payload, &sample_) != MtData2Status::kOk) ++stats_.truncated;
-  ++stats_.samples;
-  stats_.unknown_items += sample_.unknown_items;
-  stats_.bad_size_items += sample_.bad_size_items;
-  if (sample_.packet_counter) {
-    const uint16_t c = *sample_.packet_counter;
-    if (last_counter_) {
-      const auto step = static_cast<uint16_t>(c - *last_counter_);
-      if (step != 1) ++stats_.counter_gaps;
-      // Forward jumps count as losses; repeats and backward jumps (device reset) do not.
-      if (step > 1 && step < 0x8000) stats_.missing_packets += step - 1u;
+void XsensSerialDriver::Configure(std::span<const uint8_t> bytes, int64_t t_host_ns) {
+  XbusFrame frame;
+  while (!bytes.empty() && state_ == XsensDriverState::kConfigure) {
+    bytes = bytes.subspan(config_framer_.Feed(bytes));
+    while (state_ == XsensDriverState::kConfigure && config_framer_.Next(&frame)) {
+      configurator_.OnFrame(frame, t_host_ns);
+      Transmit();
+      if (configurator_.done()) {
+        ++stats_.configurations;
+        configured_ = true;
+        state_ = XsensDriverState::kStream;
+      }
     }
-    last_counter_ = c;
   }
-  last_frame_bytes_ = frame.frame_bytes;
-  if (sink_) sink_(sample_, t_host_ns);
+  if (state_ != XsensDriverState::kStream) return;
+  // The device streams right after its GoToMeasurement acknowledgement, often in the same
+  // read: what follows the acknowledgement is the stream's first bytes.
+  Stream(config_framer_.TakeBuffered(), t_host_ns);
+  Stream(bytes, t_host_ns);
+}
+
+void XsensSerialDriver::Stream(std::span<const uint8_t> bytes, int64_t t_host_ns) {
+  if (bytes.empty()) return;
+  if (handover_) {
+    handover_(bytes, t_host_ns, epoch_);
+  } else {
+    decoder_.Process(bytes, t_host_ns, epoch_);
+  }
 }
 
 }  // namespace swlio::drivers::xsens

@@ -118,7 +118,7 @@ TEST(RuntimeFaults, ImuGapIsCountedAndRiddenThrough) {
   ASSERT_TRUE(r.sim_ok) << r.error;
   r.ShowPublished(kImu);
   EXPECT_GE(r.stats.faults.imu_withheld, 70u);
-  EXPECT_EQ(r.final.imu_rx.missing_packets, r.stats.faults.imu_withheld);
+  EXPECT_EQ(r.final.propagator.decode.missing_packets, r.stats.faults.imu_withheld);
   EXPECT_TRUE(Carried(r.final.optimizer.tracking)) << ToString(r.final.optimizer.tracking);
   EXPECT_EQ(r.final.optimizer.reinitializations, 0u);
 }
@@ -178,7 +178,7 @@ TEST(RuntimeFaults, ImuCounterWrapIsSeamless) {
   const LiveDriveResult r = RunLiveDrive(drive);
   ASSERT_TRUE(r.sim_ok) << r.error;
   r.ShowPublished(kImu);
-  EXPECT_EQ(r.final.imu_rx.missing_packets, 0u);
+  EXPECT_EQ(r.final.propagator.decode.missing_packets, 0u);
   EXPECT_GE(r.PosesBetween(5.5, 8.0), 800u);
   if (r.stats.max_lateness_ms >= 200.0) {  // a sender that far behind mimics a clock step
     std::cout << "[ note ] the simulator fell " << r.stats.max_lateness_ms << " ms behind\n";
@@ -199,9 +199,9 @@ TEST(RuntimeFaults, SerialGarbageIsSkippedAndCounted) {
   ASSERT_TRUE(r.sim_ok) << r.error;
   r.ShowPublished(kImu);
   EXPECT_GE(r.stats.faults.garbage_bytes, 12000u);
-  EXPECT_GE(r.final.imu_rx.skipped_bytes, r.stats.faults.garbage_bytes / 2);
+  EXPECT_GE(ImuSkippedBytes(r.final), r.stats.faults.garbage_bytes / 2);
   const double frames = 400.0 * drive.duration_s;
-  EXPECT_GE(static_cast<double>(r.final.imu_rx.samples), 0.97 * frames);
+  EXPECT_GE(static_cast<double>(r.final.propagator.decode.samples), 0.97 * frames);
   EXPECT_TRUE(Carried(r.final.optimizer.tracking)) << ToString(r.final.optimizer.tracking);
   EXPECT_EQ(r.final.optimizer.reinitializations, 0u);
 }
@@ -219,7 +219,7 @@ TEST(RuntimeFaults, NonFiniteImuValuesAreDropped) {
   // lose bytes (the simulator falls behind; the reader then counts missing frames), and with
   // them damaged frames, which only lowers the count (a CI run: 30 of 31 counted, 93 missing).
   EXPECT_LE(r.final.propagator.invalid, r.stats.faults.imu_nonfinite);
-  EXPECT_GE(r.final.propagator.invalid + r.final.imu_rx.missing_packets,
+  EXPECT_GE(r.final.propagator.invalid + r.final.propagator.decode.missing_packets,
             r.stats.faults.imu_nonfinite);
   EXPECT_TRUE(AllPosesFinite(r));
   EXPECT_GE(r.poses.size(), 1000u);

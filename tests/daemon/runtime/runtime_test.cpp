@@ -91,8 +91,8 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   // would): the daemon must then report them, not hide them.
   const bool fed_everything = r.stats.imu_bytes_dropped == 0 && r.stats.udp_errors == 0;
   if (fed_everything) {
-    EXPECT_EQ(s.imu_rx.checksum_errors, 0u);
-    EXPECT_EQ(s.imu_rx.missing_packets, 0u);
+    EXPECT_EQ(ImuChecksumErrors(s), 0u);
+    EXPECT_EQ(s.propagator.decode.missing_packets, 0u);
     if (!kSanitized && r.stats.max_lateness_ms < 50.0) {
       EXPECT_EQ(TotalDrops(s), 0u) << HealthReporter().StatusLine(s);
     }
@@ -100,7 +100,7 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
     std::cout << "[ note ] the simulator fell behind (" << r.stats.max_lateness_ms << " ms, "
               << r.stats.imu_bytes_dropped
               << " IMU bytes dropped); daemon: " << HealthReporter().StatusLine(s) << "\n";
-    EXPECT_GT(s.imu_rx.missing_packets + s.imu_rx.checksum_errors + s.imu_rx.skipped_bytes +
+    EXPECT_GT(s.propagator.decode.missing_packets + ImuChecksumErrors(s) + ImuSkippedBytes(s) +
                   s.optimizer.lidar.missing_packets,
               0u)
         << "what the simulator dropped shows in the health";

@@ -28,6 +28,18 @@ struct LidarPacket {
   int64_t t_rx_ns = 0;  ///< host receive time, CLOCK_MONOTONIC
 };
 
+/// Serial bytes as the imu_rx thread read them: one read(2), or a piece of a longer one (each
+/// piece with the read's time).
+struct SerialChunk {
+  static constexpr size_t kMaxBytes = 1024;
+  std::array<uint8_t, kMaxBytes> bytes{};
+  uint16_t size = 0;
+  /// The serial port's open number (XsensSerialDriver::epoch): where it changes, the device was
+  /// opened again and a new byte stream begins.
+  uint32_t epoch = 0;
+  int64_t t_rx_ns = 0;  ///< host time of the read, CLOCK_MONOTONIC
+};
+
 /// Estimator state of health (published, logged, and the READY=1 condition).
 enum class TrackingState : uint8_t { kInitializing, kTracking, kDegraded, kLost };
 const char* ToString(TrackingState state);

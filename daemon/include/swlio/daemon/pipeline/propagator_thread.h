@@ -1,10 +1,11 @@
 #pragma once
 /// @file
-/// The propagator thread: takes the imu_rx thread's samples, maps them to host time
-/// (ImuStage), hands each to the optimizer, and integrates it at once from the latest
-/// optimized state (ImuRatePropagator) into an IMU-rate pose for the publisher. A new
-/// optimized state is applied before the next sample. The optimizer never blocks it: they
-/// share only queues.
+/// The propagator thread: takes the serial bytes the imu_rx thread read, decodes them
+/// (XsensStreamDecoder: Xbus framing, MTData2, PacketCounter gaps; restarted where the chunks'
+/// open epoch changes), maps each sample to host time (ImuStage), hands it to the optimizer,
+/// and integrates it at once from the latest optimized state (ImuRatePropagator) into an
+/// IMU-rate pose for the publisher. A new optimized state is applied before the next sample.
+/// The optimizer never blocks it: they share only queues.
 ///
 /// The IMU-rate pose carries the last optimized pose covariance with the position part grown
 /// by the velocity's: P_pp + P_vv·Δt² + P_pv·Δt + P_vp·Δt, Δt the time since that state (the
@@ -19,12 +20,13 @@
 #include "swlio/daemon/runtime/latency_histogram.h"
 #include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/daemon/sensors/imu_stage.h"
+#include "swlio/drivers/xsens/xsens_stream_decoder.h"
 #include "swlio/estimator/imu/imu_rate_propagator.h"
 
 namespace swlio::daemon {
 
 struct PropagatorQueues {
-  SpscQueue<ImuRaw>* imu_in = nullptr;            ///< imu_rx → propagator
+  SpscQueue<SerialChunk>* serial_in = nullptr;    ///< imu_rx → propagator: the stream's bytes
   SpscQueue<SweepEstimate>* states_in = nullptr;  ///< optimizer → propagator
   SpscQueue<ImuSample>* imu_out = nullptr;        ///< propagator → optimizer
   SpscQueue<ImuRatePose>* poses_out = nullptr;    ///< propagator → publisher
@@ -32,7 +34,18 @@ struct PropagatorQueues {
   SpscQueue<GnssFix>* gnss_out = nullptr;
 };
 
+/// The serial stream's decoding, on the propagator thread (XsensStreamStats).
+struct ImuDecodeCounters {
+  uint64_t samples = 0;          ///< MTData2 messages decoded
+  uint64_t checksum_errors = 0;  ///< Xbus frames whose checksum failed
+  uint64_t skipped_bytes = 0;    ///< bytes skipped resynchronizing (garbage, cut frames)
+  uint64_t missing_packets = 0;  ///< lost according to the PacketCounter
+  uint64_t counter_gaps = 0;     ///< PacketCounter discontinuities
+  uint64_t restarts = 0;         ///< streams begun again after a re-open of the device
+};
+
 struct PropagatorCounters {
+  ImuDecodeCounters decode;
   uint64_t samples = 0;  ///< mapped to host time
   uint64_t dropped = 0;  ///< no SampleTimeFine, incomplete or non-finite, out of order
   uint64_t invalid = 0;  ///< of those: incomplete or non-finite values
@@ -57,16 +70,21 @@ class PropagatorThread {
                    const PropagatorQueues& queues,
                    const TimeScale& time = {});
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
-  /// A copy taken under no lock: written by Run every 100 samples and on idle wake-ups.
+  /// A copy taken under no lock: written by Run every 100 decoded samples and on idle
+  /// wake-ups.
   PropagatorCounters counters() const;
 
  private:
   void ApplyStates();
+  /// The decoder's sink: one decoded sample.
+  void OnSample(const drivers::xsens::MtData2Sample& sample, int64_t t_rx_ns);
   void Handle(const ImuRaw& raw);
   void Publish();
 
   PropagatorQueues q_;
   TimeScale time_;
+  drivers::xsens::XsensStreamDecoder decoder_;
+  uint64_t since_publish_ = 0;  ///< samples decoded since the last Publish
   ImuStage stage_;
   estimator::ImuRatePropagator propagator_;
   estimator::StateCovariance covariance_;
@@ -77,6 +95,8 @@ class PropagatorThread {
   // The snapshot health reads (relaxed atomics; fields may be from adjacent updates).
   std::atomic<uint64_t> a_samples_{0}, a_dropped_{0}, a_invalid_{0}, a_poses_{0}, a_states_{0},
       a_jumps_{0}, a_gnss_fixes_{0}, a_gnss_unusable_{0};
+  std::atomic<uint64_t> a_decoded_{0}, a_checksum_errors_{0}, a_skipped_bytes_{0},
+      a_missing_packets_{0}, a_counter_gaps_{0}, a_restarts_{0};
   std::atomic<int64_t> a_last_sample_t_ns_{0};
   LatencyHistogram read_lag_;
   std::atomic<double> a_offset_ns_{0.0}, a_drift_ppm_{0.0};

@@ -16,7 +16,6 @@
 /// The rx threads push copies into the recorder's own SPSC queues (drops counted, never
 /// blocking them); the recorder thread writes the files and flushes every second.
 
-#include <array>
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
@@ -34,14 +33,6 @@
 #include "swlio/drivers/pcap_file.h"
 
 namespace swlio::daemon {
-
-/// One read(2) of serial bytes.
-struct SerialChunk {
-  static constexpr size_t kMaxBytes = 1024;
-  std::array<uint8_t, kMaxBytes> bytes{};
-  uint16_t size = 0;
-  int64_t t_rx_ns = 0;
-};
 
 struct RecorderCounters {
   uint64_t lidar_packets = 0;

@@ -71,6 +71,11 @@ class HealthReporter {
   bool have_previous_ = false;
 };
 
+/// The IMU's Xbus framing counters as health reports them: the configuration handshakes'
+/// (framed on imu_rx) plus the stream's (decoded on the propagator).
+uint64_t ImuChecksumErrors(const HealthSnapshot& s);
+uint64_t ImuSkippedBytes(const HealthSnapshot& s);
+
 /// Total drops over every queue and receiver: what "lossless" is checked against.
 uint64_t TotalDrops(const HealthSnapshot& s);
 

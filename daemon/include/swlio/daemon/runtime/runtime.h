@@ -2,7 +2,7 @@
 /// @file
 /// The running daemon: the threads of design.md wired by their SPSC queues.
 ///
-///   lidar_rx ──packets──► optimizer ──states──► propagator ◄──raw IMU── imu_rx
+///   lidar_rx ──packets──► optimizer ──states──► propagator ◄──serial bytes── imu_rx
 ///                            ▲  └──odometry──► publisher ◄──poses──┘  │
 ///                            └───────────── IMU samples ──────────────┘
 ///

@@ -15,7 +15,7 @@
 
 namespace swlio::daemon {
 
-/// One MTData2 sample as the imu_rx thread hands it on (fixed size; before the clock model).
+/// One decoded MTData2 sample as ImuStage takes it (fixed size; before the clock model).
 struct ImuRaw {
   int64_t t_rx_ns = 0;            ///< host receive time of the frame's last byte
   uint32_t sample_time_fine = 0;  ///< Xsens 10 kHz ticks, valid when has_sample_time_fine

@@ -87,6 +87,11 @@ class XbusFramer {
   /// Declares end of stream: bytes still buffered are counted as skipped and dropped.
   void Flush();
 
+  /// Gives back the bytes buffered and not yet framed, as if they had never been fed (they
+  /// leave `bytes_in`): for handing the rest of a stream to another framer when the protocol
+  /// phase changes. The span stays valid until the next Feed.
+  std::span<const uint8_t> TakeBuffered();
+
   /// Bytes buffered and not yet consumed.
   size_t buffered() const { return end_ - begin_; }
   const XbusFramerStats& stats() const { return stats_; }

@@ -1,17 +1,25 @@
 #pragma once
 /// @file
-/// Supervised Xsens MTi receiver: SerialPort + XbusFramer + XsensConfigurator + MTData2
-/// decoder, as the state machine OPEN → CONFIGURE → STREAM (→ OPEN when the device vanishes).
+/// Supervised Xsens MTi receiver: SerialPort + XbusFramer + XsensConfigurator +
+/// XsensStreamDecoder, as the state machine OPEN → CONFIGURE → STREAM (→ OPEN when the device
+/// vanishes).
 ///
 /// - OPEN: waits for the serial device (re-opened automatically by SerialPort).
 /// - CONFIGURE (when `configure_on_start`): runs the handshake (GoToConfig, ReqDID,
-///   SetOutputConfiguration, GoToMeasurement). If it fails, the failure is counted and kept,
-///   and the driver streams whatever the device sends with its stored configuration.
-/// - STREAM: every MTData2 message goes to the sink with the host time of the read that
-///   completed it (CLOCK_MONOTONIC ns); other messages are counted by MID class.
-/// After a disconnect the framer is reset and the device is configured again when it returns.
+///   SetOutputConfiguration, GoToMeasurement) on the polling thread. If it fails, the failure
+///   is counted and kept, and the driver streams whatever the device sends with its stored
+///   configuration.
+/// - STREAM: the bytes read from the handshake's end on go to the stream decoder, which hands
+///   every MTData2 message to the sink with the host time of the read that completed it
+///   (CLOCK_MONOTONIC ns) and counts other messages by MID class. With a hand-over set
+///   (SetStreamHandover), the driver decodes nothing while streaming: the bytes go to the
+///   hand-over with their read time and the port's open epoch, for an XsensStreamDecoder on
+///   another thread.
+/// Every open starts a new epoch: the decoder drops the old stream's partial frame and forgets
+/// its PacketCounter there, and the device is configured again.
 /// Meant to be driven by one rx thread calling Poll(); no allocation after construction.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -22,17 +30,21 @@
 #include "swlio/drivers/xsens/configurator.h"
 #include "swlio/drivers/xsens/mtdata2.h"
 #include "swlio/drivers/xsens/xbus.h"
+#include "swlio/drivers/xsens/xsens_stream_decoder.h"
 
 namespace swlio::drivers::xsens {
 
-/// Receives each decoded MTData2 message and the host receive time of its last byte.
-using XsensSampleSink = std::function<void(const MtData2Sample& sample, int64_t t_host_ns)>;
 /// Receives every chunk of bytes read from the port, before framing, with its read time (a
 /// recorder keeps them for bit-exact replay).
 using XsensRawSink = std::function<void(std::span<const uint8_t> bytes, int64_t t_host_ns)>;
+/// Receives the stream's bytes instead of the driver's own decoder, in read order, with the
+/// read's host time and the port's open epoch (the arguments of XsensStreamDecoder::Process).
+using XsensStreamHandover =
+    std::function<void(std::span<const uint8_t> bytes, int64_t t_host_ns, uint32_t epoch)>;
 
 enum class XsensDriverState : uint8_t { kOpen, kConfigure, kStream };
 
+/// The stream's counters come from the driver's own decoder: zero with a hand-over set.
 struct XsensDriverStats {
   uint64_t samples = 0;          ///< MTData2 messages delivered
   uint64_t truncated = 0;        ///< MTData2 payloads with a truncated item (partially decoded)
@@ -46,7 +58,8 @@ struct XsensDriverStats {
   uint64_t config_failures = 0;  ///< failed handshakes
   XsensConfigFailure last_config_failure = XsensConfigFailure::kNone;
   XsensConfigStep last_failed_step = XsensConfigStep::kIdle;
-  XbusFramerStats framer;  ///< accumulated over reconnects
+  XbusFramerStats framer;         ///< handshakes and stream, accumulated over reconnects
+  XbusFramerStats config_framer;  ///< of those: the handshakes'
 };
 
 class XsensSerialDriver {
@@ -59,11 +72,16 @@ class XsensSerialDriver {
   XsensDriverState state() const { return state_; }
   /// Sets (or clears, with an empty function) the raw-bytes sink. Call before polling starts.
   void SetRawSink(XsensRawSink sink) { raw_sink_ = std::move(sink); }
+  /// Sends the stream's bytes to `handover` instead of decoding them (see the file comment);
+  /// an empty function decodes them here again. Call before polling starts.
+  void SetStreamHandover(XsensStreamHandover handover) { handover_ = std::move(handover); }
   bool configured() const { return configured_; }
   const XsensDriverStats& stats() const;
+  /// The port's open number: increments at every open (the first open is 1).
+  uint32_t epoch() const { return epoch_; }
   /// Bytes of the Xbus frame whose sample the sink is receiving (header, payload, checksum):
   /// its transmission time at the line rate is the fixed part of the receive latency.
-  size_t last_frame_bytes() const { return last_frame_bytes_; }
+  size_t last_frame_bytes() const { return decoder_.last_frame_bytes(); }
   const SerialPort& port() const { return port_; }
   const XsensConfigurator& configurator() const { return configurator_; }
 
@@ -71,24 +89,25 @@ class XsensSerialDriver {
   void Connected(int64_t now_ns);
   void Disconnected();
   void Process(std::span<const uint8_t> bytes, int64_t t_host_ns);
-  void OnStreamFrame(const XbusFrame& frame, int64_t t_host_ns);
+  void Configure(std::span<const uint8_t> bytes, int64_t t_host_ns);
+  void Stream(std::span<const uint8_t> bytes, int64_t t_host_ns);
   void Transmit();
-  void AccumulateFramer();
+  void ResetConfigFramer();
 
   bool configure_on_start_;
   int64_t write_timeout_ns_;
   SerialPort port_;
   XsensConfigurator configurator_;
-  XsensSampleSink sink_;
   XsensRawSink raw_sink_;
-  XbusFramer framer_;
-  MtData2Sample sample_;
+  XsensStreamHandover handover_;
+  XbusFramer config_framer_;  ///< frames the handshake's replies
+  XsensStreamDecoder decoder_;
   XsensDriverState state_ = XsensDriverState::kOpen;
   bool configured_ = false;
-  std::optional<uint16_t> last_counter_;
-  size_t last_frame_bytes_ = 0;
+  uint32_t epoch_ = 0;
+  int64_t last_read_ns_ = 0;
   std::array<uint8_t, 4096> rx_{};
-  XsensDriverStats stats_;
+  XsensDriverStats stats_;  ///< config_framer: of the handshakes before the current one
   mutable XsensDriverStats stats_view_;
 };
 
