@@ -29,7 +29,7 @@ struct SerialBacklogStats {
 class SerialBacklog {
  public:
   /// 640 KiB: Linux's TTYB_DEFAULT_MEM_LIMIT for a real serial port's flip buffer.
-  static constexpr size_t kAdapterLimitBytes = 640 * 1024;
+  static constexpr size_t kAdapterLimitBytes = size_t{640} * 1024;
 
   explicit SerialBacklog(size_t limit_bytes = kAdapterLimitBytes) : limit_(limit_bytes) {}
 
