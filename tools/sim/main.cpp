@@ -88,7 +88,7 @@ struct StreamArgs {
 /// The live mode's fault injection (sim_faults.h) on the command line.
 struct FaultArgs {
   swlio::sim::LiveFaults faults;
-  std::vector<std::string> lidar_outages, imu_gaps, unplugs, one_range;
+  std::vector<std::string> lidar_outages, imu_gaps, unplugs, stalls, one_range;
   std::string difop, lidar_clock_jump;
   double imu_wrap_at_s = -1.0;
 
@@ -101,6 +101,8 @@ struct FaultArgs {
     app.add_option("--lidar-outage", lidar_outages, "fault: no UDP during START:DURATION (s)");
     app.add_option("--imu-gap", imu_gaps, "fault: no IMU frames during START:DURATION");
     app.add_option("--serial-unplug", unplugs, "fault: the pty vanishes during START:DURATION");
+    app.add_option("--serial-stall", stalls,
+                   "fault: IMU bytes held during START:DURATION, then written at once");
     app.add_option("--one-range", one_range, "fault: every return at --one-range-m");
     app.add_option("--one-range-m", f.one_range_m, "range for --one-range (m)");
     app.add_option("--serial-garbage", f.serial_garbage_bytes_per_s, "fault: random bytes/s");
@@ -121,6 +123,7 @@ struct FaultArgs {
     faults.lidar_outages = ParseWindows(lidar_outages);
     faults.imu_gaps = ParseWindows(imu_gaps);
     faults.serial_unplugs = ParseWindows(unplugs);
+    faults.serial_stalls = ParseWindows(stalls);
     faults.lidar_one_range = ParseWindows(one_range);
     faults.difop_missing = difop == "missing";
     faults.difop_corrupt = difop == "corrupt";

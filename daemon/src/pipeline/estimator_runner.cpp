@@ -61,11 +61,23 @@ void EstimatorRunner::AddScan(Scan&& scan) {
     return;
   }
   waiting_.push_back(std::move(scan));
-  while (waiting_.size() > kMaxWaiting) {
-    waiting_.pop_front();
-    ++dropped_waiting_;
-  }
+  while (waiting_.size() > kMaxWaiting) ThinWaiting();
   ProcessCovered();
+}
+
+void EstimatorRunner::ThinWaiting() {
+  if (waiting_.size() < 3) return;
+  size_t drop = 1;
+  int64_t best_span_ns = waiting_[2].t_end_ns - waiting_[0].t_end_ns;
+  for (size_t i = 2; i + 1 < waiting_.size(); ++i) {
+    const int64_t span_ns = waiting_[i + 1].t_end_ns - waiting_[i - 1].t_end_ns;
+    if (span_ns < best_span_ns) {
+      best_span_ns = span_ns;
+      drop = i;
+    }
+  }
+  waiting_.erase(waiting_.begin() + static_cast<std::ptrdiff_t>(drop));
+  ++dropped_waiting_;
 }
 
 void EstimatorRunner::Process(const Scan& scan) {

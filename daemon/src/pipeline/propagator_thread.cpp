@@ -29,6 +29,7 @@ void PropagatorThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle
   SerialChunk chunk;
   auto decode = [this, &chunk] {
     decoder_.Process({chunk.bytes.data(), chunk.size}, chunk.t_rx_ns, chunk.epoch);
+    SendHeldPose();
   };
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
@@ -57,6 +58,7 @@ void PropagatorThread::ApplyStates() {
   while (q_.states_in->Pop(&e)) {
     if (e.reset) {  // the estimator restarted: no output from its diverged state
       propagator_.Clear();
+      held_pose_.reset();
       covariance_ = {};
       continue;
     }
@@ -93,7 +95,24 @@ void PropagatorThread::Handle(const ImuRaw& raw) {
   pose.rx_ns = raw.t_rx_ns;
   pose.pose_covariance =
       GrownPoseCovariance(covariance_, static_cast<double>(out->since_optimized_ns) * 1e-9);
+  Offer(pose, raw.t_rx_ns - time_.ToHost(sample->t_ns) > kStalePoseNs);
+}
+
+void PropagatorThread::Offer(const ImuRatePose& pose, bool stale) {
+  if (held_pose_) ++poses_coalesced_;  // a newer pose of the same read replaces it
+  held_pose_.reset();
+  if (stale) {
+    held_pose_ = pose;
+    return;
+  }
   q_.poses_out->Push(pose);
+  ++poses_;
+}
+
+void PropagatorThread::SendHeldPose() {
+  if (!held_pose_) return;
+  q_.poses_out->Push(*held_pose_);
+  held_pose_.reset();
   ++poses_;
 }
 
@@ -112,6 +131,7 @@ void PropagatorThread::Publish() {
   a_dropped_.store(c.no_sample_time + c.incomplete + c.out_of_order, kRelaxed);
   a_invalid_.store(c.incomplete, kRelaxed);
   a_poses_.store(poses_, kRelaxed);
+  a_poses_coalesced_.store(poses_coalesced_, kRelaxed);
   a_states_.store(states_, kRelaxed);
   a_jumps_.store(stage_.clock().jumps, kRelaxed);
   a_gnss_fixes_.store(gnss_fixes_, kRelaxed);
@@ -134,6 +154,7 @@ PropagatorCounters PropagatorThread::counters() const {
   c.dropped = a_dropped_.load(kRelaxed);
   c.invalid = a_invalid_.load(kRelaxed);
   c.poses = a_poses_.load(kRelaxed);
+  c.poses_coalesced = a_poses_coalesced_.load(kRelaxed);
   c.states = a_states_.load(kRelaxed);
   c.clock_jumps = a_jumps_.load(kRelaxed);
   c.clock_offset_ns = a_offset_ns_.load(kRelaxed);

@@ -208,6 +208,7 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
       {"solve_ms", Num(s.optimizer.last_update_ms, "%.2f")},
       {"solve_ms_max", Num(s.optimizer.max_update_ms, "%.2f")},
       {"pose_rate_hz", Num(r.poses_hz, "%.1f")},
+      {"poses_coalesced", Count(s.propagator.poses_coalesced)},
       {"pose_latency_ms_p50", Num(r.pose_latency.p50_ms, "%.2f")},
       {"pose_latency_ms_p99", Num(r.pose_latency.p99_ms, "%.2f")},
       {"pose_latency_ms_max", Num(r.pose_latency.max_ms, "%.2f")},

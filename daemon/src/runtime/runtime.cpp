@@ -22,9 +22,13 @@ struct Runtime::Queues {
   // worst one per 400 Hz sample, so 2048 chunks (~2 MB) hold ≥ 5 s (≥ 2.5 s of reads split in
   // two per sample).
   SpscQueue<SerialChunk> imu_serial{"imu_serial", "imu_rx", "propagator", 2048};
-  SpscQueue<ImuSample> imu{"imu_samples", "propagator", "optimizer", 2048};
+  // As many samples as a USB-serial adapter's tty buffer holds (640 KiB, tty_buffer.c; 10,900
+  // frames of 60 bytes, 27 s at 400 Hz) and more: a kernel worker that was starved for seconds
+  // releases the backlog at once, faster than the optimizer drains it (56 bytes each: 0.9 MB).
+  SpscQueue<ImuSample> imu{"imu_samples", "propagator", "optimizer", 16384};
   SpscQueue<SweepEstimate> states{"states", "optimizer", "propagator", 64};
   SpscQueue<SweepEstimate> odometry{"odometry", "optimizer", "publisher", 64};
+  // 2.5 s at 400 Hz; a backlog's stale samples give one pose per read (PropagatorThread).
   SpscQueue<ImuRatePose> poses{"poses", "propagator", "publisher", 1024};
   // ~50 s of keyframes at 5/s: a loop solve of tens of ms never drops one.
   SpscQueue<KeyframePtr> keyframes{"keyframes", "optimizer", "loop_closure", 256};

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "swlio/daemon/config/daemon_config.h"
@@ -51,17 +52,31 @@ TEST(EstimatorRunner, ProcessesASweepOnceTheImuHasPassedItsEnd) {
   EXPECT_EQ(runner.waiting(), 0u);
 }
 
-TEST(EstimatorRunner, DropsSweepsThatWaitTooLongForTheImu) {
+// Five seconds of sweeps arrive while the IMU's bytes wait in the serial layer; then the whole
+// backlog arrives. 20 sweeps are kept, the oldest (next to the last state) and the newest
+// among them, spread so that the IMU bridges no gap much longer than 50 sweeps / 19 intervals.
+TEST(EstimatorRunner, ThinsSweepsThatWaitForALateImuEvenly) {
   DaemonConfig config;
   const EstimatorSetup setup =
       MakeEstimatorSetup(config, Eigen::Isometry3d::Identity(), EstimatorMode::kTightlyCoupled);
-  size_t processed = 0;
-  EstimatorRunner runner(setup, nullptr,
-                         [&](const Scan&, const estimator::WindowResult&) { ++processed; });
-  for (int k = 1; k <= 25; ++k) runner.AddScan(Sweep(int64_t{k} * 100'000'000));  // no IMU
-  EXPECT_EQ(processed, 0u);
+  std::vector<int64_t> processed;
+  EstimatorRunner runner(setup, nullptr, [&](const Scan& scan, const estimator::WindowResult&) {
+    processed.push_back(scan.t_end_ns);
+  });
+  constexpr int64_t kSweepNs = 100'000'000;
+  for (int k = 1; k <= 50; ++k) runner.AddScan(Sweep(int64_t{k} * kSweepNs));  // no IMU yet
+  EXPECT_TRUE(processed.empty());
   EXPECT_EQ(runner.waiting(), EstimatorRunner::kMaxWaiting);
-  EXPECT_EQ(runner.dropped_waiting(), 25u - EstimatorRunner::kMaxWaiting);
+  EXPECT_EQ(runner.dropped_waiting(), 50u - EstimatorRunner::kMaxWaiting);
+  for (int64_t t = 0; t <= 51 * kSweepNs; t += 2'500'000) runner.AddImu(Still(t));
+  ASSERT_EQ(processed.size(), EstimatorRunner::kMaxWaiting);
+  EXPECT_EQ(processed.front(), kSweepNs) << "the oldest is kept";
+  EXPECT_EQ(processed.back(), 50 * kSweepNs) << "the newest is kept";
+  int64_t longest_ns = 0;
+  for (size_t i = 1; i < processed.size(); ++i) {
+    longest_ns = std::max(longest_ns, processed[i] - processed[i - 1]);
+  }
+  EXPECT_LE(longest_ns, 4 * kSweepNs) << "49 intervals over 19 is 2.6 sweeps";
 }
 
 }  // namespace

@@ -25,7 +25,7 @@ void SerialBacklog::Send(int fd,
 }
 
 void SerialBacklog::Flush(int fd, int64_t now_ns) {
-  while (!chunks_.empty() && fd >= 0) {
+  while (!chunks_.empty() && fd >= 0 && !held_) {
     Chunk& c = chunks_.front();
     const ssize_t n = write(fd, c.bytes.data() + c.offset, c.bytes.size() - c.offset);
     if (n <= 0) return;  // full (EAGAIN) or gone: the bytes wait, in order

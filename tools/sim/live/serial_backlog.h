@@ -48,6 +48,9 @@ class SerialBacklog {
     bytes_ = 0;
   }
   bool empty() const { return chunks_.empty(); }
+  /// While held, nothing is written: bytes only queue (LiveFaults::serial_stalls).
+  void Hold(bool held) { held_ = held; }
+  bool held() const { return held_; }
   const SerialBacklogStats& stats() const { return stats_; }
   /// Receives, per IMU sample index, the time its frame's last byte went into the pty.
   void ReportWritesTo(std::vector<int64_t>* write_ns) { write_ns_ = write_ns; }
@@ -66,6 +69,7 @@ class SerialBacklog {
   std::deque<Chunk> chunks_;
   SerialBacklogStats stats_;
   std::vector<int64_t>* write_ns_ = nullptr;
+  bool held_ = false;
 };
 
 }  // namespace swlio::sim

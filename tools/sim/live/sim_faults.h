@@ -26,9 +26,12 @@ struct LiveFaults {
   /// fraction and this mean burst length in datagrams.
   double udp_loss_fraction = 0.0;
   double udp_loss_burst_packets = 5.0;
-  std::vector<TimeWindow> lidar_outages;    ///< nothing is sent on UDP (MSOP nor DIFOP)
-  std::vector<TimeWindow> imu_gaps;         ///< the IMU's frames are not written (and lost)
-  std::vector<TimeWindow> serial_unplugs;   ///< the pty goes away; a new one behind the same link
+  std::vector<TimeWindow> lidar_outages;   ///< nothing is sent on UDP (MSOP nor DIFOP)
+  std::vector<TimeWindow> imu_gaps;        ///< the IMU's frames are not written (and lost)
+  std::vector<TimeWindow> serial_unplugs;  ///< the pty goes away; a new one behind the same link
+  /// The frames are written late, all at the window's end: what the host sees when the
+  /// kernel's tty worker (or the USB host controller) is starved for that long. Nothing is lost.
+  std::vector<TimeWindow> serial_stalls;
   std::vector<TimeWindow> lidar_one_range;  ///< every return reads `one_range_m` (a blocked lens)
   double one_range_m = 0.6;
   double serial_garbage_bytes_per_s = 0.0;  ///< random bytes written between frames
@@ -64,6 +67,7 @@ class FaultInjector {
   /// Appends the garbage due since the previous call (at t_s) to `out`.
   void AppendGarbage(double t_s, std::vector<uint8_t>* out);
   bool Unplugged(double t_s) const { return InAny(faults_.serial_unplugs, t_s); }
+  bool SerialStalled(double t_s) const { return InAny(faults_.serial_stalls, t_s); }
 
   const FaultCounts& counts() const { return counts_; }
   FaultCounts* mutable_counts() { return &counts_; }

@@ -139,7 +139,7 @@ void SendUdp(int fd, uint16_t port, std::span<const uint8_t> bytes, LiveStats* s
 
 /// Sleeps until `t_ns`; meanwhile, bytes waiting for room in the pty go out as it empties.
 void SleepWriting(int64_t t_ns, int fd, SerialBacklog* backlog) {
-  while (!backlog->empty() && fd >= 0) {
+  while (!backlog->empty() && !backlog->held() && fd >= 0) {
     const int64_t left_ns = t_ns - MonotonicNs();
     if (left_ns <= 0) return;
     pollfd p{fd, POLLOUT, 0};
@@ -260,6 +260,7 @@ bool RunLive(const SimSetup& setup,
       return false;
     }
     if (ep.pty_master < 0) backlog.Clear();  // unplugged: the adapter's buffer went with it
+    backlog.Hold(faults.SerialStalled(t_s));
     if (lidar_first) {
       const bool difop = packet.dst_port != setup.lidar.msop_port;
       if (faults.PassDatagram(t_s, difop, packet.bytes)) {
@@ -279,6 +280,7 @@ bool RunLive(const SimSetup& setup,
     }
     if (ep.pty_master >= 0) backlog.Send(ep.pty_master, burst, first, i, MonotonicNs());
   }
+  backlog.Hold(false);  // a stall that outlasts the drive ends with it
   DrainBacklog(ep.pty_master, &backlog, 30.0);
   Report(backlog, stats);
   SummarizeLateness(&lateness_ms, stats);

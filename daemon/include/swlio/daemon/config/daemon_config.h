@@ -61,8 +61,9 @@ struct RealtimeConfig {
   bool enabled = false;      ///< apply `threads`' priorities and CPU pinning (nice: always)
   bool lock_memory = false;  ///< mlockall(MCL_CURRENT | MCL_FUTURE) once the threads run
   /// When the estimator runs this far behind the LiDAR (a sweep's last packet arrived longer
-  /// ago, sensor time), it skips every other sweep until it has caught up (sweep_shedding.h);
-  /// 0 never skips, and the packet queue overflows instead.
+  /// ago, sensor time), it skips every other sweep until it has caught up, and longer runs
+  /// (up to 4 in a row) the further behind it is (sweep_shedding.h); 0 never skips, and the
+  /// packet queue overflows instead.
   double max_sweep_lag_s = 0.5;
   /// A `threads` list in the YAML replaces this one as a whole.
   std::vector<ThreadSchedConfig> threads = DefaultThreadSchedule();

@@ -60,7 +60,7 @@ class EstimatorRunner {
 
   /// Sweeps waiting for IMU coverage.
   size_t waiting() const { return waiting_.size(); }
-  /// Sweeps dropped because more than `kMaxWaiting` waited (the IMU stopped).
+  /// Sweeps dropped because more than `kMaxWaiting` waited (the IMU stopped or is late).
   size_t dropped_waiting() const { return dropped_waiting_; }
   EstimatorMode mode() const { return mode_; }
   /// Points in the estimator's local maps (planes and edges), in either mode.
@@ -68,13 +68,18 @@ class EstimatorRunner {
   /// The window (tightly coupled mode), else nullptr.
   const estimator::WindowEstimator* window() const { return window_.get(); }
 
-  /// At most this many sweeps wait for the IMU (2 s at 10 Hz); older ones are dropped.
+  /// At most this many sweeps wait for the IMU (2 s at 10 Hz; ~11 MB of points). Beyond it
+  /// the waiting sweeps are thinned evenly (ThinWaiting): a serial backlog of seconds that
+  /// arrives late but whole then leaves the IMU short gaps to bridge, not one long one.
   static constexpr size_t kMaxWaiting = 20;
 
  private:
   void Process(const Scan& scan);
   /// Processes the waiting sweeps whose end the newest IMU sample has passed.
   void ProcessCovered();
+  /// Drops the waiting sweep (neither the oldest, which follows the last processed state, nor
+  /// the newest) whose neighbours are closest in time: the largest gap grows least.
+  void ThinWaiting();
 
   EstimatorMode mode_;
   std::unique_ptr<estimator::LidarOdometry> odometry_;

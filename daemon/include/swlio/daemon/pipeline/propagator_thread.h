@@ -10,9 +10,17 @@
 /// The IMU-rate pose carries the last optimized pose covariance with the position part grown
 /// by the velocity's: P_pp + P_vv·Δt² + P_pv·Δt + P_vp·Δt, Δt the time since that state (the
 /// IMU-only stretch; grows while the LiDAR is out).
+///
+/// A backlog (serial bytes that reach `read` late, e.g. from a kernel tty worker starved for
+/// seconds) arrives as a few reads holding thousands of samples. Every sample still goes to the
+/// optimizer, and every one is propagated, but a pose read more than `kStalePoseNs` after its
+/// sample was taken is published only if it is the newest of its read: one pose per read
+/// while the backlog drains, instead of thousands of outdated ones flooding the publisher and
+/// DDS when the CPU is scarcest (counted as `poses_coalesced`).
 
 #include <atomic>
 #include <cstdint>
+#include <optional>
 
 #include "swlio/daemon/pipeline/live_types.h"
 #include "swlio/daemon/pipeline/spsc_queue.h"
@@ -46,11 +54,12 @@ struct ImuDecodeCounters {
 
 struct PropagatorCounters {
   ImuDecodeCounters decode;
-  uint64_t samples = 0;  ///< mapped to host time
-  uint64_t dropped = 0;  ///< no SampleTimeFine, incomplete or non-finite, out of order
-  uint64_t invalid = 0;  ///< of those: incomplete or non-finite values
-  uint64_t poses = 0;    ///< IMU-rate poses sent to the publisher
-  uint64_t states = 0;   ///< optimized states applied
+  uint64_t samples = 0;          ///< mapped to host time
+  uint64_t dropped = 0;          ///< no SampleTimeFine, incomplete or non-finite, out of order
+  uint64_t invalid = 0;          ///< of those: incomplete or non-finite values
+  uint64_t poses = 0;            ///< IMU-rate poses sent to the publisher
+  uint64_t poses_coalesced = 0;  ///< stale poses not sent: a newer one of the same read was
+  uint64_t states = 0;           ///< optimized states applied
   uint64_t clock_jumps = 0;
   double clock_offset_ns = 0.0;  ///< host − sensor (SampleTimeFine)
   double clock_drift_ppm = 0.0;
@@ -65,6 +74,10 @@ struct PropagatorCounters {
 
 class PropagatorThread {
  public:
+  /// A pose read this long after its sample was taken is stale (host clock): 25 cm at 1 m/s,
+  /// of no use to a controller except as the newest one there is.
+  static constexpr int64_t kStalePoseNs = 250'000'000;
+
   PropagatorThread(int64_t imu_baud,
                    const estimator::ImuRatePropagatorConfig& config,
                    const PropagatorQueues& queues,
@@ -79,6 +92,9 @@ class PropagatorThread {
   /// The decoder's sink: one decoded sample.
   void OnSample(const drivers::xsens::MtData2Sample& sample, int64_t t_rx_ns);
   void Handle(const ImuRaw& raw);
+  /// Sends `pose`, or holds it while it is stale (the newest held one goes at the read's end).
+  void Offer(const ImuRatePose& pose, bool stale);
+  void SendHeldPose();
   void Publish();
 
   PropagatorQueues q_;
@@ -89,12 +105,14 @@ class PropagatorThread {
   estimator::ImuRatePropagator propagator_;
   estimator::StateCovariance covariance_;
   uint64_t poses_ = 0;
+  uint64_t poses_coalesced_ = 0;
+  std::optional<ImuRatePose> held_pose_;  ///< the newest stale pose of the current read
   uint64_t states_ = 0;
   uint64_t gnss_fixes_ = 0, gnss_unusable_ = 0;
   int64_t last_sample_t_ns_ = 0;
   // The snapshot health reads (relaxed atomics; fields may be from adjacent updates).
-  std::atomic<uint64_t> a_samples_{0}, a_dropped_{0}, a_invalid_{0}, a_poses_{0}, a_states_{0},
-      a_jumps_{0}, a_gnss_fixes_{0}, a_gnss_unusable_{0};
+  std::atomic<uint64_t> a_samples_{0}, a_dropped_{0}, a_invalid_{0}, a_poses_{0},
+      a_poses_coalesced_{0}, a_states_{0}, a_jumps_{0}, a_gnss_fixes_{0}, a_gnss_unusable_{0};
   std::atomic<uint64_t> a_decoded_{0}, a_checksum_errors_{0}, a_skipped_bytes_{0},
       a_missing_packets_{0}, a_counter_gaps_{0}, a_restarts_{0};
   std::atomic<int64_t> a_last_sample_t_ns_{0};

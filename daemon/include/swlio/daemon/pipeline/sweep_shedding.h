@@ -7,25 +7,31 @@
 /// the middle of sweeps: packets are lost, sweeps arrive partial, the estimate is seconds old,
 /// and the IMU has to bridge gaps the estimator never chose (a 2-hour soak at 10× on two cores
 /// diverged that way). Instead, a sweep whose last packet arrived more than `max_lag_ns` ago
-/// (daemon time) is skipped, never two in a row: while behind, every other sweep is processed,
-/// which halves the estimator's load until it has caught up. The IMU carries the state across
-/// a skipped sweep (one pre-integration over 0.2 s instead of two over 0.1 s), and the
-/// IMU-rate pose output is not affected. Each skip is counted (health
-/// `sweeps_skipped_behind`).
+/// (daemon time) is skipped. While behind by up to 2 × `max_lag_ns`, every other sweep is
+/// processed, which halves the estimator's load until it has caught up; further behind (the
+/// CPU truly does not suffice: a quota, a core shared with heavier work), up to one more sweep
+/// in a row is skipped per `max_lag_ns` of lag, at most `kMaxRun` (the IMU then bridges 0.5 s at
+/// 10 Hz), which cuts the load to a fifth. The IMU carries the state across skipped sweeps
+/// (one pre-integration over their span), and the IMU-rate pose output is not affected. Each
+/// skip is counted (health `sweeps_skipped_behind`).
 
+#include <algorithm>
 #include <cstdint>
 
 namespace swlio::daemon {
 
 class SweepShedding {
  public:
+  /// The most sweeps skipped in a row, however far behind.
+  static constexpr int kMaxRun = 4;
+
   /// `max_lag_ns` ≤ 0: never skip.
   explicit SweepShedding(int64_t max_lag_ns = 0) : max_lag_ns_(max_lag_ns) {}
 
   /// Whether to process a sweep whose last packet arrived `lag_ns` ago; false: skip it.
   bool Take(int64_t lag_ns) {
-    const bool skip = max_lag_ns_ > 0 && lag_ns > max_lag_ns_ && !skipped_last_;
-    skipped_last_ = skip;
+    const bool skip = max_lag_ns_ > 0 && lag_ns > max_lag_ns_ && run_ < AllowedRun(lag_ns);
+    run_ = skip ? run_ + 1 : 0;
     if (skip) ++skipped_;
     return !skip;
   }
@@ -33,8 +39,15 @@ class SweepShedding {
   uint64_t skipped() const { return skipped_; }
 
  private:
+  /// Sweeps that may be skipped in a row at this lag: 1 up to 2 × max_lag_ns, then one more
+  /// per max_lag_ns, up to kMaxRun.
+  int AllowedRun(int64_t lag_ns) const {
+    const int64_t run = std::max<int64_t>(1, (lag_ns - 1) / max_lag_ns_);
+    return static_cast<int>(std::min<int64_t>(run, kMaxRun));
+  }
+
   int64_t max_lag_ns_;
-  bool skipped_last_ = false;
+  int run_ = 0;  ///< sweeps skipped in a row just before
   uint64_t skipped_ = 0;
 };
 
