@@ -31,6 +31,7 @@ ConfigIssues LidarConfig::Validate() const {
   CheckInRange(issues, "max_range_m", max_range_m, 1.0, 300.0);
   CheckThat(issues, min_range_m < max_range_m, "max_range_m", "must exceed min_range_m");
   CheckInRange<int64_t>(issues, "rcvbuf_bytes", rcvbuf_bytes, 65536, int64_t{1} << 30);
+  CheckInRange<int64_t>(issues, "rx_batch_ms", rx_batch_ms, 0, 50);
   const bool angles_ok = std::all_of(vertical_angles_deg.begin(), vertical_angles_deg.end(),
                                      [](double a) { return a >= -90.0 && a <= 90.0; });
   CheckThat(issues, angles_ok, "vertical_angles_deg", "every angle must be in [-90, 90]");

@@ -16,6 +16,7 @@
 #include "swlio/drivers/xsens/xbus_messages.h"
 #include "swlio/drivers/xsens/xsens_serial_driver.h"
 #include "test_data.h"
+#include "xsens_test_util.h"
 
 namespace swlio::drivers::xsens {
 namespace {
@@ -69,18 +70,7 @@ class FakeMti {
     ASSERT_EQ(::write(master_, frame.data(), n), static_cast<ssize_t>(n));
   }
 
-  void SendSample(uint16_t counter) {
-    MtData2Sample s;
-    s.packet_counter = counter;
-    s.sample_time_fine = counter * 25u;
-    const double acc[] = {0.0, 0.0, 9.81};
-    const double gyro[] = {0.01, 0.02, 0.03};
-    s.acc_mps2 = MakeXsensReal(acc);
-    s.rate_of_turn_radps = MakeXsensReal(gyro);
-    std::array<uint8_t, 128> payload;
-    const size_t n = EncodeMtData2(s, payload);
-    Send(mid::kMtData2, {payload.begin(), payload.begin() + static_cast<std::ptrdiff_t>(n)});
-  }
+  void SendSample(uint16_t counter) { Send(mid::kMtData2, test::LevelSamplePayload(counter)); }
 
   std::vector<uint8_t> requests;
   /// Streams this sample right behind the GoToMeasurement acknowledgement (as a real MTi does).
@@ -140,8 +130,8 @@ TEST(XsensSerialDriver, ConfiguresStreamsAndReconfiguresAfterReconnect) {
   ASSERT_EQ(rx.counters.size(), 20u);
   EXPECT_EQ(rx.counters.front(), 10);
   EXPECT_EQ(rx.counters.back(), 30);
-  EXPECT_EQ(driver.stats().counter_gaps, 1u);
-  EXPECT_EQ(driver.stats().missing_packets, 1u);
+  EXPECT_EQ(driver.stats().stream.counter_gaps, 1u);
+  EXPECT_EQ(driver.stats().stream.missing_packets, 1u);
   EXPECT_TRUE(std::is_sorted(rx.t_host_ns.begin(), rx.t_host_ns.end()));
 
   dev.reset();  // unplugged
@@ -203,7 +193,7 @@ TEST(XsensSerialDriver, WithAHandoverTheStreamGoesOutUndecoded) {
   EXPECT_EQ(decoded.counters.front(), 9) << "the sample behind the acknowledgement";
   EXPECT_EQ(decoded.counters.back(), 30);
   EXPECT_TRUE(here.counters.empty()) << "the driver decoded the stream itself";
-  EXPECT_EQ(driver.stats().samples, 0u);
+  EXPECT_EQ(driver.stats().stream.samples, 0u);
   EXPECT_EQ(decoder.stats().missing_packets, 1u);
   EXPECT_EQ(decoder.stats().counter_gaps, 1u);
   EXPECT_EQ(std::count(epochs.begin(), epochs.end(), 1u), static_cast<long>(epochs.size()));

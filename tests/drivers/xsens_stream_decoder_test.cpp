@@ -12,21 +12,14 @@
 
 #include "swlio/drivers/xsens/mtdata2.h"
 #include "swlio/drivers/xsens/xbus.h"
+#include "xsens_test_util.h"
 
 namespace swlio::drivers::xsens {
 namespace {
 
 /// The Xbus frame of an MTData2 message with `counter` and inertial items.
 std::vector<uint8_t> SampleFrame(uint16_t counter) {
-  MtData2Sample s;
-  s.packet_counter = counter;
-  s.sample_time_fine = counter * 25u;
-  const double acc[] = {0.0, 0.0, 9.81};
-  const double gyro[] = {0.01, 0.02, 0.03};
-  s.acc_mps2 = MakeXsensReal(acc);
-  s.rate_of_turn_radps = MakeXsensReal(gyro);
-  std::vector<uint8_t> payload(256);
-  payload.resize(EncodeMtData2(s, payload));
+  const std::vector<uint8_t> payload = test::LevelSamplePayload(counter);
   std::vector<uint8_t> frame(kXbusMaxFrame);
   frame.resize(EncodeXbusFrame(mid::kMtData2, payload, frame));
   return frame;

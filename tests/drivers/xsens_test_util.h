@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "swlio/drivers/xsens/mtdata2.h"
 #include "swlio/drivers/xsens/xbus.h"
 
 namespace swlio::test {
@@ -21,6 +22,21 @@ inline std::vector<uint8_t> ReadBytes(const std::filesystem::path& path) {
 inline std::string ReadText(const std::filesystem::path& path) {
   std::ifstream in(path);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// The MTData2 payload of a level sample: PacketCounter `counter`, SampleTimeFine 25 ticks
+/// (2.5 ms at 10 kHz) per count, gravity on z and a small rotation rate.
+inline std::vector<uint8_t> LevelSamplePayload(uint16_t counter) {
+  drivers::xsens::MtData2Sample s;
+  s.packet_counter = counter;
+  s.sample_time_fine = counter * 25u;
+  const double acc[] = {0.0, 0.0, 9.81};
+  const double gyro[] = {0.01, 0.02, 0.03};
+  s.acc_mps2 = drivers::xsens::MakeXsensReal(acc);
+  s.rate_of_turn_radps = drivers::xsens::MakeXsensReal(gyro);
+  std::vector<uint8_t> payload(256);
+  payload.resize(drivers::xsens::EncodeMtData2(s, payload));
+  return payload;
 }
 
 struct OwnedFrame {

@@ -266,6 +266,7 @@ void Bind(Section s, drivers::LidarConfig& c) {
   s.Get("min_range_m", c.min_range_m);
   s.Get("max_range_m", c.max_range_m);
   s.Get("rcvbuf_bytes", c.rcvbuf_bytes);
+  s.Get("rx_batch_ms", c.rx_batch_ms);
   s.Get("vertical_angles_deg", c.vertical_angles_deg);
   s.Get("rpm", c.rpm);
   s.Get("lens_offset_m", c.lens_offset_m);  // absent: NaN, the model's vendor value

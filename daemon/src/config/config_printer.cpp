@@ -83,6 +83,7 @@ void Emit(ConfigWriter& w, const drivers::LidarConfig& c) {
   w.Put("min_range_m", c.min_range_m);
   w.Put("max_range_m", c.max_range_m);
   w.Put("rcvbuf_bytes", c.rcvbuf_bytes);
+  w.Put("rx_batch_ms", c.rx_batch_ms);
   w.Put("vertical_angles_deg", c.vertical_angles_deg);
   w.Put("rpm", c.rpm);
   w.Put("lens_offset_m", c.EffectiveLensOffsetM());  // when absent, the model's vendor value

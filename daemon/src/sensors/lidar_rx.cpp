@@ -3,7 +3,9 @@
 #include <poll.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
+#include <thread>
 #include <utility>
 
 namespace swlio::daemon {
@@ -27,6 +29,7 @@ std::unique_ptr<LidarRx> LidarRx::Open(const drivers::LidarConfig& config,
                                        std::string* error) {
   std::unique_ptr<LidarRx> rx(new LidarRx());
   rx->out_ = out;
+  rx->batch_ns_ = config.rx_batch_ms * 1'000'000;
   std::optional<drivers::UdpReceiver> msop = OpenPort(config, config.msop_port, error);
   if (!msop) return nullptr;
   std::optional<drivers::UdpReceiver> difop = OpenPort(config, config.difop_port, error);
@@ -47,6 +50,7 @@ void LidarRx::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
     if (fds[0].revents != 0) Drain(*msop_, false);
     if (fds[1].revents != 0) Drain(*difop_, true);
     Publish();
+    if (batch_ns_ > 0) std::this_thread::sleep_for(std::chrono::nanoseconds(batch_ns_));
   }
 }
 

@@ -19,17 +19,9 @@ const XsensDriverStats& XsensSerialDriver::stats() const {
   stats_view_ = stats_;
   XsensDriverStats& v = stats_view_;
   Accumulate(config_framer_.stats(), &v.config_framer);
-  const XsensStreamStats& d = decoder_.stats();
-  v.samples = d.samples;
-  v.truncated = d.truncated;
-  v.unknown_items = d.unknown_items;
-  v.bad_size_items = d.bad_size_items;
-  v.counter_gaps = d.counter_gaps;
-  v.missing_packets = d.missing_packets;
-  v.error_messages = d.error_messages;
-  v.other_messages = d.other_messages;
+  v.stream = decoder_.stats();
   v.framer = v.config_framer;
-  Accumulate(d.framer, &v.framer);
+  Accumulate(v.stream.framer, &v.framer);
   return stats_view_;
 }
 

@@ -48,24 +48,10 @@ class SpscQueue {
   /// the threads start; `bell` must outlive the queue's producer.
   void RingOnPush(Doorbell* bell) { bell_ = bell; }
 
-  /// Producer side. False (counted) when the queue is full.
-  bool Push(T&& value) {
-    if (!queue_.try_enqueue(std::move(value))) {
-      dropped_.fetch_add(1, std::memory_order_relaxed);
-      return false;
-    }
-    if (bell_ != nullptr) bell_->Ring();
-    pushed_.fetch_add(1, std::memory_order_relaxed);
-    const size_t depth = queue_.size_approx();
-    if (depth > high_water_.load(std::memory_order_relaxed)) {
-      high_water_.store(depth, std::memory_order_relaxed);
-    }
-    return true;
-  }
-  bool Push(const T& value) {
-    T copy = value;
-    return Push(std::move(copy));
-  }
+  /// Producer side. False (counted) when the queue is full. The element is copied (or moved)
+  /// straight into its slot.
+  bool Push(T&& value) { return Count(queue_.try_enqueue(std::move(value))); }
+  bool Push(const T& value) { return Count(queue_.try_enqueue(value)); }
 
   /// Consumer side: takes one element if there is one.
   bool Pop(T* out) { return queue_.try_dequeue(*out); }
@@ -87,6 +73,20 @@ class SpscQueue {
   }
 
  private:
+  bool Count(bool pushed) {
+    if (!pushed) {
+      dropped_.fetch_add(1, std::memory_order_relaxed);
+      return false;
+    }
+    if (bell_ != nullptr) bell_->Ring();
+    pushed_.fetch_add(1, std::memory_order_relaxed);
+    const size_t depth = queue_.size_approx();
+    if (depth > high_water_.load(std::memory_order_relaxed)) {
+      high_water_.store(depth, std::memory_order_relaxed);
+    }
+    return true;
+  }
+
   // In clang-tidy's padding order (moodycamel aligns its indices to cache lines).
   moodycamel::BlockingReaderWriterQueue<T> queue_;
   size_t capacity_;

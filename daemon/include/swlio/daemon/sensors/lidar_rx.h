@@ -3,7 +3,9 @@
 /// The lidar_rx thread: receives the LiDAR's MSOP and DIFOP datagrams (two UDP sockets, one
 /// poll), stamps them with the kernel receive time and pushes them, undecoded, to the
 /// optimizer thread's queue. Allocates nothing after Open(). A full queue drops the datagram
-/// (counted by the queue).
+/// (counted by the queue). After each batch it sleeps `lidar.rx_batch_ms`, so that a wake-up
+/// takes several datagrams: at one per datagram (750/s) the wake-ups, its own and the
+/// optimizer's, cost 0.03 core of kernel time (measured live, `aggressive` at 1×).
 
 #include <atomic>
 #include <cstdint>
@@ -53,6 +55,7 @@ class LidarRx {
   std::optional<drivers::UdpReceiver> difop_;
   SpscQueue<LidarPacket>* out_ = nullptr;
   SpscQueue<LidarPacket>* record_ = nullptr;
+  int64_t batch_ns_ = 0;
   LidarPacket packet_;
   uint64_t truncated_ = 0;
   uint64_t poll_errors_ = 0;

@@ -44,16 +44,10 @@ using XsensStreamHandover =
 
 enum class XsensDriverState : uint8_t { kOpen, kConfigure, kStream };
 
-/// The stream's counters come from the driver's own decoder: zero with a hand-over set.
 struct XsensDriverStats {
-  uint64_t samples = 0;          ///< MTData2 messages delivered
-  uint64_t truncated = 0;        ///< MTData2 payloads with a truncated item (partially decoded)
-  uint64_t unknown_items = 0;    ///< MTData2 items skipped (unknown XDI)
-  uint64_t bad_size_items = 0;   ///< MTData2 items skipped (impossible size)
-  uint64_t counter_gaps = 0;     ///< PacketCounter discontinuities
-  uint64_t missing_packets = 0;  ///< packets lost according to PacketCounter
-  uint64_t error_messages = 0;   ///< Error (0x42) seen while streaming
-  uint64_t other_messages = 0;   ///< non-MTData2 messages seen while streaming
+  /// The driver's own decoder's counters: zero with a hand-over set (its `framer` counts the
+  /// stream only; `framer` below adds the handshakes').
+  XsensStreamStats stream;
   uint64_t configurations = 0;   ///< successful handshakes
   uint64_t config_failures = 0;  ///< failed handshakes
   XsensConfigFailure last_config_failure = XsensConfigFailure::kNone;
