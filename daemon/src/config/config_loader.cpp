@@ -473,6 +473,8 @@ void Bind(Section s, estimator::LoopClosureConfig& c) {
   s.Get("keyframe_angle_rad", c.keyframe_angle_rad);
   s.Get("search_radius_m", c.search_radius_m);
   s.Get("min_separation_s", c.min_separation_s);
+  s.Get("place_radius_m", c.place_radius_m);
+  s.Get("place_angle_rad", c.place_angle_rad);
   s.Get("attempt_every_nodes", c.attempt_every_nodes);
   s.Get("submap_half_width", c.submap_half_width);
   s.Get("inlier_distance_m", c.inlier_distance_m);

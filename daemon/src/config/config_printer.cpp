@@ -318,6 +318,8 @@ void Emit(ConfigWriter& w, const estimator::LoopClosureConfig& c) {
   w.Put("keyframe_angle_rad", c.keyframe_angle_rad);
   w.Put("search_radius_m", c.search_radius_m);
   w.Put("min_separation_s", c.min_separation_s);
+  w.Put("place_radius_m", c.place_radius_m);
+  w.Put("place_angle_rad", c.place_angle_rad);
   w.Put("attempt_every_nodes", c.attempt_every_nodes);
   w.Put("submap_half_width", c.submap_half_width);
   w.Put("inlier_distance_m", c.inlier_distance_m);

@@ -9,12 +9,9 @@
 namespace swlio::estimator {
 namespace {
 
-std::vector<Eigen::Vector3d> Transformed(const Eigen::Isometry3d& T,
-                                         const std::vector<Eigen::Vector3d>& points) {
-  std::vector<Eigen::Vector3d> out;
-  out.reserve(points.size());
-  for (const Eigen::Vector3d& p : points) out.push_back(T * p);
-  return out;
+/// The keyframe's time and poses (the clouds go to the store).
+KeyframeCloud PosesOnly(const KeyframeCloud& keyframe) {
+  return {keyframe.t_ns, keyframe.T_world_imu, keyframe.T_imu_lidar, {}, {}};
 }
 
 }  // namespace
@@ -51,16 +48,33 @@ LoopClosureUpdate LoopClosure::AddKeyframe(const KeyframeCloud& keyframe) {
                                    : path_m_.back() + (keyframe.T_world_imu.translation() -
                                                        nodes_.back().T_world_imu.translation())
                                                           .norm());
-  nodes_.push_back(keyframe);
+  const bool known_place = IsKnownPlace(newest, keyframe.t_ns);
+  nodes_.push_back(PosesOnly(keyframe));
+  store_.Add(keyframe, !known_place);
   descriptors_.Add(KeyframeDescriptor(config_.descriptor, keyframe));
   update.node_added = true;
   stats_.nodes = nodes_.size();
   if (config_.enabled) DetectLoop(keyframe, &update);
+  if (known_place) descriptors_.Release(newest);  // it was only needed for its own search
   if (gnss_ && !update.optimized) {
     ApplyGnss(&update);
     if (gnss_since_optimize_ >= config_.gnss.optimize_every_fixes) OptimizeGraph(&update);
   }
   return update;
+}
+
+bool LoopClosure::IsKnownPlace(size_t newest, int64_t t_ns) const {
+  if (config_.place_radius_m <= 0.0) return false;
+  const auto min_gap_ns = static_cast<int64_t>(config_.min_separation_s * 1e9);
+  const Eigen::Isometry3d& T_map_newest = graph_.pose(newest);
+  for (size_t k = 0; k < newest && t_ns - nodes_[k].t_ns >= min_gap_ns; ++k) {
+    if (!store_.has_cloud(k)) continue;
+    const Eigen::Isometry3d delta = graph_.pose(k).inverse() * T_map_newest;
+    if (delta.translation().norm() <= config_.place_radius_m &&
+        lie::Angle(delta.rotation()) <= config_.place_angle_rad)
+      return true;
+  }
+  return false;
 }
 
 void LoopClosure::DetectLoop(const KeyframeCloud& keyframe, LoopClosureUpdate* out) {
@@ -73,7 +87,7 @@ void LoopClosure::DetectLoop(const KeyframeCloud& keyframe, LoopClosureUpdate* o
   const size_t candidate = update.attempt.candidate;
   since_attempt_ = 0;
   update.attempted = true;
-  update.attempt.check = Verify(update.attempt, guess);
+  update.attempt.check = Verify(update.attempt, guess, keyframe);
   attempts_.push_back(update.attempt);
   ++stats_.attempts;
   if (update.attempt.check.verdict != LoopVerdict::kAccepted) {
@@ -206,11 +220,13 @@ SavedMap LoopClosure::ToSavedMap() const {
   map.descriptor_max_range_m = config_.descriptor.max_range_m;
   map.descriptor_min_range_m = config_.descriptor.min_range_m;
   map.descriptor_height_offset_m = config_.descriptor.height_offset_m;
-  map.nodes.reserve(nodes_.size());
+  map.nodes.reserve(store_.clouds());
+  const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
   for (size_t i = 0; i < nodes_.size(); ++i) {
+    if (!store_.has_cloud(i)) continue;
     const KeyframeCloud& n = nodes_[i];
     map.nodes.push_back({n.t_ns, CorrectedPose(n.t_ns, n.T_world_imu), n.T_imu_lidar,
-                         n.planes_lidar, n.edges_lidar, descriptors_.at(i).cells});
+                         store_.Planes(i, I), store_.Edges(i, I), descriptors_.at(i).cells});
   }
   return map;
 }
@@ -260,6 +276,7 @@ bool LoopClosure::FindCandidate(size_t newest, size_t* candidate, double* distan
   double best = config_.search_radius_m;
   bool found = false;
   for (size_t k = 0; k < newest && nodes_[newest].t_ns - nodes_[k].t_ns >= min_gap_ns; ++k) {
+    if (!store_.has_cloud(k)) continue;  // no submap to verify against
     const double d = (graph_.pose(k).translation() - p).norm();
     if (d < best) {
       best = d;
@@ -279,18 +296,20 @@ LoopSubmap LoopClosure::BuildSubmap(size_t candidate, int64_t newest_t_ns) const
   const size_t first = candidate > h ? candidate - h : 0;
   const size_t last = std::min(nodes_.size() - 1, candidate + h);
   for (size_t m = first; m <= last; ++m) {
-    if (newest_t_ns - nodes_[m].t_ns < min_gap_ns) continue;
+    if (newest_t_ns - nodes_[m].t_ns < min_gap_ns || !store_.has_cloud(m)) continue;
     const Eigen::Isometry3d T = T_candidate_map * graph_.pose(m) * nodes_[m].T_imu_lidar;
-    submap.planes.Insert(Transformed(T, nodes_[m].planes_lidar));
-    submap.edges.Insert(Transformed(T, nodes_[m].edges_lidar));
+    submap.planes.Insert(store_.Planes(m, T));
+    submap.edges.Insert(store_.Edges(m, T));
   }
   return submap;
 }
 
-LoopCheck LoopClosure::Verify(const LoopAttempt& attempt, const Eigen::Isometry3d& guess) const {
-  const KeyframeCloud& kf = nodes_[attempt.node];
-  return VerifyLoop(config_, kf.planes_lidar, kf.edges_lidar,
-                    BuildSubmap(attempt.candidate, kf.t_ns), guess);
+LoopCheck LoopClosure::Verify(const LoopAttempt& attempt,
+                              const Eigen::Isometry3d& guess,
+                              const KeyframeCloud& keyframe) const {
+  // The newest node's own cloud as received (double), not the store's.
+  return VerifyLoop(config_, keyframe.planes_lidar, keyframe.edges_lidar,
+                    BuildSubmap(attempt.candidate, keyframe.t_ns), guess);
 }
 
 }  // namespace swlio::estimator

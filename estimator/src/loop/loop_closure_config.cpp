@@ -8,6 +8,8 @@ ConfigIssues LoopClosureConfig::Validate() const {
   CheckPositive(issues, "keyframe_angle_rad", keyframe_angle_rad);
   CheckPositive(issues, "search_radius_m", search_radius_m);
   CheckInRange(issues, "min_separation_s", min_separation_s, 1.0, 3600.0);
+  CheckInRange(issues, "place_radius_m", place_radius_m, 0.0, 50.0);
+  CheckInRange(issues, "place_angle_rad", place_angle_rad, 0.0, 3.15);
   AppendWithPrefix(issues, "descriptor", descriptor.Validate());
   if (gnss.enabled) AppendWithPrefix(issues, "gnss", gnss.Validate());
   CheckInRange(issues, "max_drift_ratio", max_drift_ratio, 0.0, 1.0);

@@ -42,7 +42,7 @@ size_t VoxelMap::Insert(const std::vector<Eigen::Vector3d>& points_world) {
     const uint32_t v = FindOrAdd(KeyOf(p));
     uint32_t& count = voxels_[v].count;
     if (count >= config_.max_points_per_voxel) continue;
-    Eigen::Vector3d* points = pool_.data() + Begin(v);
+    Eigen::Vector3d* points = PointsOf(v);
     const bool crowded = std::any_of(points, points + count, [&](const Eigen::Vector3d& q) {
       return (q - p).squaredNorm() < min_sq;
     });
@@ -102,7 +102,7 @@ size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
     if (cells.box_sq[i] >= bound_sq) continue;  // cannot hold a closer point
     const uint32_t v = FindFrom(cells.key[i], cells.home[i]);
     if (v == kNoVoxel) continue;
-    const Eigen::Vector3d* points = pool_.data() + Begin(v);
+    const Eigen::Vector3d* points = PointsOf(v);
     for (uint32_t j = 0; j < voxels_[v].count; ++j) {
       const Eigen::Vector3d& p = points[j];
       const double d2 = (p - query).squaredNorm();
@@ -157,7 +157,7 @@ std::vector<Eigen::Vector3d> VoxelMap::Points() const {
   std::vector<Eigen::Vector3d> out;
   out.reserve(points_);
   for (uint32_t v = 0; v < voxels_.size(); ++v) {
-    const Eigen::Vector3d* points = pool_.data() + Begin(v);
+    const Eigen::Vector3d* points = PointsOf(v);
     out.insert(out.end(), points, points + voxels_[v].count);
   }
   return out;
@@ -179,16 +179,15 @@ size_t VoxelMap::RemoveFar(const Eigen::Vector3d& center_world) {
       continue;
     }
     if (kept != v) {
-      const Eigen::Vector3d* from = pool_.data() + Begin(v);
-      std::copy(from, from + voxel.count,
-                pool_.data() + Begin(kept));  // kept < v: the target starts first
+      const Eigen::Vector3d* from = PointsOf(v);
+      std::copy(from, from + voxel.count, PointsOf(kept));  // kept < v: another voxel's slots
       voxels_[kept] = voxel;
     }
     ++kept;
   }
   if (kept == voxels_.size()) return 0;
   voxels_.resize(kept);
-  pool_.resize(Begin(kept));
+  pool_.resize((kept + kChunkVoxels - 1) / kChunkVoxels);
   Reindex(slots_.size());
   points_ -= removed;
   revision_ = NextRevision();
@@ -228,7 +227,9 @@ uint32_t VoxelMap::FindOrAdd(const Key& key) {
   const auto v = static_cast<uint32_t>(voxels_.size());
   slots_[s] = {key, v};
   voxels_.push_back({key, 0});
-  pool_.resize(Begin(v + 1));
+  if (v / kChunkVoxels >= pool_.size()) {
+    pool_.emplace_back(size_t{kChunkVoxels} * config_.max_points_per_voxel);
+  }
   return v;
 }
 

@@ -9,6 +9,9 @@
 /// pose: the radius candidate, or the descriptor's when it points elsewhere (then the two take
 /// turns). An accepted loop adds a loop edge and the graph is
 /// optimized; the χ² check there switches off loops the rest of the graph contradicts.
+/// Memory (issue 33): node clouds are kept in float, and only for nodes that map a new place
+/// (keyframe_store.h, LoopClosureConfig::place_radius_m); only those are candidates and go into
+/// a saved map. A node on a place already held keeps its pose (graph, trajectory) alone.
 ///
 /// Frames: the odometry's world ("odom", continuous, what the window estimator works in) and
 /// the corrected "map". `T_map_odom()` is the correction at the newest node: the pose output is
@@ -30,6 +33,7 @@
 #include "swlio/core/types.h"
 #include "swlio/estimator/common/keyframe_cloud.h"
 #include "swlio/estimator/gnss/gnss_associator.h"
+#include "swlio/estimator/loop/keyframe_store.h"
 #include "swlio/estimator/loop/loop_closure_config.h"
 #include "swlio/estimator/loop/loop_verifier.h"
 #include "swlio/estimator/loop/pose_graph.h"
@@ -93,17 +97,22 @@ class LoopClosure {
   size_t nodes() const { return nodes_.size(); }
   /// Node i's pose in the map frame (optimized) and in the odometry frame (as received).
   Eigen::Isometry3d T_map_imu(size_t i) const { return graph_.pose(i); }
+  /// Node i's time and poses as received (its clouds are in store(), not here).
   const KeyframeCloud& node(size_t i) const { return nodes_[i]; }
+  /// The nodes' clouds: which nodes keep one, and their bytes.
+  const KeyframeStore& store() const { return store_; }
   /// Every node at its current map pose, oldest first.
   std::vector<MapNode> MapPath() const;
   /// Node i's place descriptor.
   const ScanContext& descriptor(size_t i) const { return descriptors_.at(i); }
-  /// The map to save (saved_map.h): every node at its current map pose, with its features
-  /// and descriptor.
+  /// The map to save (saved_map.h): every node that keeps a cloud, at its current map pose,
+  /// with its features and descriptor.
   SavedMap ToSavedMap() const;
 
  private:
   bool IsNewNode(const KeyframeCloud& keyframe) const;
+  /// Whether an old-enough node that keeps a cloud holds the place of node `newest` already.
+  bool IsKnownPlace(size_t newest, int64_t t_ns) const;
   /// The nearest old-enough node within the search radius of the newest; false when none.
   bool FindCandidate(size_t newest, size_t* candidate, double* distance_m) const;
   /// The old-enough node within the drift's reach with the nearest descriptor; false when
@@ -112,7 +121,9 @@ class LoopClosure {
   /// Which candidate to verify now (false: none).
   bool ChooseCandidate(size_t newest, LoopAttempt* attempt, Eigen::Isometry3d* guess);
   LoopSubmap BuildSubmap(size_t candidate, int64_t newest_t_ns) const;
-  LoopCheck Verify(const LoopAttempt& attempt, const Eigen::Isometry3d& guess) const;
+  LoopCheck Verify(const LoopAttempt& attempt,
+                   const Eigen::Isometry3d& guess,
+                   const KeyframeCloud& keyframe) const;
   /// Loop detection for the newest node (AddKeyframe's second half).
   void DetectLoop(const KeyframeCloud& keyframe, LoopClosureUpdate* update);
   /// Solves the graph and takes its correction at the newest node.
@@ -126,7 +137,8 @@ class LoopClosure {
 
   LoopClosureConfig config_;
   PoseGraph graph_;
-  std::vector<KeyframeCloud> nodes_;  ///< poses in the odometry frame
+  std::vector<KeyframeCloud> nodes_;  ///< poses in the odometry frame, without their clouds
+  KeyframeStore store_;               ///< the clouds
   ScanContextDatabase descriptors_;   ///< one per node
   std::vector<double> path_m_;        ///< odometry distance driven up to each node
   bool descriptor_turn_ = false;      ///< the descriptor's candidate goes next when both differ

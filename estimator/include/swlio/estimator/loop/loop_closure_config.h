@@ -21,6 +21,14 @@ struct LoopClosureConfig {
   double search_radius_m = 10.0;
   /// ... and at least this much older (so the recent track is never a loop).
   double min_separation_s = 30.0;
+  /// Places (issue 33: memory that stops growing on a patrol): a new node within this distance
+  /// and this turn (corrected poses) of an old-enough node that keeps a cloud maps nothing new;
+  /// it keeps no cloud and, after its own loop search, no descriptor (keyframe_store.h). 0 m:
+  /// every node keeps both. Nodes are `keyframe_distance_m` apart, so the default finds the
+  /// nearest node of an earlier pass along the same road and lane; the opposite direction is
+  /// another view, kept.
+  double place_radius_m = 2.0;
+  double place_angle_rad = 0.35;
   /// Candidates also from the place descriptor of every node (scan_context.h): among the
   /// old-enough nodes the graph puts within search_radius_m + max_drift_ratio × the distance
   /// driven between the two, the one whose descriptor is nearest (the nearest position is not

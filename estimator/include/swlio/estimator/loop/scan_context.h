@@ -112,6 +112,8 @@ class ScanContextDatabase {
   size_t Add(ScanContext descriptor);
   size_t size() const { return descriptors_.size(); }
   const ScanContext& at(size_t i) const { return descriptors_[i]; }
+  /// Frees descriptor i's memory; it stays in the index order and never matches again.
+  void Release(size_t i) { descriptors_[i] = ScanContext{}; }
 
   /// Up to `max_results` matches with distance < config.max_distance, best first (ties by
   /// index), considering only indices for which `allowed(i)` is true (e.g. old enough); an

@@ -77,7 +77,7 @@ class VoxelMap {
   };
   struct Voxel {
     Key key;
-    uint32_t count = 0;  ///< its points: pool_[Begin(v)], …, pool_[Begin(v) + count − 1]
+    uint32_t count = 0;  ///< its points: PointsOf(v)[0], …, PointsOf(v)[count − 1]
   };
 
   /// The cells around a query nearer than a bound, in search order: each one's key, squared
@@ -97,16 +97,29 @@ class VoxelMap {
   NearCells CellsWithin(const Eigen::Vector3d& query, double bound_sq) const;
   uint32_t FindOrAdd(const Key& key);
   void Reindex(size_t slot_count);
-  size_t Begin(uint32_t voxel) const { return size_t{voxel} * config_.max_points_per_voxel; }
+  /// Voxels per pool chunk (below).
+  static constexpr uint32_t kChunkVoxels = 512;
+  /// Voxel v's points: max_points_per_voxel slots, `count` of them used.
+  Eigen::Vector3d* PointsOf(uint32_t voxel) {
+    return pool_[voxel / kChunkVoxels].data() +
+           size_t{voxel % kChunkVoxels} * config_.max_points_per_voxel;
+  }
+  const Eigen::Vector3d* PointsOf(uint32_t voxel) const {
+    return pool_[voxel / kChunkVoxels].data() +
+           size_t{voxel % kChunkVoxels} * config_.max_points_per_voxel;
+  }
 
   VoxelMapConfig config_;
   // The voxels in a flat vector (in creation order) indexed by an open-addressing table with
   // linear probing (load ≤ 1/2): a query touches up to 27 cells, and std::unordered_map's
   // modulo and node chasing per lookup had cost more than the distances themselves. Their
   // points sit in one pool, max_points_per_voxel apiece (what each voxel's own vector used to
-  // reserve), so a voxel's points are one contiguous read with no pointer to follow.
+  // reserve), so a voxel's points are one contiguous read with no pointer to follow. The pool
+  // is chunks of kChunkVoxels voxels (issue 33, memory budget): one vector had doubled its
+  // capacity as the map grew, held the old and the new array at once while it moved them (the
+  // process's peak was that moment), and kept its capacity after RemoveFar.
   std::vector<Voxel> voxels_;
-  std::vector<Eigen::Vector3d> pool_;
+  std::vector<std::vector<Eigen::Vector3d>> pool_;
   std::vector<Slot> slots_;  ///< size a power of two
   int slot_bits_ = 0;
   size_t points_ = 0;
