@@ -40,7 +40,7 @@ size_t VoxelMap::Insert(const std::vector<Eigen::Vector3d>& points_world) {
   size_t stored = 0;
   for (const Eigen::Vector3d& p : points_world) {
     const uint32_t v = FindOrAdd(KeyOf(p));
-    uint32_t& count = voxels_[v].count;
+    uint32_t& count = counts_[v];
     if (count >= config_.max_points_per_voxel) continue;
     Eigen::Vector3d* points = pool_.data() + Begin(v);
     const bool crowded = std::any_of(points, points + count, [&](const Eigen::Vector3d& q) {
@@ -80,12 +80,51 @@ constexpr std::array<std::array<size_t, 3>, 27> kSearchSides = [] {
 
 }  // namespace
 
+namespace {
+
+/// The k best (distance², point) so far, sorted, in a fixed buffer: no allocation per query.
+class KBest {
+ public:
+  KBest(size_t k, double bound_sq) : k_(k), bound_sq_(bound_sq) {}
+  /// Squared distance a point must beat: the search's bound, then the k-th best once full.
+  double bound_sq() const { return bound_sq_; }
+  void Offer(const Eigen::Vector3d* points, uint32_t count, const Eigen::Vector3d& query) {
+    for (uint32_t j = 0; j < count; ++j) {
+      const Eigen::Vector3d& p = points[j];
+      const double d2 = (p - query).squaredNorm();
+      if (d2 >= bound_sq_) continue;
+      size_t at = n_;
+      while (at > 0 && best_[at - 1].first > d2) {
+        best_[at] = best_[at - 1];
+        --at;
+      }
+      best_[at] = {d2, &p};
+      if (n_ < k_) ++n_;
+      if (n_ == k_) bound_sq_ = best_[k_ - 1].first;
+    }
+  }
+  size_t CopyTo(std::vector<Eigen::Vector3d>* out) const {
+    for (size_t i = 0; i < n_; ++i) out->push_back(*best_[i].second);
+    return n_;
+  }
+
+ private:
+  std::array<std::pair<double, const Eigen::Vector3d*>, VoxelMap::kMaxNeighbours + 1> best_;
+  size_t n_ = 0;
+  size_t k_;
+  double bound_sq_;
+};
+
+}  // namespace
+
 // A query's cost is memory, not arithmetic: the 27 cells' index slots are hashed to random
-// places in a table of megabytes, and probed one after the other each miss waited for the one
-// before (perf: a quarter of Nearest's cycles on the slot load alone). So the search first
-// starts the loads of the slots of every cell within the distance bound, then probes them as
-// before: the misses overlap. The reads and their order are those of a plain search, so the
-// result is the same.
+// places in a table of megabytes, and each miss waited for the one before (perf: a quarter of
+// Nearest's cycles on the slot load alone). The query's own cell is searched first, as it
+// always was; when it holds k points, only the cells nearer than its k-th best are listed
+// after it, and their slot loads are started together: the misses overlap, and the cells
+// that cannot hold a closer point cost no memory traffic (before, all 27 slots were loaded). The
+// cells read and their order are those of a plain search in kSearchOrder (a skipped cell's box
+// distance is at least the bound, which only shrinks), so the result is the same.
 size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
                          size_t k,
                          double max_distance_m,
@@ -93,36 +132,24 @@ size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
   out->clear();
   k = std::min(k, kMaxNeighbours);
   if (k == 0 || slots_.empty()) return 0;
-  double bound_sq = max_distance_m * max_distance_m;  // the k-th best once full
-  const NearCells cells = CellsWithin(query, bound_sq);
-  // The k best (distance², point), sorted, in a fixed buffer: no allocation per query.
-  std::array<std::pair<double, const Eigen::Vector3d*>, kMaxNeighbours + 1> best;
-  size_t n = 0;
-  for (size_t i = 0; i < cells.size; ++i) {
-    if (cells.box_sq[i] >= bound_sq) continue;  // cannot hold a closer point
-    const uint32_t v = FindFrom(cells.key[i], cells.home[i]);
-    if (v == kNoVoxel) continue;
-    const Eigen::Vector3d* points = pool_.data() + Begin(v);
-    for (uint32_t j = 0; j < voxels_[v].count; ++j) {
-      const Eigen::Vector3d& p = points[j];
-      const double d2 = (p - query).squaredNorm();
-      if (d2 >= bound_sq) continue;
-      size_t at = n;
-      while (at > 0 && best[at - 1].first > d2) {
-        best[at] = best[at - 1];
-        --at;
-      }
-      best[at] = {d2, &p};
-      if (n < k) ++n;
-      if (n == k) bound_sq = best[k - 1].first;
-    }
+  KBest best(k, max_distance_m * max_distance_m);
+  const Key own = KeyOf(query);
+  if (best.bound_sq() > 0.0) {  // the own cell's box distance is 0
+    const uint32_t v = FindFrom(own, Home(own));
+    if (v != kNoVoxel) best.Offer(pool_.data() + Begin(v), counts_[v], query);
   }
-  for (size_t i = 0; i < n; ++i) out->push_back(*best[i].second);
-  return n;
+  const NearCells cells = CellsWithin(query, own, best.bound_sq());
+  for (size_t i = 0; i < cells.size; ++i) {
+    if (cells.box_sq[i] >= best.bound_sq()) continue;  // cannot hold a closer point
+    const uint32_t v = FindFrom(cells.key[i], cells.home[i]);
+    if (v != kNoVoxel) best.Offer(pool_.data() + Begin(v), counts_[v], query);
+  }
+  return best.CopyTo(out);
 }
 
-VoxelMap::NearCells VoxelMap::CellsWithin(const Eigen::Vector3d& query, double bound_sq) const {
-  const Key c = KeyOf(query);
+VoxelMap::NearCells VoxelMap::CellsWithin(const Eigen::Vector3d& query,
+                                          const Key& c,
+                                          double bound_sq) const {
   // Per axis, for the cells below, its own and above: the squared gap from the query (a cell's
   // squared distance from the query is the sum of its three offsets' gaps) and the axis's term
   // of the hash (AxisHash: a cell's hash is the exclusive or of its three).
@@ -139,7 +166,7 @@ VoxelMap::NearCells VoxelMap::CellsWithin(const Eigen::Vector3d& query, double b
     }
   }
   NearCells cells;
-  for (size_t cell = 0; cell < kSearchOrder.size(); ++cell) {
+  for (size_t cell = 1; cell < kSearchOrder.size(); ++cell) {  // 0, the own cell: searched
     const std::array<size_t, 3>& side = kSearchSides[cell];
     const double box_sq = gap_sq[0][side[0]] + gap_sq[1][side[1]] + gap_sq[2][side[2]];
     if (box_sq >= bound_sq) continue;
@@ -156,9 +183,9 @@ VoxelMap::NearCells VoxelMap::CellsWithin(const Eigen::Vector3d& query, double b
 std::vector<Eigen::Vector3d> VoxelMap::Points() const {
   std::vector<Eigen::Vector3d> out;
   out.reserve(points_);
-  for (uint32_t v = 0; v < voxels_.size(); ++v) {
+  for (uint32_t v = 0; v < keys_.size(); ++v) {
     const Eigen::Vector3d* points = pool_.data() + Begin(v);
-    out.insert(out.end(), points, points + voxels_[v].count);
+    out.insert(out.end(), points, points + counts_[v]);
   }
   return out;
 }
@@ -169,25 +196,27 @@ size_t VoxelMap::RemoveFar(const Eigen::Vector3d& center_world) {
   // Compacts voxels and their points in place, keeping the survivors' order, then rebuilds
   // the index.
   uint32_t kept = 0;
-  for (uint32_t v = 0; v < voxels_.size(); ++v) {
-    const Voxel& voxel = voxels_[v];
+  for (uint32_t v = 0; v < keys_.size(); ++v) {
+    const Key key = keys_[v];
+    const uint32_t count = counts_[v];
     const Eigen::Vector3d centre =
-        (Eigen::Vector3d(voxel.key.x, voxel.key.y, voxel.key.z) + Eigen::Vector3d::Constant(0.5)) *
-        config_.voxel_m;
+        (Eigen::Vector3d(key.x, key.y, key.z) + Eigen::Vector3d::Constant(0.5)) * config_.voxel_m;
     if ((centre - center_world).squaredNorm() > r2) {
-      removed += voxel.count;
+      removed += count;
       continue;
     }
     if (kept != v) {
       const Eigen::Vector3d* from = pool_.data() + Begin(v);
-      std::copy(from, from + voxel.count,
+      std::copy(from, from + count,
                 pool_.data() + Begin(kept));  // kept < v: the target starts first
-      voxels_[kept] = voxel;
+      keys_[kept] = key;
+      counts_[kept] = count;
     }
     ++kept;
   }
-  if (kept == voxels_.size()) return 0;
-  voxels_.resize(kept);
+  if (kept == keys_.size()) return 0;
+  keys_.resize(kept);
+  counts_.resize(kept);
   pool_.resize(Begin(kept));
   Reindex(slots_.size());
   points_ -= removed;
@@ -219,15 +248,16 @@ uint32_t VoxelMap::FindFrom(const Key& key, size_t home) const {
 }
 
 uint32_t VoxelMap::FindOrAdd(const Key& key) {
-  if (2 * (voxels_.size() + 1) > slots_.size()) Reindex(std::max<size_t>(64, 2 * slots_.size()));
+  if (2 * (keys_.size() + 1) > slots_.size()) Reindex(std::max<size_t>(64, 2 * slots_.size()));
   const size_t mask = slots_.size() - 1;
   size_t s = Home(key);
   for (; slots_[s].voxel != kNoVoxel; s = (s + 1) & mask) {
     if (slots_[s].key == key) return slots_[s].voxel;
   }
-  const auto v = static_cast<uint32_t>(voxels_.size());
+  const auto v = static_cast<uint32_t>(keys_.size());
   slots_[s] = {key, v};
-  voxels_.push_back({key, 0});
+  keys_.push_back(key);
+  counts_.push_back(0);
   pool_.resize(Begin(v + 1));
   return v;
 }
@@ -236,10 +266,10 @@ void VoxelMap::Reindex(size_t slot_count) {
   slot_bits_ = std::countr_zero(slot_count);  // slot_count is a power of two
   slots_.assign(slot_count, {});
   const size_t mask = slot_count - 1;
-  for (uint32_t v = 0; v < voxels_.size(); ++v) {
-    size_t s = Home(voxels_[v].key);
+  for (uint32_t v = 0; v < keys_.size(); ++v) {
+    size_t s = Home(keys_[v]);
     while (slots_[s].voxel != kNoVoxel) s = (s + 1) & mask;
-    slots_[s] = {voxels_[v].key, v};
+    slots_[s] = {keys_[v], v};
   }
 }
 

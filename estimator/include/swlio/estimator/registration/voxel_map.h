@@ -61,7 +61,7 @@ class VoxelMap {
   }
 
   size_t size() const { return points_; }
-  size_t voxels() const { return voxels_.size(); }
+  size_t voxels() const { return keys_.size(); }
 
  private:
   struct Key {
@@ -73,15 +73,11 @@ class VoxelMap {
   /// missing an empty cell (most of a query's 27) never touch the voxels themselves.
   struct Slot {
     Key key;
-    uint32_t voxel = kNoVoxel;  ///< index into voxels_, or kNoVoxel when empty
-  };
-  struct Voxel {
-    Key key;
-    uint32_t count = 0;  ///< its points: pool_[Begin(v)], …, pool_[Begin(v) + count − 1]
+    uint32_t voxel = kNoVoxel;  ///< index into keys_ and counts_, or kNoVoxel when empty
   };
 
-  /// The cells around a query nearer than a bound, in search order: each one's key, squared
-  /// distance from the query and home slot (whose load has been started).
+  /// The cells around a query (but its own) nearer than a bound, in search order: each one's
+  /// key, squared distance from the query and home slot (whose load has been started).
   struct NearCells {
     std::array<Key, 27> key;
     std::array<double, 27> box_sq;
@@ -94,18 +90,21 @@ class VoxelMap {
   size_t Home(const Key& key) const;                    ///< first probe of `key` in slots_
   /// Voxel index of `key`, or kNoVoxel, probing from its home slot (slots_ not empty).
   uint32_t FindFrom(const Key& key, size_t home) const;
-  NearCells CellsWithin(const Eigen::Vector3d& query, double bound_sq) const;
+  NearCells CellsWithin(const Eigen::Vector3d& query, const Key& own, double bound_sq) const;
   uint32_t FindOrAdd(const Key& key);
   void Reindex(size_t slot_count);
   size_t Begin(uint32_t voxel) const { return size_t{voxel} * config_.max_points_per_voxel; }
 
   VoxelMapConfig config_;
-  // The voxels in a flat vector (in creation order) indexed by an open-addressing table with
+  // The voxels in flat vectors (in creation order) indexed by an open-addressing table with
   // linear probing (load ≤ 1/2): a query touches up to 27 cells, and std::unordered_map's
   // modulo and node chasing per lookup had cost more than the distances themselves. Their
   // points sit in one pool, max_points_per_voxel apiece (what each voxel's own vector used to
-  // reserve), so a voxel's points are one contiguous read with no pointer to follow.
-  std::vector<Voxel> voxels_;
+  // reserve), so a voxel's points are one contiguous read with no pointer to follow. The
+  // counts, which a query reads, apart from the keys, which it does not: 4 bytes a voxel
+  // stay in cache where key and count together took 16.
+  std::vector<Key> keys_;
+  std::vector<uint32_t> counts_;  ///< voxel v's points: pool_[Begin(v)], …, + counts_[v] − 1
   std::vector<Eigen::Vector3d> pool_;
   std::vector<Slot> slots_;  ///< size a power of two
   int slot_bits_ = 0;
