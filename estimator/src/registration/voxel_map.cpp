@@ -124,7 +124,9 @@ class KBest {
 // after it, and their slot loads are started together: the misses overlap, and the cells
 // that cannot hold a closer point cost no memory traffic (before, all 27 slots were loaded). The
 // cells read and their order are those of a plain search in kSearchOrder (a skipped cell's box
-// distance is at least the bound, which only shrinks), so the result is the same.
+// distance is at least the bound, which only shrinks), so the result is the same. Measured no
+// faster than starting all 27 (docs/notes/2026-12-03-per-sweep-5ms.md): the own cell's misses
+// are now waited for first.
 size_t VoxelMap::Nearest(const Eigen::Vector3d& query,
                          size_t k,
                          double max_distance_m,
