@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 
 namespace swlio::estimator {
 namespace {
@@ -132,17 +133,22 @@ void FeatureExtractor::SelectSector(const SegmentationResult& s,
                                     size_t begin,
                                     size_t end,
                                     FeatureSet* out) {
-  // Sort keys: the smoothness's IEEE bits (c ≥ 0, so they order as integers) above the index.
+  // Keys: the smoothness's IEEE bits (c ≥ 0, so they order as integers) above the index, so
+  // all differ. The edges are taken from the largest down and the flats from the smallest up,
+  // each loop stopping after a few (20 and 4 of ~170 points): a heap yields the keys in the
+  // same order as the sorted sector did, one at a time, for O(n) to build it instead of a
+  // sort's O(n log n) (perf: the sort had been ~3.5 % of swlio-run's cycles).
   const auto first = order_.begin() + static_cast<std::ptrdiff_t>(begin);
   const auto last = order_.begin() + static_cast<std::ptrdiff_t>(end);
   for (size_t i = begin; i < end; ++i) {
     order_[i] = (uint64_t{std::bit_cast<uint32_t>(curvature_[i])} << 32) | i;
   }
-  std::sort(first, last);
   constexpr uint8_t kBlocked = kNoWindow | kUnreliable | kPicked;
+  std::make_heap(first, last);  // largest on top
   int64_t edges = 0;
-  for (auto it = last; it != first && edges < config_.max_edges_per_sector;) {
-    const auto i = static_cast<uint32_t>(*--it);
+  for (auto top = last; top != first && edges < config_.max_edges_per_sector;) {
+    std::pop_heap(first, top--);
+    const auto i = static_cast<uint32_t>(*top);
     if (curvature_[i] <= config_.edge_threshold_m2) break;
     if ((flags_[i] & kBlocked) != 0 || s.points[i].label == kLabelGround) continue;
     const FeaturePoint f = ToFeature(s.points[i], curvature_[i]);
@@ -151,9 +157,11 @@ void FeatureExtractor::SelectSector(const SegmentationResult& s,
     flags_[i] |= kPicked | kEdge;
     Suppress(s, i);
   }
+  std::make_heap(first, last, std::greater<>{});  // smallest on top
   int64_t flats = 0;
-  for (auto it = first; it != last && flats < config_.max_flat_planes_per_sector; ++it) {
-    const auto i = static_cast<uint32_t>(*it);
+  for (auto top = last; top != first && flats < config_.max_flat_planes_per_sector;) {
+    std::pop_heap(first, top--, std::greater<>{});
+    const auto i = static_cast<uint32_t>(*top);
     if (curvature_[i] >= config_.planar_threshold_m2) break;
     if ((flags_[i] & kBlocked) != 0) continue;
     out->planes_flat.push_back(ToFeature(s.points[i], curvature_[i]));

@@ -37,6 +37,43 @@ TEST(VoxelMap, NearestMatchesBruteForce) {
   }
 }
 
+// The registration's case (lidar_odometry.h: 0.5 m cells, ≤ 10 points 0.1 m apart; k = 6 within
+// 1.5 m): points on surfaces. Most of the 26 cells around the query's own are never searched;
+// queries near cell faces, edges and corners, and off the surfaces (own cell empty), need some.
+// Against brute force over every stored point.
+TEST(VoxelMap, NearestMatchesBruteForceOnSurfaces) {
+  VoxelMap map({.voxel_m = 0.5, .max_points_per_voxel = 10});
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-4.0, 4.0);
+  std::vector<Eigen::Vector3d> surface;
+  for (int i = 0; i < 20000; ++i) {
+    const double a = u(rng);
+    const double b = u(rng);
+    surface.emplace_back(a, b, 0.05 * a);         // a sloped floor
+    surface.emplace_back(1.3, a, 2.0 + 0.5 * b);  // a wall
+  }
+  map.Insert(surface);
+  const std::vector<Eigen::Vector3d> stored = map.Points();
+  ASSERT_GT(stored.size(), 1000u);
+  std::vector<Eigen::Vector3d> got;
+  size_t from_other_cells = 0;
+  for (const Eigen::Vector3d& q : RandomPoints(2000, 4.5, 8)) {
+    const Eigen::Vector3d query(q.x(), q.y(), 0.06 * q.z() + 0.05 * q.x());  // near the floor
+    map.Nearest(query, 6, 1.5, &got);
+    std::vector<std::pair<double, Eigen::Vector3d>> d;
+    for (const Eigen::Vector3d& p : stored) {
+      if ((p - query).norm() < 1.5) d.emplace_back((p - query).squaredNorm(), p);
+    }
+    std::sort(d.begin(), d.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    ASSERT_EQ(got.size(), std::min<size_t>(6, d.size()));
+    for (size_t i = 0; i < got.size(); ++i) {
+      EXPECT_EQ((got[i] - query).squaredNorm(), d[i].first);
+      from_other_cells += map.SameVoxel(got[i], query) ? 0 : 1;
+    }
+  }
+  EXPECT_GT(from_other_cells, 1000u);  // the neighbouring cells were needed, and searched
+}
+
 TEST(VoxelMap, BoundsPointsPerVoxelSpacingAndRadius) {
   VoxelMapConfig config;
   config.voxel_m = 1.0;
