@@ -3,7 +3,10 @@
 Markdown row with --row: what the simulator sent and how late, what the daemon lost, how old
 each pose was when a subscriber took it, the accuracy, and the daemon's CPU and memory.
 
-Usage: scripts/live_figures.py WORK [--label TEXT] [--row]
+Usage: scripts/live_figures.py WORK [--label TEXT] [--row | --cpu-row | --cpu-header]
+
+--cpu-row: the daemon's CPU per thread (cores: CPU seconds per second of the drive) and its
+peak RSS, as a Markdown row under --cpu-header's.
 
 Pose age is measured from the moment the IMU sample's frame went into the serial line
 (WORK/sim/imu_writes.csv, written by the simulator) to the moment swlio-echo took the pose
@@ -94,6 +97,10 @@ def cpu_memory(work):
             "peak_rss_mb": round(int(info["vmhwm_kb"][0]) / 1024, 1)}
 
 
+CPU_THREADS = ["optimizer", "lidar_rx", "imu_rx", "propagator", "publisher", "recorder",
+               "loop_closure", "localization"]
+
+
 def main():
     args = sys.argv[1:]
     work = args[0]
@@ -111,6 +118,17 @@ def main():
     fig["ape_odometry_m"] = ape(work, build, "odometry.tum")
     fig["ape_replay_m"] = ape(work, build, "replay.tum")
     fig.update(cpu_memory(work))
+    if "--cpu-header" in args:
+        print("| run | cores | " + " | ".join(CPU_THREADS) + " | other (DDS, main) | peak RSS (MB) |")
+        print("|---" * (len(CPU_THREADS) + 4) + "|")
+        return
+    if "--cpu-row" in args:
+        by = cpu_memory(work).get("cpu_by_thread", {})
+        other = sum(v for k, v in by.items() if k not in CPU_THREADS)
+        cells = [f"{by[k]:.3f}" if k in by else "–" for k in CPU_THREADS]
+        print(f"| {label} | {cpu_memory(work).get('cpu_core_avg', '–')} | " + " | ".join(cells) +
+              f" | {other:.3f} | {cpu_memory(work).get('peak_rss_mb', '–')} |")
+        return
     if "--row" in args:
         g = lambda k: "–" if fig.get(k) is None else fig[k]
         f4 = lambda k: "–" if fig.get(k) is None else f"{fig[k]:.4f}"
