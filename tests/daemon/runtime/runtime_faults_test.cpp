@@ -125,9 +125,9 @@ TEST(RuntimeFaults, ImuGapIsCountedAndRiddenThrough) {
 
 // The IMU's bytes are held for 6 s (a kernel tty worker starved that long, measured here under
 // load: docs/notes/2026-12-03-busy-machine.md) and then arrive at once, ~2,400 samples in a
-// few reads. None is lost inside the daemon (no queue drops, though 2,400 exceed the 2,048 the
-// IMU sample queue once held), the lateness is no clock jump, the stale samples give one pose
-// per read, the sweeps that waited are thinned, and tracking goes on.
+// few reads (the pty paces them: each read takes at most 4 KiB). None is lost inside the daemon
+// (no queue drops), the lateness is no clock jump, the stale samples give one pose per read,
+// the sweeps that waited are thinned, and tracking goes on.
 TEST(RuntimeFaults, ASerialStallOfSecondsLosesNoSampleAndIsNoClockJump) {
   LiveDrive drive = Drive(14.0, 156);
   drive.faults.serial_stalls = {{5.0, 6.0}};
