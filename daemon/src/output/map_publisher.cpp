@@ -48,14 +48,24 @@ std::optional<MapCloud> BuildMapCloud(const estimator::SavedMap& map,
                                       double start_voxel_m,
                                       std::string* error,
                                       const Watchdog::Handle& beat) {
+  const MergeFn merge = [&map](double voxel_m, std::string* why) {
+    return estimator::MergedMapCloud(map, voxel_m, why);
+  };
+  return BuildMapCloud(merge, max_points, start_voxel_m, error, beat);
+}
+
+std::optional<MapCloud> BuildMapCloud(const MergeFn& merge,
+                                      size_t max_points,
+                                      double start_voxel_m,
+                                      std::string* error,
+                                      const Watchdog::Handle& beat) {
   max_points = std::max<size_t>(max_points, 1);
   MapCloud cloud;
   cloud.voxel_m = std::max(start_voxel_m, estimator::kMergedCloudVoxelM);
   double previous_m = 0.0;
   size_t previous_n = 0;
   for (;;) {
-    std::optional<std::vector<Eigen::Vector3f>> points =
-        estimator::MergedMapCloud(map, cloud.voxel_m, error);
+    std::optional<std::vector<Eigen::Vector3f>> points = merge(cloud.voxel_m, error);
     beat.Beat();
     if (!points) return std::nullopt;
     cloud.points_map = std::move(*points);
@@ -98,12 +108,22 @@ MapPublisher::MapPublisher(ipc::Publisher* publisher,
 bool MapPublisher::Publish(const estimator::SavedMap& map,
                            const Watchdog::Handle& beat,
                            double snapshot_ms) {
+  const MergeFn merge = [&map](double voxel_m, std::string* error) {
+    return estimator::MergedMapCloud(map, voxel_m, error);
+  };
+  return Publish(merge, map.nodes.size(), beat, snapshot_ms);
+}
+
+bool MapPublisher::Publish(const MergeFn& merge,
+                           size_t nodes,
+                           const Watchdog::Handle& beat,
+                           double snapshot_ms) {
   constexpr auto kRelaxed = std::memory_order_relaxed;
   const int64_t t0 = MonotonicNowNs();
   changed_ = false;
   next_ns_ = t0 + period_ns_;
   std::string error;
-  const std::optional<MapCloud> cloud = BuildMapCloud(map, max_points_, voxel_m_, &error, beat);
+  const std::optional<MapCloud> cloud = BuildMapCloud(merge, max_points_, voxel_m_, &error, beat);
   last_failed_.store(!cloud, kRelaxed);
   if (!cloud) {
     failures_.fetch_add(1, kRelaxed);
@@ -135,7 +155,7 @@ bool MapPublisher::Publish(const estimator::SavedMap& map,
   spdlog::info(
       "map: {} points from {} nodes (voxel {:.2f} m{}), {:.1f} MB, built in {:.0f} ms, written "
       "in {:.0f} ms",
-      msg.width, map.nodes.size(), cloud->voxel_m,
+      msg.width, nodes, cloud->voxel_m,
       cloud->keep_every > 1 ? fmt::format(", every {}th point", cloud->keep_every) : "",
       static_cast<double>(msg.data.size()) * 1e-6, build_ms, write_ms);
   return true;

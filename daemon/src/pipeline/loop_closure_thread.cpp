@@ -109,10 +109,12 @@ void LoopClosureThread::PublishGnssCounters() {
 
 void LoopClosureThread::PublishMapIfDue(const Watchdog::Handle& beat) {
   if (map_ == nullptr || !map_->Due(MonotonicNowNs())) return;
-  const int64_t t0 = MonotonicNowNs();
-  const estimator::SavedMap map = closure_.ToSavedMap();
-  beat.Beat();
-  map_->Publish(map, beat, static_cast<double>(MonotonicNowNs() - t0) * 1e-6);
+  // Merged straight from the graph's store: a SavedMap copy of every cloud in double first
+  // was the daemon's largest transient (docs/notes/2026-12-04-memory-budget.md).
+  const MergeFn merge = [this](double voxel_m, std::string* error) {
+    return closure_.MergedCloud(voxel_m, error);
+  };
+  map_->Publish(merge, closure_.map_nodes(), beat);
 }
 
 size_t LoopClosureThread::SaveMap(const std::string& path,

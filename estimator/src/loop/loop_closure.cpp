@@ -5,6 +5,7 @@
 
 #include "swlio/core/lie.h"
 #include "swlio/estimator/loop/keyframe_descriptor.h"  // KeyframeDescriptor
+#include "swlio/estimator/map/merged_cloud_builder.h"
 
 namespace swlio::estimator {
 namespace {
@@ -229,6 +230,23 @@ SavedMap LoopClosure::ToSavedMap() const {
                          store_.Planes(i, I), store_.Edges(i, I), descriptors_.at(i).cells});
   }
   return map;
+}
+
+std::optional<std::vector<Eigen::Vector3f>> LoopClosure::MergedCloud(double voxel_m,
+                                                                     std::string* error) const {
+  MergedCloudBuilder builder(voxel_m);
+  while (builder.NextPass()) {
+    for (size_t i = 0; i < nodes_.size(); ++i) {
+      if (!store_.has_cloud(i)) continue;
+      const KeyframeCloud& n = nodes_[i];
+      store_.Visit(i, [&](const std::vector<Eigen::Vector3f>& planes_lidar,
+                          const std::vector<Eigen::Vector3f>& edges_lidar) {
+        builder.AddNode(CorrectedPose(n.t_ns, n.T_world_imu) * n.T_imu_lidar, planes_lidar,
+                        edges_lidar);
+      });
+    }
+  }
+  return builder.Finish(error);
 }
 
 bool LoopClosure::ChooseCandidate(size_t newest, LoopAttempt* attempt, Eigen::Isometry3d* guess) {

@@ -1,7 +1,5 @@
 #include "swlio/estimator/map/map_pcd.h"
 
-#include <algorithm>
-#include <array>
 #include <bit>
 #include <cmath>
 #include <filesystem>
@@ -10,62 +8,13 @@
 #include <system_error>
 #include <vector>
 
+#include "swlio/estimator/map/merged_cloud_builder.h"
+
 namespace swlio::estimator {
 namespace {
 
-struct CellPoint {
-  std::array<int64_t, 3> cell;
-  Eigen::Vector3d p_map;
-};
-
 void SetPcdError(std::string* error, std::string message) {
   if (error != nullptr) *error = std::move(message);
-}
-
-// Every feature point in the map frame with its voxel; "" or what is wrong.
-std::string Gather(const SavedMap& map, double voxel_m, std::vector<CellPoint>* out) {
-  size_t total = 0;
-  for (const SavedMapNode& node : map.nodes)
-    total += node.planes_lidar.size() + node.edges_lidar.size();
-  out->reserve(total);
-  for (size_t i = 0; i < map.nodes.size(); ++i) {
-    const SavedMapNode& node = map.nodes[i];
-    const Eigen::Isometry3d T_map_lidar = node.T_map_imu * node.T_imu_lidar;
-    for (const auto* points : {&node.planes_lidar, &node.edges_lidar}) {
-      for (const Eigen::Vector3d& p_lidar : *points) {
-        const Eigen::Vector3d p_map = T_map_lidar * p_lidar;
-        if (!p_map.allFinite() || p_map.cwiseAbs().maxCoeff() > kMergedCloudMaxCoordinateM) {
-          return "node " + std::to_string(i) + ": a point in the map frame is not finite or " +
-                 "beyond " + std::to_string(kMergedCloudMaxCoordinateM) + " m";
-        }
-        CellPoint cp{{}, p_map};
-        for (size_t a = 0; a < 3; ++a) {
-          cp.cell[a] =
-              static_cast<int64_t>(std::floor(p_map[static_cast<Eigen::Index>(a)] / voxel_m));
-        }
-        out->push_back(cp);
-      }
-    }
-  }
-  return {};
-}
-
-// One centroid per voxel, in voxel order. The stable sort keeps each voxel's points in map
-// order, so the sums (and the output) do not depend on the sort's implementation.
-std::vector<Eigen::Vector3f> Centroids(std::vector<CellPoint>* points) {
-  std::stable_sort(points->begin(), points->end(),
-                   [](const CellPoint& a, const CellPoint& b) { return a.cell < b.cell; });
-  std::vector<Eigen::Vector3f> centroids;
-  for (size_t begin = 0; begin < points->size();) {
-    size_t end = begin;
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    while (end < points->size() && (*points)[end].cell == (*points)[begin].cell) {
-      sum += (*points)[end++].p_map;
-    }
-    centroids.push_back((sum / static_cast<double>(end - begin)).cast<float>());
-    begin = end;
-  }
-  return centroids;
 }
 
 void WritePcd(std::ostream& out, const std::vector<Eigen::Vector3f>& points) {
@@ -98,19 +47,12 @@ void WritePcd(std::ostream& out, const std::vector<Eigen::Vector3f>& points) {
 std::optional<std::vector<Eigen::Vector3f>> MergedMapCloud(const SavedMap& map,
                                                            double voxel_m,
                                                            std::string* error) {
-  if (!std::isfinite(voxel_m) || voxel_m < kMergedCloudMinVoxelM) {
-    SetPcdError(error, "merged cloud: voxel size " + std::to_string(voxel_m) +
-                           " m must be finite and at least " +
-                           std::to_string(kMergedCloudMinVoxelM) + " m");
-    return std::nullopt;
+  MergedCloudBuilder builder(voxel_m);
+  while (builder.NextPass()) {
+    for (const SavedMapNode& node : map.nodes)
+      builder.AddNode(node.T_map_imu * node.T_imu_lidar, node.planes_lidar, node.edges_lidar);
   }
-  std::vector<CellPoint> points;
-  const std::string issue = Gather(map, voxel_m, &points);
-  if (!issue.empty()) {
-    SetPcdError(error, "merged cloud: " + issue);
-    return std::nullopt;
-  }
-  return Centroids(&points);
+  return builder.Finish(error);
 }
 
 long WriteMergedPcd(std::ostream& out, const SavedMap& map, double voxel_m, std::string* error) {

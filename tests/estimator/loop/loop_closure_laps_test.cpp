@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "box_yard.h"
 #include "swlio/estimator/loop/loop_closure.h"
+#include "swlio/estimator/map/map_pcd.h"
 
 namespace swlio::estimator {
 namespace {
@@ -27,10 +29,13 @@ struct LapCounts {
 };
 
 /// Drives `laps` laps (0.5 s per 0.5 m step, the truth as odometry) and counts after each.
-std::vector<LapCounts> DriveLaps(const LoopClosureConfig& config, int laps) {
+std::vector<LapCounts> DriveLaps(const LoopClosureConfig& config,
+                                 int laps,
+                                 LoopClosure* driven = nullptr) {
   const Scene scene = BoxYard(7);
   const std::vector<Eigen::Isometry3d> lap = RectangleDrive(0.0);
-  LoopClosure closure{config};
+  LoopClosure own{config};
+  LoopClosure& closure = driven != nullptr ? *driven : own;
   std::vector<LapCounts> out;
   int64_t t_ns = 0;
   for (int l = 0; l < laps; ++l) {
@@ -69,6 +74,30 @@ TEST(LoopClosureLaps, WithoutPlacesTheStoreGrowsEveryLap) {
   const std::vector<LapCounts> c = DriveLaps(config, 2);
   EXPECT_EQ(c[1].clouds, c[1].nodes);
   EXPECT_GT(c[1].bytes, c[0].bytes + c[0].bytes / 2);
+}
+
+// swliod publishes the map merged straight from the store (LoopClosure::MergedCloud): it must
+// be the saved map's cloud to the last bit, loop corrections included.
+TEST(LoopClosureLaps, MergedCloudFromTheStoreIsTheSavedMapsCloud) {
+  LoopClosure closure{LoopClosureConfig{}};
+  const std::vector<LapCounts> c = DriveLaps(LoopClosureConfig{}, 2, &closure);
+  ASSERT_GT(c[1].accepted, 0u);  // corrected poses, not only odometry
+  EXPECT_EQ(closure.map_nodes(), c[1].saved_nodes);
+  for (const double voxel_m : {0.1, 0.37}) {
+    std::string error_store, error_saved;
+    const auto from_store = closure.MergedCloud(voxel_m, &error_store);
+    const auto from_saved = MergedMapCloud(closure.ToSavedMap(), voxel_m, &error_saved);
+    ASSERT_TRUE(from_store.has_value()) << error_store;
+    ASSERT_TRUE(from_saved.has_value()) << error_saved;
+    ASSERT_GT(from_store->size(), 1000u);
+    ASSERT_EQ(from_store->size(), from_saved->size());
+    for (size_t i = 0; i < from_store->size(); ++i) {
+      ASSERT_EQ((*from_store)[i], (*from_saved)[i]) << "point " << i << " at " << voxel_m << " m";
+    }
+  }
+  std::string error;
+  EXPECT_FALSE(closure.MergedCloud(0.0, &error).has_value());
+  EXPECT_NE(error.find("voxel size"), std::string::npos) << error;
 }
 
 }  // namespace

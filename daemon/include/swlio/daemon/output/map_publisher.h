@@ -24,6 +24,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,9 +49,20 @@ struct MapCloud {
   int builds = 0;                           ///< MergedMapCloud calls it took
 };
 
-/// Merges `map` into at most `max_points` points (≥ 1), starting at `start_voxel_m` (the rule
-/// above), beating `beat` after each merge. std::nullopt with *error when MergedMapCloud
+/// One merge of a map at a voxel size: estimator::MergedMapCloud of a SavedMap, or
+/// LoopClosure::MergedCloud of the graph's own store (no copy of it).
+using MergeFn =
+    std::function<std::optional<std::vector<Eigen::Vector3f>>(double voxel_m, std::string* error)>;
+
+/// Merges the map into at most `max_points` points (≥ 1), starting at `start_voxel_m` (the
+/// rule above), beating `beat` after each merge. std::nullopt with *error when the merge
 /// refuses the map (a non-finite or far point).
+std::optional<MapCloud> BuildMapCloud(const MergeFn& merge,
+                                      size_t max_points,
+                                      double start_voxel_m,
+                                      std::string* error,
+                                      const Watchdog::Handle& beat = {});
+/// The same for a SavedMap.
 std::optional<MapCloud> BuildMapCloud(const estimator::SavedMap& map,
                                       size_t max_points,
                                       double start_voxel_m,
@@ -90,6 +102,11 @@ class MapPublisher {
   /// poses' clock) at which the build started. `snapshot_ms`: what making `map` took (counted
   /// in build_ms). Beats `beat` between the stages. False when nothing was written.
   bool Publish(const estimator::SavedMap& map,
+               const Watchdog::Handle& beat,
+               double snapshot_ms = 0.0);
+  /// The same for a map given by its merge and its node count (for the log).
+  bool Publish(const MergeFn& merge,
+               size_t nodes,
                const Watchdog::Handle& beat,
                double snapshot_ms = 0.0);
 

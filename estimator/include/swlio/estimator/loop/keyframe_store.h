@@ -34,6 +34,11 @@ class KeyframeStore {
   /// Node i's points moved by `T` (e.g. into a submap's frame), in double.
   std::vector<Eigen::Vector3d> Planes(size_t i, const Eigen::Isometry3d& T) const;
   std::vector<Eigen::Vector3d> Edges(size_t i, const Eigen::Isometry3d& T) const;
+  /// `visit(planes_lidar, edges_lidar)` on node i's stored points, without a copy.
+  template <typename Fn>
+  void Visit(size_t i, Fn&& visit) const {
+    visit(clouds_[i].planes_lidar, clouds_[i].edges_lidar);
+  }
 
  private:
   struct Cloud {

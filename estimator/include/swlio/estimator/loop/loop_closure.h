@@ -28,6 +28,7 @@
 #include <deque>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "swlio/core/types.h"
@@ -108,6 +109,11 @@ class LoopClosure {
   /// The map to save (saved_map.h): every node that keeps a cloud, at its current map pose,
   /// with its features and descriptor.
   SavedMap ToSavedMap() const;
+  /// MergedMapCloud(ToSavedMap(), voxel_m, error) (map_pcd.h), the same cloud to the last bit,
+  /// without the SavedMap copy of every cloud in double.
+  std::optional<std::vector<Eigen::Vector3f>> MergedCloud(double voxel_m, std::string* error) const;
+  /// The nodes ToSavedMap would hold (those that keep a cloud).
+  size_t map_nodes() const { return store_.clouds(); }
 
  private:
   bool IsNewNode(const KeyframeCloud& keyframe) const;
