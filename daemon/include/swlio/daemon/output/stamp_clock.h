@@ -84,7 +84,8 @@ class StampClock {
 
   /// Samples the offset; the step when it jumped by more than a slew can explain.
   std::optional<WallClockStep> Update();
-  /// A daemon (monotonic host) time as the message stamp.
+  /// A host time (CLOCK_MONOTONIC; a --time-scale'd daemon time goes back to host time first)
+  /// as the message stamp.
   int64_t ToStamp(int64_t t_monotonic_ns) const {
     return realtime_ ? t_monotonic_ns + offset_ns_.load(std::memory_order_relaxed) : t_monotonic_ns;
   }
