@@ -190,10 +190,14 @@ TEST(Runtime, AWallClockStepMovesTheStampsOnly) {
   const double driven_m =
       (r.setup->trajectory->At(t1_s).p_world - r.setup->trajectory->At(t0_s).p_world).norm();
   EXPECT_GT(driven_m, 1.0) << "the step comes while driving";
-  // Only when the simulator kept its schedule: sent late, its samples' receive times are not
-  // its simulation times (a loaded machine saw 1.6 s late, 0.65 m off).
-  if (!test::kSanitized && r.stats.max_lateness_ms < 50.0) {
-    EXPECT_NEAR((estimated(t1_s) - estimated(t0_s)).norm(), driven_m, 0.05)
+  // Only when the simulator kept its schedule: sent seconds late, its samples' receive times are
+  // not its simulation times (a loaded machine: 1.5 s late, 0.65 and 1.0 m off; 0.13 and 0.27 s
+  // late, 1.5 cm).
+  const double estimated_m = (estimated(t1_s) - estimated(t0_s)).norm();
+  std::cout << "[ note ] driven across the step: " << estimated_m << " m estimated, " << driven_m
+            << " m true\n";
+  if (!test::kSanitized && r.stats.max_lateness_ms < 200.0) {
+    EXPECT_NEAR(estimated_m, driven_m, 0.05)
         << "driven from " << t0_s << " to " << t1_s << " s of simulation time";
   }
   // The estimator and the sensor clock models run on CLOCK_MONOTONIC: nothing happened.
