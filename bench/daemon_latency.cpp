@@ -100,6 +100,7 @@ int Run(const std::string& scenario,
   config.imu.configure_on_start = false;
   config.ipc.domain_id = 160;  // apart from every test's (tests/daemon/runtime/live_drive.h)
   config.ipc.dds_config_file = xml;
+  config.ipc.stamp_clock = "monotonic";  // stamps against the simulator's CLOCK_MONOTONIC
   config.realtime = ShippedScheduling(realtime, plain);
   swlio::daemon::RuntimeOptions options;
   options.T_imu_lidar = setup->lidar.T_imu_lidar;

@@ -39,6 +39,7 @@ estimator:
     enabled: {loop_closure}
 ipc:
   dds_config_file: {root}/config/cyclonedds-loopback.xml
+  stamp_clock: monotonic   # the simulator's ground truth is on CLOCK_MONOTONIC
 logging:
   directory: {work}/log
   stderr_level: warn

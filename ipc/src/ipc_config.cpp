@@ -32,6 +32,8 @@ ConfigIssues IpcConfig::Validate() const {
   // 10 M points × 16 bytes still fits the uint32 row_step of sensor_msgs/PointCloud2.
   CheckInRange<int64_t>(issues, "map_max_points", map_max_points, 1'000, 10'000'000);
   CheckInRange(issues, "map_publish_period_s", map_publish_period_s, 0.0, 86'400.0);
+  CheckThat(issues, stamp_clock == "realtime" || stamp_clock == "monotonic", "stamp_clock",
+            "must be realtime or monotonic, got '" + stamp_clock + "'");
   CheckThat(issues, !dds_config_file.empty(), "dds_config_file", "must name a DDS XML file");
   CheckTopic(issues, "pose_topic", pose_topic);
   CheckTopic(issues, "odometry_topic", odometry_topic);

@@ -29,9 +29,21 @@ std::string FormatLine(const ipc::PointCloud2& m);
 std::string TumLine(int64_t t_ns, const ipc::Pose& pose);
 inline constexpr const char* kTumHeader = "# timestamp tx ty tz qx qy qz qw";
 
+/// The stamp's age when taken, on the clock it is on: swliod stamps on CLOCK_REALTIME or
+/// CLOCK_MONOTONIC (ipc.stamp_clock), and a stamp is far nearer its own clock's receive time
+/// than the other's (decades apart), so the nearer one is taken.
+template <typename Message>
+int64_t StampAgeNs(const ipc::Received<Message>& r) {
+  const int64_t steady_ns = r.receive_steady_ns - r.msg.t_ns;
+  const int64_t realtime_ns = r.receive_realtime_ns - r.msg.t_ns;
+  return (steady_ns < 0 ? -steady_ns : steady_ns) <= (realtime_ns < 0 ? -realtime_ns : realtime_ns)
+             ? steady_ns
+             : realtime_ns;
+}
+
 /// Latency CSV: the stamp, the writer's source time, the receive times, and two differences:
 /// transport_ns = receive_realtime − source_realtime (write → take, same host), and
-/// age_ns = receive_steady − stamp (end-to-end, meaningful when the stamp is CLOCK_MONOTONIC).
+/// age_ns = StampAgeNs (end-to-end: the receive time on the stamp's clock − the stamp).
 inline constexpr const char* kLatencyHeader =
     "topic,stamp_ns,source_realtime_ns,receive_realtime_ns,receive_steady_ns,transport_ns,age_ns";
 template <typename Message>
@@ -39,7 +51,7 @@ std::string LatencyRow(ipc::Topic topic, const ipc::Received<Message>& r) {
   std::string out = ipc::TopicLabel(topic);
   for (const int64_t v :
        {r.msg.t_ns, r.source_realtime_ns, r.receive_realtime_ns, r.receive_steady_ns,
-        r.receive_realtime_ns - r.source_realtime_ns, r.receive_steady_ns - r.msg.t_ns}) {
+        r.receive_realtime_ns - r.source_realtime_ns, StampAgeNs(r)}) {
     out.append(",").append(std::to_string(v));
   }
   return out;

@@ -77,7 +77,7 @@ class Sink {
       if (csv_.is_open()) csv_ << LatencyRow(topic, r) << "\n";
       if (summary_) {
         summary_->Add(topic, r.receive_steady_ns, r.receive_realtime_ns - r.source_realtime_ns,
-                      r.receive_steady_ns - r.msg.t_ns);
+                      StampAgeNs(r));
       }
       if (tum_.is_open() && options_.record_from == ipc::TopicLabel(topic)) Record(r.msg);
       Keep(r.msg);

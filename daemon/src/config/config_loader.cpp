@@ -564,6 +564,7 @@ void Bind(Section s, ipc::IpcConfig& c) {
   s.Get("map_topic", c.map_topic);
   s.Get("map_max_points", c.map_max_points);
   s.Get("map_publish_period_s", c.map_publish_period_s);
+  s.Get("stamp_clock", c.stamp_clock);
   s.Finish();
 }
 

@@ -402,6 +402,7 @@ void Emit(ConfigWriter& w, const ipc::IpcConfig& c) {
   w.Put("map_topic", c.map_topic);
   w.Put("map_max_points", c.map_max_points);
   w.Put("map_publish_period_s", c.map_publish_period_s);
+  w.Put("stamp_clock", c.stamp_clock);
   w.EndMap();
 }
 

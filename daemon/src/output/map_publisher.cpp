@@ -131,7 +131,8 @@ bool MapPublisher::Publish(const MergeFn& merge,
     return false;
   }
   voxel_m_ = cloud->voxel_m;
-  const ipc::PointCloud2 msg = ToPointCloud2(cloud->points_map, t0, frame_id_);
+  const int64_t stamp_ns = stamps_ != nullptr ? stamps_->ToStamp(t0) : t0;
+  const ipc::PointCloud2 msg = ToPointCloud2(cloud->points_map, stamp_ns, frame_id_);
   const double build_ms = snapshot_ms + MsSince(t0);
   // A map only grows, and so does its build: the period stretches to keep the thread's time
   // spent on it under 1 / kPeriodPerBuild (a 943 m drive's map takes ~0.5 s).

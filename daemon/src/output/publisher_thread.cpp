@@ -1,5 +1,7 @@
 #include "swlio/daemon/output/publisher_thread.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -31,6 +33,7 @@ void PublisherThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle&
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
     q_.wake->Wait(20'000);  // a pose or an odometry, whichever comes first
+    UpdateStampClock();
     TakeCorrections();
     while (q_.poses_in->Pop(&pose)) WritePose(pose);
     while (q_.odometry_in->Pop(&estimate)) WriteOdometry(estimate);
@@ -39,6 +42,24 @@ void PublisherThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle&
   TakeCorrections();  // stopping: what the others queued last
   while (q_.poses_in->Pop(&pose)) WritePose(pose);
   while (q_.odometry_in->Pop(&estimate)) WriteOdometry(estimate);
+}
+
+void PublisherThread::UpdateStampClock() {
+  if (stamps_ == nullptr) return;
+  const std::optional<WallClockStep> step = stamps_->Update();
+  if (!step) return;
+  spdlog::warn(
+      "wall clock stepped by {:+.6f} s (realtime - monotonic now {:.6f} s; {} step(s) since the "
+      "start): {}; the estimator's time is unaffected",
+      static_cast<double>(step->step_ns) * 1e-9, static_cast<double>(step->offset_ns) * 1e-9,
+      stamps_->counters().steps,
+      stamps_->realtime() ? "published stamps (CLOCK_REALTIME) jump with it"
+                          : "published stamps stay on CLOCK_MONOTONIC");
+}
+
+int64_t PublisherThread::Stamp(int64_t t_daemon_ns) const {
+  const int64_t host_ns = time_.ToHost(t_daemon_ns);
+  return stamps_ != nullptr ? stamps_->ToStamp(host_ns) : host_ns;
 }
 
 void PublisherThread::TakeCorrections() {
@@ -63,7 +84,7 @@ void PublisherThread::ReplacePath(const std::vector<estimator::MapNode>& nodes) 
     s.t_ns = nodes[i].t_ns;
     s.T_world_imu = nodes[i].T_map_imu;
     ipc::PoseStamped p;
-    p.t_ns = time_.ToHost(s.t_ns);
+    p.t_ns = Stamp(s.t_ns);
     p.frame_id = frames_.world;
     p.pose = ToPose(s);
     keyframes_.push_back(std::move(p));
@@ -101,7 +122,7 @@ void PublisherThread::WritePose(const ImuRatePose& pose) {
     return;
   }
   ipc::PoseWithCovarianceStamped m;
-  m.t_ns = time_.ToHost(pose.state.t_ns);
+  m.t_ns = Stamp(pose.state.t_ns);
   m.frame_id = frames_.world;
   m.pose = ToPose(Corrected(pose.state));
   if (!Finite(m.pose)) {  // the planner must never receive one
@@ -124,7 +145,7 @@ void PublisherThread::WriteOdometry(const SweepEstimate& e) {
   }
   ipc::Odometry m =
       ToOdometryMessage(Corrected(e.state), last_gyro_imu_radps_, e.covariance, frames_);
-  m.t_ns = time_.ToHost(m.t_ns);
+  m.t_ns = Stamp(m.t_ns);
   if (!Finite(m.pose)) {
     non_finite_.fetch_add(1, std::memory_order_relaxed);
     return;
@@ -146,7 +167,8 @@ void PublisherThread::Periodic(int64_t now_ns) {
   if (now_ns < next_health_ns_) return;
   next_health_ns_ = now_ns + health_period_ns_;
   if (health_) {
-    const ipc::DiagnosticArray h = health_(now_ns);
+    ipc::DiagnosticArray h = health_(now_ns);  // stamped on the host clock
+    if (stamps_ != nullptr) h.t_ns = stamps_->ToStamp(h.t_ns);
     Count(publisher_ == nullptr || publisher_->PublishHealth(h), &health_count_);
   }
   if (path_changed_) {

@@ -1,6 +1,7 @@
 #include "swlio/daemon/recording/recorder.h"
 
 #include <Eigen/Geometry>
+#include <cstdlib>
 #include <initializer_list>
 #include <string>
 
@@ -21,7 +22,8 @@ std::string List(std::initializer_list<double> values) {
 void WriteManifest(const std::filesystem::path& path,
                    const DaemonConfig& config,
                    const Eigen::Isometry3d& T_imu_lidar,
-                   const TimeScale& time) {
+                   const TimeScale& time,
+                   const ClockOffsetSample& offset) {
   const Eigen::Vector3d t = T_imu_lidar.translation();
   const Eigen::Quaterniond q(T_imu_lidar.linear());
   std::ofstream y(path);
@@ -32,6 +34,10 @@ void WriteManifest(const std::filesystem::path& path,
     << "# Receive times are on the daemon's time base (time_scale.h): host = origin + (t −\n"
     << "# origin) / scale. Both are 1 / any on a robot (times are host times).\n"
     << "time_scale: " << ExactNumber(time.scale) << "\ntime_origin_ns: " << time.origin_ns << "\n"
+    << "# The published stamps' clock (ipc.stamp_clock), and CLOCK_REALTIME − CLOCK_MONOTONIC at\n"
+    << "# the start; clock_offsets.csv has it at every change (host times, before time_scale).\n"
+    << "stamp_clock: " << config.ipc.stamp_clock
+    << "\nrealtime_minus_monotonic_ns: " << offset.offset_ns << "\n"
     << "extrinsic_T_imu_lidar:  # LiDAR points (x forward, y left, z up) into the IMU frame\n"
     << "  translation_m: " << List({t.x(), t.y(), t.z()}) << "\n"
     << "  quaternion_xyzw: " << List({q.x(), q.y(), q.z(), q.w()}) << "\n"
@@ -39,7 +45,8 @@ void WriteManifest(const std::filesystem::path& path,
     << "\n  difop_port: " << config.lidar.difop_port
     << "\n  lens_offset_m: " << ExactNumber(config.lidar.EffectiveLensOffsetM())
     << "\nimu:\n  device: " << config.imu.device << "\n  baud: " << config.imu.baud
-    << "\nfiles: {lidar: lidar.pcap, imu: imu.xbus, imu_rx: imu.rx.csv}\n";
+    << "\nfiles: {lidar: lidar.pcap, imu: imu.xbus, imu_rx: imu.rx.csv, clock_offsets: "
+       "clock_offsets.csv}\n";
 }
 
 }  // namespace
@@ -53,7 +60,8 @@ std::unique_ptr<Recorder> Recorder::Create(const std::filesystem::path& dir,
                                            const DaemonConfig& config,
                                            const Eigen::Isometry3d& T_imu_lidar,
                                            const TimeScale& time,
-                                           std::string* error) {
+                                           std::string* error,
+                                           const StampClock* stamps) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) {
@@ -70,6 +78,13 @@ std::unique_ptr<Recorder> Recorder::Create(const std::filesystem::path& dir,
     return nullptr;
   }
   r->rx_csv_ << "byte_offset,bytes,t_rx_ns\n";
+  r->offsets_csv_.open(dir / "clock_offsets.csv");
+  if (!r->offsets_csv_) {
+    *error = "cannot write clock_offsets.csv in " + dir.string();
+    return nullptr;
+  }
+  r->offsets_csv_ << "t_monotonic_ns,realtime_minus_monotonic_ns\n";
+  if (stamps != nullptr) r->clocks_ = stamps->clocks();
   if (config.can.enabled) {
     r->can_interface_ = config.can.interface;
     r->can_log_.open(dir / "can.log");
@@ -78,7 +93,9 @@ std::unique_ptr<Recorder> Recorder::Create(const std::filesystem::path& dir,
       return nullptr;
     }
   }
-  WriteManifest(dir / "manifest.yaml", config, T_imu_lidar, time);
+  const ClockOffsetSample start = SampleClockOffset(r->clocks_);
+  WriteManifest(dir / "manifest.yaml", config, T_imu_lidar, time, start);
+  r->WriteClockOffset(start);
   return r;
 }
 
@@ -89,6 +106,7 @@ void Recorder::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) 
     LidarPacket p;
     if (!Drain() && lidar_.WaitPop(&p, 50'000)) WritePacket(p);  // sleep until data arrives
     const int64_t now = MonotonicNowNs();
+    RecordClockOffset(now);
     if (now >= next_flush_ns) {
       Flush();
       next_flush_ns = now + 1'000'000'000;
@@ -96,6 +114,8 @@ void Recorder::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) 
   }
   while (Drain()) {
   }
+  next_offset_check_ns_ = 0;  // the offset as the recording ends
+  RecordClockOffset(MonotonicNowNs());
   Flush();
 }
 
@@ -131,8 +151,21 @@ bool Recorder::Drain() {
   return any;
 }
 
+void Recorder::RecordClockOffset(int64_t now_ns) {
+  if (now_ns < next_offset_check_ns_) return;
+  next_offset_check_ns_ = now_ns + 10'000'000;
+  const ClockOffsetSample s = SampleClockOffset(clocks_);
+  if (std::llabs(s.offset_ns - last_offset_row_ns_) > kClockOffsetRowNs) WriteClockOffset(s);
+}
+
+void Recorder::WriteClockOffset(const ClockOffsetSample& s) {
+  offsets_csv_ << s.t_monotonic_ns << ',' << s.offset_ns << '\n';
+  last_offset_row_ns_ = s.offset_ns;
+}
+
 void Recorder::Flush() {
-  bool ok = pcap_->Flush() && xbus_.flush().good() && rx_csv_.flush().good();
+  bool ok = pcap_->Flush() && xbus_.flush().good() && rx_csv_.flush().good() &&
+            offsets_csv_.flush().good();
   if (can_log_.is_open()) ok = can_log_.flush().good() && ok;
   if (!ok) write_errors_.fetch_add(1, std::memory_order_relaxed);
 }

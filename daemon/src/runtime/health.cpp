@@ -228,6 +228,26 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
   return d;
 }
 
+/// The published stamps' clock (stamp_clock.h): which one, its offset from the daemon's
+/// monotonic time, and the wall clock's steps (a warning for the report after each).
+ipc::DiagnosticStatus TimeStatus(const HealthSnapshot& s, const HealthRates& r) {
+  const StampClockCounters& c = s.stamp_clock;
+  ipc::DiagnosticStatus d;
+  d.name = "swlio: time";
+  d.hardware_id = "swlio";
+  d.level = r.wall_clock_steps > 0 ? ipc::DiagnosticLevel::kWarn : ipc::DiagnosticLevel::kOk;
+  d.message = c.realtime ? "stamps on CLOCK_REALTIME" : "stamps on CLOCK_MONOTONIC";
+  if (r.wall_clock_steps > 0) {
+    d.message += "; wall clock stepped by " +
+                 Num(static_cast<double>(c.last_step_ns) * 1e-9, "%+.6f") + " s";
+  }
+  d.values = {{"stamp_clock", c.realtime ? "realtime" : "monotonic"},
+              {"realtime_minus_monotonic_s", Num(static_cast<double>(c.offset_ns) * 1e-9, "%.6f")},
+              {"wall_clock_steps", Count(c.steps)},
+              {"last_step_s", Num(static_cast<double>(c.last_step_ns) * 1e-9, "%+.6f")}};
+  return d;
+}
+
 ipc::DiagnosticStatus QueueStatus(const HealthSnapshot& s) {
   ipc::DiagnosticStatus d;
   d.name = "swlio: queues";
@@ -277,6 +297,7 @@ HealthRates HealthReporter::Rates(const HealthSnapshot& now) {
   const HealthSnapshot& before = have_previous_ ? previous_ : HealthSnapshot{};
   r.lidar_clock_jumps = Since(now.optimizer.lidar_clock.jumps, before.optimizer.lidar_clock.jumps);
   r.imu_clock_jumps = Since(now.propagator.clock_jumps, before.propagator.clock_jumps);
+  r.wall_clock_steps = Since(now.stamp_clock.steps, before.stamp_clock.steps);
   r.sweeps_skipped_behind = Since(now.optimizer.skipped_behind, before.optimizer.skipped_behind);
   r.imu_read_lag = Summarize(now.propagator.read_lag, before.propagator.read_lag);
   r.lidar_read_lag = Summarize(now.lidar_rx.read_lag, before.lidar_rx.read_lag);
@@ -290,7 +311,8 @@ ipc::DiagnosticArray HealthReporter::Diagnostics(const HealthSnapshot& now) {
   const HealthRates r = Rates(now);
   ipc::DiagnosticArray a;
   a.t_ns = now.t_ns;
-  a.status = {LidarStatus(now, r), ImuStatus(now, r), EstimatorStatus(now, r), QueueStatus(now)};
+  a.status = {LidarStatus(now, r), ImuStatus(now, r), EstimatorStatus(now, r), QueueStatus(now),
+              TimeStatus(now, r)};
   if (now.can_enabled) a.status.push_back(CanStatus(now, r));
   if (now.loop_closure.enabled) a.status.push_back(LoopClosureStatus(now));
   if (now.localization.enabled) a.status.push_back(LocalizationStatus(now));

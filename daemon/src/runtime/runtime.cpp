@@ -87,13 +87,16 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
     if (!rt->can_rx_) return nullptr;
   }
   const TimeScale time{MonotonicNowNs(), options.time_scale};
+  rt->stamp_clock_ = std::make_unique<StampClock>(IsRealtimeStampClock(config.ipc.stamp_clock),
+                                                  options.stamp_clocks);
   const Eigen::Isometry3d T_imu_lidar =
       options.T_imu_lidar.value_or(config.estimator.extrinsic_imu_lidar.ToIsometry());
   if (!options.record_dir.empty()) {
     DaemonConfig recorded = config;  // the ports actually bound (a test may ask for any port)
     recorded.lidar.msop_port = rt->lidar_rx_->msop_port();
     recorded.lidar.difop_port = rt->lidar_rx_->difop_port();
-    rt->recorder_ = Recorder::Create(options.record_dir, recorded, T_imu_lidar, time, error);
+    rt->recorder_ = Recorder::Create(options.record_dir, recorded, T_imu_lidar, time, error,
+                                     rt->stamp_clock_.get());
     if (!rt->recorder_) return nullptr;
     rt->lidar_rx_->RecordTo(&rt->recorder_->lidar_queue());
     rt->imu_rx_->RecordTo(&rt->recorder_->serial_queue());
@@ -147,6 +150,7 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
       1'000'000'000, static_cast<size_t>(config.ipc.path_max_poses),
       estimator::CorrectionSlewConfig{config.loop_closure.output_max_rate_mps,
                                       config.loop_closure.output_max_rate_radps});
+  rt->publisher_thread_->StampWith(rt->stamp_clock_.get());
   if (localize) rt->publisher_thread_->HoldUntilLocalized();
   return rt;
 }
@@ -178,6 +182,7 @@ void Runtime::MakeMapPublisher(const std::string& frame_id) {
   if (!publisher_ || c.map_publish_period_s <= 0.0 || (!loop_closure_ && !localization_)) return;
   map_publisher_ = std::make_unique<MapPublisher>(
       publisher_.get(), frame_id, static_cast<size_t>(c.map_max_points), c.map_publish_period_s);
+  map_publisher_->StampWith(stamp_clock_.get());
   if (loop_closure_) loop_closure_->PublishMapTo(map_publisher_.get());
   if (localization_) localization_->PublishMapTo(map_publisher_.get());
 }
@@ -269,6 +274,7 @@ HealthSnapshot Runtime::Snapshot() const {
   if (loop_closure_) s.loop_closure = loop_closure_->counters();
   if (localization_) s.localization = localization_->counters();
   if (map_publisher_) s.map = map_publisher_->counters();
+  s.stamp_clock = stamp_clock_->counters();
   s.queues = queues_->Counters();
   if (recorder_) {
     for (const QueueCounters& c : recorder_->QueueCountersList()) s.queues.push_back(c);

@@ -190,6 +190,18 @@ lidars: {}
   EXPECT_THAT(loaded.errors[2].reason, HasSubstr("did you mean 'lidar'"));
 }
 
+// ipc.stamp_clock: realtime by default (ROS 2 time), monotonic on request, nothing else.
+TEST(ConfigLoader, StampClockIsRealtimeOrMonotonic) {
+  EXPECT_EQ(Load("config_version: 1\n").config.ipc.stamp_clock, "realtime");
+  const LoadedConfig monotonic = Load("config_version: 1\nipc:\n  stamp_clock: monotonic\n");
+  ASSERT_TRUE(monotonic.ok()) << monotonic.ErrorReport();
+  EXPECT_EQ(monotonic.config.ipc.stamp_clock, "monotonic");
+  const ConfigError e = OnlyError(Load("config_version: 1\nipc:\n  stamp_clock: gps\n"));
+  EXPECT_EQ(e.key, "ipc.stamp_clock");
+  EXPECT_EQ(e.line, 3);
+  EXPECT_THAT(e.reason, HasSubstr("realtime or monotonic"));
+}
+
 TEST(ConfigLoader, CrossFieldRulesAndEveryErrorAreReported) {
   const LoadedConfig loaded = Load(R"(config_version: 1
 lidar:

@@ -74,6 +74,7 @@ TEST(ConfigPrinter, ShippedConfigPrintsAndLoadsBackTheSame) {
   EXPECT_THAT(printed, HasSubstr("  cut_angle_deg: 0.0\n"));
   EXPECT_THAT(printed, HasSubstr("  rcvbuf_bytes: 8388608\n"));
   EXPECT_THAT(printed, HasSubstr("  rx_batch_ms: 5\n"));
+  EXPECT_THAT(printed, HasSubstr("  stamp_clock: realtime\n"));
   EXPECT_THAT(printed, HasSubstr("  lens_offset_m: 0.03825\n"));  // RS16: rs_driver's RX
   EXPECT_THAT(printed, HasSubstr("  - {name: lidar_rx, priority: 80, cpu: -1, nice: -10}\n"));
 }

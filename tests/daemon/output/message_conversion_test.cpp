@@ -74,7 +74,8 @@ TEST(HealthReporter, ReportsRatesStatesAndDrops) {
   HealthReporter r;
   r.Diagnostics(a);
   const ipc::DiagnosticArray d = r.Diagnostics(b);
-  ASSERT_EQ(d.status.size(), 4u);
+  // lidar, imu, estimator, queues, time
+  ASSERT_EQ(d.status.size(), 5u);
   EXPECT_EQ(d.status[0].level, ipc::DiagnosticLevel::kOk);  // lidar streaming
   EXPECT_EQ(d.status[1].values[0].value, "400.0");          // imu rate_hz
   EXPECT_EQ(d.status[2].message, "degraded");

@@ -149,5 +149,39 @@ TEST(PublisherThread, WithoutCorrectionsPosesAreUntouched) {
   EXPECT_EQ(publisher.keyframes().front().pose.position_m[1], 1.0 / 3.0);
 }
 
+/// The stamp a keyframe's odometry at daemon time `t_ns` is published with.
+int64_t PublishedStamp(int64_t t_ns, StampClock* stamps, const TimeScale& time = {}) {
+  SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 4);
+  SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 4);
+  Doorbell bell;
+  PublisherThread publisher(nullptr, FrameIds{}, PublisherQueues{&poses, &odometry, &bell}, time,
+                            nullptr, 1'000'000'000, 10);
+  if (stamps != nullptr) publisher.StampWith(stamps);
+  SweepEstimate e;
+  e.status = estimator::OdometryStatus::kTracking;
+  e.state.t_ns = t_ns;
+  e.keyframe = true;
+  EXPECT_TRUE(odometry.Push(e));
+  const std::atomic<bool> stop{true};
+  publisher.Run(stop, Watchdog::Handle{});
+  EXPECT_EQ(publisher.counters().odometry, 1u);
+  return publisher.keyframes().empty() ? -1 : publisher.keyframes().front().t_ns;
+}
+
+// ROS time: the daemon's time (back on the host clock) plus realtime − monotonic; in monotonic
+// mode exactly what was published without a StampClock.
+TEST(PublisherThread, StampsAreTheStampClocksConversionOfHostTime) {
+  constexpr int64_t kOffsetNs = 1'780'000'000'000'000'000 - 100'000'000'000;
+  const ClockSources clocks{[] { return int64_t{100'000'000'000}; },
+                            [] { return int64_t{1'780'000'000'000'000'000}; }};
+  StampClock realtime(true, clocks);
+  StampClock monotonic(false, clocks);
+  EXPECT_EQ(PublishedStamp(123'456'789'012, &realtime), 123'456'789'012 + kOffsetNs);
+  EXPECT_EQ(PublishedStamp(123'456'789'012, &monotonic), 123'456'789'012);
+  EXPECT_EQ(PublishedStamp(123'456'789'012, nullptr), 123'456'789'012);
+  const TimeScale twice{100'000'000'000, 2.0};  // a simulator at 2x: daemon time runs 2x
+  EXPECT_EQ(PublishedStamp(104'000'000'000, &realtime, twice), 102'000'000'000 + kOffsetNs);
+}
+
 }  // namespace
 }  // namespace swlio::daemon

@@ -41,10 +41,11 @@ struct LiveDrive {
   std::function<void(sim::SimSetup*)> adjust_setup;  ///< e.g. the sensors' clocks
   std::function<void(DaemonConfig*)> adjust_config;
   std::filesystem::path record_dir;  ///< empty: no recording
+  ClockSources stamp_clocks;         ///< the published stamps' clocks (empty: the host's)
   /// Every test its own DDS domain, or one test's subscriber takes another's samples (the ipc
   /// tests publish edge values such as NaN and DBL_MAX: a CI-like run of ctest -j2 saw them
   /// arrive here). tests/ipc uses 101..133; the daemon tests 140..159: Runtime.* 140,
-  /// RuntimeFaults.* 141..153 and 156, SwliodCommand 154.
+  /// RuntimeFaults.* 141..153 and 156, SwliodCommand 154, Runtime.AWallClockStep… 157.
   uint32_t dds_domain = 140;
 };
 
@@ -132,6 +133,9 @@ inline DaemonConfig LiveDriveConfig(const std::filesystem::path& dir, uint32_t d
   config.imu.device = (dir / "imu.pty").string();
   config.imu.configure_on_start = false;
   config.ipc.domain_id = domain;
+  // The simulator's time is CLOCK_MONOTONIC (LiveStats::start_ns), and so are SimTime's stamps;
+  // stamps in ROS time (the default) are tested by Runtime.AWallClockStepMovesTheStampsOnly.
+  config.ipc.stamp_clock = "monotonic";
   config.ipc.dds_config_file =
       (::swlio::test::SourceDir() / "config" / "cyclonedds-loopback.xml").string();
   return config;
@@ -154,6 +158,7 @@ inline LiveDriveResult RunLiveDrive(const LiveDrive& drive) {
   options.T_imu_lidar = out.setup->lidar.T_imu_lidar;
   options.time_scale = out.speed;
   options.record_dir = drive.record_dir;
+  options.stamp_clocks = drive.stamp_clocks;
   auto rt = Runtime::Create(out.config, options, &out.error);
   if (!rt) return out;
   auto participant = ipc::Participant::Create(out.config.ipc, &out.error);

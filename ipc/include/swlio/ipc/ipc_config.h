@@ -32,6 +32,11 @@ struct IpcConfig {
   /// corrections, at most once per this period (s). Localizing: the saved map is published
   /// once at start. 0: never.
   double map_publish_period_s = 10.0;
+  /// The clock of every published header stamp: "realtime" (CLOCK_REALTIME, what ROS 2 nodes
+  /// stamp and look up in; the daemon's monotonic times plus the tracked offset, stepping when
+  /// the wall clock is stepped) or "monotonic" (CLOCK_MONOTONIC, the daemon's own time base;
+  /// meaningful only on this host). daemon/output/stamp_clock.h.
+  std::string stamp_clock = "realtime";
 
   ConfigIssues Validate() const;
 };

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "swlio/daemon/output/stamp_clock.h"
 #include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/estimator/map/saved_map.h"
 #include "swlio/ipc/messages.h"
@@ -98,8 +99,12 @@ class MapPublisher {
   /// A change is pending and the period since the last publication is over.
   bool Due(int64_t now_ns) const { return changed_ && now_ns >= next_ns_; }
 
-  /// Builds the cloud of `map` and writes it, stamped with the host time (CLOCK_MONOTONIC, the
-  /// poses' clock) at which the build started. `snapshot_ms`: what making `map` took (counted
+  /// Stamps through `stamps` (not owned, outlives this; its offset sampled by the publisher
+  /// thread). Without it the stamps are CLOCK_MONOTONIC. Call before the first Publish.
+  void StampWith(const StampClock* stamps) { stamps_ = stamps; }
+
+  /// Builds the cloud of `map` and writes it, stamped with the time at which the build started
+  /// (on the poses' clock: StampWith). `snapshot_ms`: what making `map` took (counted
   /// in build_ms). Beats `beat` between the stages. False when nothing was written.
   bool Publish(const estimator::SavedMap& map,
                const Watchdog::Handle& beat,
@@ -114,6 +119,7 @@ class MapPublisher {
 
  private:
   ipc::Publisher* publisher_;
+  const StampClock* stamps_ = nullptr;
   std::string frame_id_;
   size_t max_points_;
   int64_t period_ns_;

@@ -11,6 +11,12 @@
 /// correction's rotation is a fraction of a degree). Keyframes join the path as published;
 /// after each loop the path is replaced by the pose graph's nodes (one per metre) at their
 /// corrected poses, so the planner sees the whole corrected trajectory.
+///
+/// Stamps: each message's stamp is converted once, when it is written, from the daemon's time
+/// by the StampClock (stamp_clock.h; CLOCK_REALTIME by default), whose offset this thread
+/// samples at every wake; a wall-clock step is logged once with its size. A keyframe keeps in
+/// the path the stamp its odometry was published with. Without a StampClock the stamps are the
+/// host's CLOCK_MONOTONIC.
 
 #include <atomic>
 #include <cstddef>
@@ -20,6 +26,7 @@
 #include <vector>
 
 #include "swlio/daemon/output/message_conversion.h"
+#include "swlio/daemon/output/stamp_clock.h"
 #include "swlio/daemon/pipeline/live_types.h"
 #include "swlio/daemon/pipeline/spsc_queue.h"
 #include "swlio/daemon/pipeline/time_scale.h"
@@ -70,6 +77,8 @@ class PublisherThread {
   /// Localization in a saved map: publish no pose or odometry until the first correction that
   /// jumps (the relocalization) has arrived. Call before Run.
   void HoldUntilLocalized() { holding_ = true; }
+  /// Stamps through `stamps` (not owned; outlives Run), sampled by this thread. Call before Run.
+  void StampWith(StampClock* stamps) { stamps_ = stamps; }
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   PublisherCounters counters() const;
   /// The keyframes the path holds (the newest path_max_poses); read after Run returned.
@@ -77,6 +86,10 @@ class PublisherThread {
 
  private:
   void TakeCorrections();
+  /// Samples the stamp clock's offset; logs a wall-clock step.
+  void UpdateStampClock();
+  /// A daemon time (time-scaled) as the message stamp.
+  int64_t Stamp(int64_t t_daemon_ns) const;
   /// The keyframe path becomes the graph's nodes at their corrected poses (newest
   /// path_max_poses); later keyframes are appended as published.
   void ReplacePath(const std::vector<estimator::MapNode>& nodes);
@@ -100,6 +113,7 @@ class PublisherThread {
   ipc::Path path_;  ///< the message, filled from keyframes_ when published
   bool path_changed_ = false;
   bool holding_ = false;
+  StampClock* stamps_ = nullptr;
   Eigen::Vector3d last_gyro_imu_radps_ = Eigen::Vector3d::Zero();
   LatencyHistogram pose_latency_;
   std::atomic<uint64_t> poses_{0}, odometry_{0}, health_count_{0}, paths_{0}, failures_{0},

@@ -9,7 +9,14 @@
 /// - imu.rx.csv: `byte_offset,bytes,t_rx_ns`, one row per read(2).
 /// - can.log (with `can.enabled`): every CAN frame in candump format (`(s.us) can0 123#…`).
 /// - manifest.yaml: what the daemon was configured with (extrinsic, LiDAR model and ports,
-///   serial baud, time base).
+///   serial baud, time base, the published stamps' clock and realtime − monotonic at start).
+/// - clock_offsets.csv: `t_monotonic_ns,realtime_minus_monotonic_ns`, a row at the start, one
+///   within 50 ms of every change of the offset by over kClockOffsetRowNs (a wall-clock step, or
+///   an NTP slew every 0.1 ms) and one at the end if it changed: CLOCK_REALTIME of a host time t
+///   is t + the offset of the last row at or before t (within 0.1 ms, except in the ≤ 50 ms
+///   between a step and its row). Relates the recording to data stamped in ROS time. Its times
+///   are CLOCK_MONOTONIC; the other files' are on the daemon's time base (the same on a robot,
+///   time_scale 1). Older recordings have no such file; no reader needs it.
 ///
 /// Receive times are written on the daemon's time base (host time; stretched by --time-scale,
 /// time_scale.h, so a simulator recording at N× replays with consistent physics).
@@ -25,6 +32,7 @@
 #include <vector>
 
 #include "swlio/daemon/config/daemon_config.h"
+#include "swlio/daemon/output/stamp_clock.h"
 #include "swlio/daemon/pipeline/live_types.h"
 #include "swlio/daemon/pipeline/spsc_queue.h"
 #include "swlio/daemon/pipeline/time_scale.h"
@@ -40,15 +48,21 @@ struct RecorderCounters {
   uint64_t write_errors = 0;
 };
 
+/// A clock_offsets.csv row is written when the offset moved by more than this since the last.
+inline constexpr int64_t kClockOffsetRowNs = 100'000;
+
 class Recorder {
  public:
   /// Creates `dir` and its files. `T_imu_lidar` goes into the manifest. The ports written
   /// into lidar.pcap are the configuration's (give the bound ones when it asked for port 0).
+  /// `stamps`: the published stamps' clock (not owned; outlives this), whose clocks give
+  /// clock_offsets.csv; null: the host's clocks.
   static std::unique_ptr<Recorder> Create(const std::filesystem::path& dir,
                                           const DaemonConfig& config,
                                           const Eigen::Isometry3d& T_imu_lidar,
                                           const TimeScale& time,
-                                          std::string* error);
+                                          std::string* error,
+                                          const StampClock* stamps = nullptr);
   ~Recorder();
 
   SpscQueue<LidarPacket>& lidar_queue() { return lidar_; }
@@ -65,6 +79,9 @@ class Recorder {
   Recorder(const DaemonConfig& config, const TimeScale& time);
   bool Drain();
   void WritePacket(const LidarPacket& p);
+  /// A clock_offsets.csv row when the offset moved (at most every 10 ms).
+  void RecordClockOffset(int64_t now_ns);
+  void WriteClockOffset(const ClockOffsetSample& s);
   void Flush();
 
   // In clang-tidy's padding order (the queues are cache-line aligned).
@@ -79,8 +96,12 @@ class Recorder {
   std::ofstream can_log_;
   std::ofstream xbus_;
   std::ofstream rx_csv_;
-  uint16_t msop_port_;   ///< written as the UDP ports of MSOP records
-  uint16_t difop_port_;  ///< and of DIFOP records
+  std::ofstream offsets_csv_;
+  ClockSources clocks_;
+  int64_t next_offset_check_ns_ = 0;
+  int64_t last_offset_row_ns_ = 0;  ///< the offset of the last row (Create writes the first)
+  uint16_t msop_port_;              ///< written as the UDP ports of MSOP records
+  uint16_t difop_port_;             ///< and of DIFOP records
 };
 
 }  // namespace swlio::daemon

@@ -10,6 +10,7 @@
 
 #include "swlio/daemon/output/map_publisher.h"
 #include "swlio/daemon/output/publisher_thread.h"
+#include "swlio/daemon/output/stamp_clock.h"
 #include "swlio/daemon/pipeline/localization_thread.h"
 #include "swlio/daemon/pipeline/loop_closure_thread.h"
 #include "swlio/daemon/pipeline/optimizer_thread.h"
@@ -34,6 +35,7 @@ struct HealthSnapshot {
   LoopClosureCounters loop_closure;   ///< `enabled` false when loop closure is off
   LocalizationCounters localization;  ///< `enabled` false unless localizing in a saved map
   MapPublishCounters map;             ///< `enabled` false unless the map cloud is published
+  StampClockCounters stamp_clock;     ///< the published stamps' clock and its offset
   std::vector<QueueCounters> queues;
 };
 
@@ -48,6 +50,8 @@ struct HealthRates {
   /// since the start.
   uint64_t lidar_clock_jumps = 0;
   uint64_t imu_clock_jumps = 0;
+  /// Steps of the host's wall clock (StampClock) since the previous report.
+  uint64_t wall_clock_steps = 0;
   /// Sweeps skipped because the estimator fell behind (SweepShedding), since the previous
   /// report: the CPU does not suffice.
   uint64_t sweeps_skipped_behind = 0;

@@ -25,6 +25,7 @@
 
 #include "swlio/daemon/config/daemon_config.h"
 #include "swlio/daemon/output/map_publisher.h"
+#include "swlio/daemon/output/stamp_clock.h"
 #include "swlio/daemon/pipeline/estimator_runner.h"
 #include "swlio/daemon/pipeline/time_scale.h"
 #include "swlio/daemon/recording/recorder.h"
@@ -51,6 +52,9 @@ struct RuntimeOptions {
   /// With `can.enabled`: read CAN frames from this fd instead of opening `can.interface` (tests
   /// use a socketpair; not owned). −1: open the interface.
   int can_fd = -1;
+  /// The clocks the published stamps' offset is read from (stamp_clock.h); empty: the host's.
+  /// Tests step the wall clock through `realtime`.
+  ClockSources stamp_clocks;
 };
 
 class Runtime {
@@ -94,6 +98,9 @@ class Runtime {
   RuntimeOptions options_;
   Watchdog watchdog_;
   std::unique_ptr<Queues> queues_;
+  /// The published stamps' clock: sampled by the publisher thread, read by the map publisher,
+  /// the recorder and Snapshot.
+  std::unique_ptr<StampClock> stamp_clock_;
   std::unique_ptr<ipc::Participant> participant_;
   std::unique_ptr<ipc::Publisher> publisher_;
   std::unique_ptr<LidarRx> lidar_rx_;

@@ -1,0 +1,75 @@
+// The health's time status: which clock the stamps are on, the offset from the daemon's
+// monotonic time, and a warning in the report after each wall-clock step.
+
+#include "swlio/daemon/runtime/health.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace swlio::daemon {
+namespace {
+
+const ipc::DiagnosticStatus* Find(const ipc::DiagnosticArray& a, const std::string& name) {
+  for (const ipc::DiagnosticStatus& s : a.status) {
+    if (s.name == name) return &s;
+  }
+  return nullptr;
+}
+
+std::string Value(const ipc::DiagnosticStatus& s, const std::string& key) {
+  for (const ipc::KeyValue& kv : s.values) {
+    if (kv.key == key) return kv.value;
+  }
+  return "(absent)";
+}
+
+TEST(HealthReporter, ReportsTheStampClockAndWarnsAfterAWallClockStep) {
+  HealthSnapshot a;
+  a.t_ns = 1'000'000'000;
+  a.stamp_clock.offset_ns = 1'780'000'000'123'456'789;
+  HealthSnapshot b = a;
+  b.t_ns = 2'000'000'000;
+  b.stamp_clock.offset_ns += 10'000'000'000;
+  b.stamp_clock.steps = 1;
+  b.stamp_clock.last_step_ns = 10'000'000'000;
+  HealthReporter r;
+  const ipc::DiagnosticArray first = r.Diagnostics(a);
+  const ipc::DiagnosticStatus* t = Find(first, "swlio: time");
+  ASSERT_NE(t, nullptr);
+  EXPECT_EQ(t->level, ipc::DiagnosticLevel::kOk);
+  EXPECT_EQ(t->message, "stamps on CLOCK_REALTIME");
+  EXPECT_EQ(Value(*t, "stamp_clock"), "realtime");
+  EXPECT_EQ(Value(*t, "realtime_minus_monotonic_s"), "1780000000.123457");
+  EXPECT_EQ(Value(*t, "wall_clock_steps"), "0");
+
+  const ipc::DiagnosticArray stepped = r.Diagnostics(b);
+  t = Find(stepped, "swlio: time");
+  ASSERT_NE(t, nullptr);
+  EXPECT_EQ(t->level, ipc::DiagnosticLevel::kWarn);
+  EXPECT_EQ(t->message, "stamps on CLOCK_REALTIME; wall clock stepped by +10.000000 s");
+  EXPECT_EQ(Value(*t, "wall_clock_steps"), "1");
+  EXPECT_EQ(Value(*t, "last_step_s"), "+10.000000");
+
+  HealthSnapshot c = b;  // a second later, no new step: OK again, the count kept
+  c.t_ns = 3'000'000'000;
+  const ipc::DiagnosticArray later = r.Diagnostics(c);
+  t = Find(later, "swlio: time");
+  ASSERT_NE(t, nullptr);
+  EXPECT_EQ(t->level, ipc::DiagnosticLevel::kOk);
+  EXPECT_EQ(Value(*t, "wall_clock_steps"), "1");
+}
+
+TEST(HealthReporter, SaysWhenTheStampsAreMonotonic) {
+  HealthSnapshot s;
+  s.stamp_clock.realtime = false;
+  HealthReporter r;
+  const ipc::DiagnosticArray a = r.Diagnostics(s);
+  const ipc::DiagnosticStatus* t = Find(a, "swlio: time");
+  ASSERT_NE(t, nullptr);
+  EXPECT_EQ(t->message, "stamps on CLOCK_MONOTONIC");
+  EXPECT_EQ(Value(*t, "stamp_clock"), "monotonic");
+}
+
+}  // namespace
+}  // namespace swlio::daemon
