@@ -41,6 +41,13 @@ double NextVoxel(
   return voxel_m * std::max(1.1, 1.05 * std::pow(ratio, 1.0 / k));
 }
 
+/// The merge of a SavedMap (`map` must outlive the function).
+MergeFn MergeOf(const estimator::SavedMap& map) {
+  return [&map](double voxel_m, std::string* error) {
+    return estimator::MergedMapCloud(map, voxel_m, error);
+  };
+}
+
 }  // namespace
 
 std::optional<MapCloud> BuildMapCloud(const estimator::SavedMap& map,
@@ -48,10 +55,7 @@ std::optional<MapCloud> BuildMapCloud(const estimator::SavedMap& map,
                                       double start_voxel_m,
                                       std::string* error,
                                       const Watchdog::Handle& beat) {
-  const MergeFn merge = [&map](double voxel_m, std::string* why) {
-    return estimator::MergedMapCloud(map, voxel_m, why);
-  };
-  return BuildMapCloud(merge, max_points, start_voxel_m, error, beat);
+  return BuildMapCloud(MergeOf(map), max_points, start_voxel_m, error, beat);
 }
 
 std::optional<MapCloud> BuildMapCloud(const MergeFn& merge,
@@ -108,10 +112,7 @@ MapPublisher::MapPublisher(ipc::Publisher* publisher,
 bool MapPublisher::Publish(const estimator::SavedMap& map,
                            const Watchdog::Handle& beat,
                            double snapshot_ms) {
-  const MergeFn merge = [&map](double voxel_m, std::string* error) {
-    return estimator::MergedMapCloud(map, voxel_m, error);
-  };
-  return Publish(merge, map.nodes.size(), beat, snapshot_ms);
+  return Publish(MergeOf(map), map.nodes.size(), beat, snapshot_ms);
 }
 
 bool MapPublisher::Publish(const MergeFn& merge,
