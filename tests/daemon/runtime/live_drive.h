@@ -42,6 +42,9 @@ struct LiveDrive {
   std::function<void(DaemonConfig*)> adjust_config;
   std::filesystem::path record_dir;  ///< empty: no recording
   ClockSources stamp_clocks;         ///< the published stamps' clocks (empty: the host's)
+  /// Called from the simulator's thread with the host time (CLOCK_MONOTONIC) of simulation
+  /// time 0 and the speed, once the preparation is over (sim::LiveOptions::on_start).
+  std::function<void(int64_t start_ns, double speed)> on_sim_start;
   /// Every test its own DDS domain, or one test's subscriber takes another's samples (the ipc
   /// tests publish edge values such as NaN and DBL_MAX: a CI-like run of ctest -j2 saw them
   /// arrive here). tests/ipc uses 101..133; the daemon tests 140..159: Runtime.* 140,
@@ -181,6 +184,11 @@ inline LiveDriveResult RunLiveDrive(const LiveDrive& drive) {
   live.precast = kSanitized;
   live.out_dir = dir / "sim";
   live.faults = drive.faults;
+  if (drive.on_sim_start) {
+    live.on_start = [&drive, speed = out.speed](int64_t start_ns) {
+      drive.on_sim_start(start_ns, speed);
+    };
+  }
   volatile bool stop = false;  // never set: RunLive's flag is for signal handlers, not threads
   std::atomic<bool> sim_done{false};
   std::string sim_error;

@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -131,16 +133,23 @@ std::vector<int64_t> RecordedOffsets(const std::filesystem::path& dir) {
 // reports the step and the recording keeps both clocks.
 TEST(Runtime, AWallClockStepMovesTheStampsOnly) {
   constexpr int64_t kStepNs = 10'000'000'000;
-  const int64_t step_at_ns = MonotonicNowNs() + 7'000'000'000;  // ~6.5 s into the drive
+  constexpr double kStepAtSimS = 6.5;
+  // Host time of the step: fixed once the simulator starts streaming (its preparation takes
+  // seconds under a sanitizer: a step timed from the test's start came before the drive).
+  std::atomic<int64_t> step_at_ns{std::numeric_limits<int64_t>::max()};
   test::LiveDrive drive;
   drive.dds_domain = 157;
   drive.record_dir = ::swlio::test::MakeTempDir("wall-clock-step") / "recording";
   drive.adjust_config = [](DaemonConfig* c) { c->ipc.stamp_clock = "realtime"; };
-  drive.stamp_clocks.realtime = [step_at_ns] {
-    return RealtimeNowNs() + (MonotonicNowNs() >= step_at_ns ? kStepNs : 0);
+  drive.on_sim_start = [&step_at_ns](int64_t start_ns, double speed) {
+    step_at_ns = start_ns + static_cast<int64_t>(kStepAtSimS / speed * 1e9);
+  };
+  drive.stamp_clocks.realtime = [&step_at_ns] {
+    return RealtimeNowNs() + (MonotonicNowNs() >= step_at_ns.load() ? kStepNs : 0);
   };
   const test::LiveDriveResult r = test::RunLiveDrive(drive);
   ASSERT_TRUE(r.sim_ok) << r.error;
+  ASSERT_NEAR(r.SimTime(step_at_ns.load()), kStepAtSimS, 1e-6);
   // Health: one step of +10 s, published as a warning.
   EXPECT_EQ(r.final.stamp_clock.steps, 1u);
   EXPECT_NEAR(static_cast<double>(r.final.stamp_clock.last_step_ns), 1e10, 1e5);
@@ -185,7 +194,7 @@ TEST(Runtime, AWallClockStepMovesTheStampsOnly) {
     EXPECT_NEAR(best.first, t_s, 0.05) << "a pose near " << t_s << " s";
     return best.second;
   };
-  const double t_step_s = r.SimTime(step_at_ns);
+  const double t_step_s = kStepAtSimS;
   const double t0_s = std::max(t_step_s - 2.0, 3.0), t1_s = t_step_s + 2.0;
   const double driven_m =
       (r.setup->trajectory->At(t1_s).p_world - r.setup->trajectory->At(t0_s).p_world).norm();

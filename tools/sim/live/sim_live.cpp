@@ -236,6 +236,7 @@ bool RunLive(const SimSetup& setup,
   if (options.start_delay_s > 0.0) SleepUntil(MonotonicNs() + SecToNs(options.start_delay_s));
   const int64_t start_ns = MonotonicNs();
   stats->start_ns = start_ns;
+  if (options.on_start) options.on_start(start_ns);
   auto host_ns = [&](int64_t sim_ns) {
     return start_ns + static_cast<int64_t>(static_cast<double>(sim_ns) / options.speed);
   };

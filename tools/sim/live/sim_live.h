@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,10 @@ struct LiveOptions {
   /// its frame went into the pty (0: not written), for latency measurements.
   std::vector<int64_t>* imu_write_ns = nullptr;
   LiveFaults faults;  ///< none by default
+  /// If set, called (on RunLive's thread) with LiveStats::start_ns as soon as it is fixed, before
+  /// the first sample goes out: for a test that must act at a simulation time, however long the
+  /// preparation took.
+  std::function<void(int64_t start_ns)> on_start;
 };
 
 struct LiveStats {
