@@ -54,11 +54,11 @@ def sample_of_pose(t_sample, stamps):
     return nearest(stamps - offset)
 
 
-def pose_age(work):
+def pose_age(work, latency="latency.csv"):
     writes = np.loadtxt(f"{work}/sim/imu_writes.csv", delimiter=",", skiprows=1, dtype=np.int64)
     t_sample, t_written = writes[:, 0], writes[:, 1]
     stamps, takes = [], []
-    with open(f"{work}/latency.csv") as f:
+    with open(f"{work}/{latency}") as f:
         for r in csv.DictReader(f):
             if r["topic"] == "pose":
                 stamps.append(int(r["stamp_ns"]))
@@ -92,7 +92,7 @@ def xbus_sample_ends(path):
     return np.array(ends, dtype=np.int64)
 
 
-def pose_age_parts(work):
+def pose_age_parts(work, latency="latency.csv"):
     """Pose age split at the daemon's read of the serial bytes (recording/imu.rx.csv) and at its
     DDS write (the sample's source timestamp in latency.csv): serial delivery (the writer's
     write() to the reader's read(): tty layer and the reader's wake-up), the daemon (read to DDS
@@ -115,7 +115,7 @@ def pose_age_parts(work):
     t_read_host = origin + (rx[chunk[ok], 2] - origin) / scale
     serial_ms = np.full(len(writes), np.nan)
     serial_ms[:n][ok] = (t_read_host - writes[:n][ok, 1]) * 1e-6
-    rows = [r for r in csv.DictReader(open(f"{work}/latency.csv")) if r["topic"] == "pose"]
+    rows = [r for r in csv.DictReader(open(f"{work}/{latency}")) if r["topic"] == "pose"]
     if not rows:
         return {}
     stamps = np.array([int(r["stamp_ns"]) for r in rows])
@@ -166,6 +166,8 @@ def main():
     args = sys.argv[1:]
     work = args[0]
     label = args[args.index("--label") + 1] if "--label" in args else work
+    # --latency NAME: another subscriber's latency file in WORK (e.g. a real-time one beside)
+    latency = args[args.index("--latency") + 1] if "--latency" in args else "latency.csv"
     build = __file__.rsplit("/scripts/", 1)[0] + "/build"
     s = sim_stats(work)
     fig = {"label": label,
@@ -175,8 +177,8 @@ def main():
            "sim_lateness_ms": s.get("lateness_ms"), "sim_late_sends": s.get("late_sends"),
            "udp_errors": s.get("udp_errors")}
     fig.update(final_status(work))
-    fig.update(pose_age(work))
-    fig.update(pose_age_parts(work))
+    fig.update(pose_age(work, latency))
+    fig.update(pose_age_parts(work, latency))
     fig["ape_odometry_m"] = ape(work, build, "odometry.tum")
     fig["ape_replay_m"] = ape(work, build, "replay.tum")
     fig.update(cpu_memory(work))
