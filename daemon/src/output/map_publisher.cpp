@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "swlio/core/time.h"
@@ -43,8 +44,8 @@ double NextVoxel(
 
 /// The merge of a SavedMap (`map` must outlive the function).
 MergeFn MergeOf(const estimator::SavedMap& map) {
-  return [&map](double voxel_m, std::string* error) {
-    return estimator::MergedMapCloud(map, voxel_m, error);
+  return [&map](double voxel_m, const estimator::MergedCloudLimit& limit, std::string* error) {
+    return estimator::MergedMapCloud(map, voxel_m, error, limit);
   };
 }
 
@@ -69,13 +70,20 @@ std::optional<MapCloud> BuildMapCloud(const MergeFn& merge,
   double previous_m = 0.0;
   size_t previous_n = 0;
   for (;;) {
-    std::optional<std::vector<Eigen::Vector3f>> points = merge(cloud.voxel_m, error);
+    // A try over the cap keeps only the cap (and counts the rest); the last try keeps every
+    // point, to be thinned. The previous try's points go before the next is merged.
+    const bool last = cloud.builds >= kMaxVoxelSteps;
+    size_t n = 0;
+    cloud.points_map = {};
+    std::optional<std::vector<Eigen::Vector3f>> points = merge(
+        cloud.voxel_m,
+        {last ? std::numeric_limits<size_t>::max() : max_points, &n},
+        error);
     beat.Beat();
     if (!points) return std::nullopt;
     cloud.points_map = std::move(*points);
     ++cloud.builds;
-    const size_t n = cloud.points_map.size();
-    if (n <= max_points || cloud.builds > kMaxVoxelSteps) break;
+    if (n <= max_points || last) break;
     const double next_m = NextVoxel(cloud.voxel_m, n, max_points, previous_m, previous_n);
     previous_m = cloud.voxel_m;
     previous_n = n;

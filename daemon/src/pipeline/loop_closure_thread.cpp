@@ -111,8 +111,9 @@ void LoopClosureThread::PublishMapIfDue(const Watchdog::Handle& beat) {
   if (map_ == nullptr || !map_->Due(MonotonicNowNs())) return;
   // Merged straight from the graph's store: a SavedMap copy of every cloud in double first
   // was the daemon's largest transient (docs/notes/2026-12-04-memory-budget.md).
-  const MergeFn merge = [this](double voxel_m, std::string* error) {
-    return closure_.MergedCloud(voxel_m, error);
+  const MergeFn merge = [this](double voxel_m, const estimator::MergedCloudLimit& limit,
+                               std::string* error) {
+    return closure_.MergedCloud(voxel_m, error, limit);
   };
   map_->Publish(merge, closure_.map_nodes(), beat);
 }

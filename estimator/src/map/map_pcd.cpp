@@ -46,8 +46,9 @@ void WritePcd(std::ostream& out, const std::vector<Eigen::Vector3f>& points) {
 
 std::optional<std::vector<Eigen::Vector3f>> MergedMapCloud(const SavedMap& map,
                                                            double voxel_m,
-                                                           std::string* error) {
-  MergedCloudBuilder builder(voxel_m);
+                                                           std::string* error,
+                                                           MergedCloudLimit limit) {
+  MergedCloudBuilder builder(voxel_m, MergedCloudBuilder::kMaxRecords, limit);
   while (builder.NextPass()) {
     for (const SavedMapNode& node : map.nodes)
       builder.AddNode(node.T_map_imu * node.T_imu_lidar, node.planes_lidar, node.edges_lidar);

@@ -8,8 +8,10 @@
 
 namespace swlio::estimator {
 
-MergedCloudBuilder::MergedCloudBuilder(double voxel_m, size_t max_records)
-    : voxel_m_(voxel_m), max_records_(std::max<size_t>(max_records, 1)) {}
+MergedCloudBuilder::MergedCloudBuilder(double voxel_m,
+                                       size_t max_records,
+                                       MergedCloudLimit limit)
+    : voxel_m_(voxel_m), max_records_(std::max<size_t>(max_records, 1)), limit_(limit) {}
 
 bool MergedCloudBuilder::VoxelOk() const {
   return std::isfinite(voxel_m_) && voxel_m_ >= kMergedCloudMinVoxelM;
@@ -46,8 +48,9 @@ void MergedCloudBuilder::AddPoint(const Eigen::Vector3d& p_map) {
 }
 
 void MergedCloudBuilder::PlanStripes() {
-  size_t in_stripe = 0;
+  size_t in_stripe = 0, points = 0;
   for (const auto& [x, n] : per_x_cell_) {
+    points += n;
     if (stripes_.empty() || (in_stripe > 0 && in_stripe + n > max_records_)) {
       stripes_.emplace_back(x, x);
       in_stripe = 0;
@@ -64,6 +67,8 @@ void MergedCloudBuilder::PlanStripes() {
   }
   per_x_cell_.clear();
   points_.reserve(largest);
+  // A voxel holds at least one point: the centroids are at most the points.
+  if (limit_.max_points < points) centroids_.reserve(limit_.max_points);
 }
 
 void MergedCloudBuilder::ReduceStripe() {
@@ -76,7 +81,10 @@ void MergedCloudBuilder::ReduceStripe() {
     while (end < points_.size() && points_[end].cell == points_[begin].cell) {
       sum += points_[end++].p_map;
     }
-    centroids_.push_back((sum / static_cast<double>(end - begin)).cast<float>());
+    if (centroids_.size() < limit_.max_points) {
+      centroids_.push_back((sum / static_cast<double>(end - begin)).cast<float>());
+    }
+    ++centroids_total_;
     begin = end;
   }
   points_.clear();
@@ -92,6 +100,7 @@ std::optional<std::vector<Eigen::Vector3f>> MergedCloudBuilder::Finish(std::stri
                   std::to_string(kMergedCloudMinVoxelM) + " m");
   }
   if (!issue_.empty()) return refuse(issue_);
+  if (limit_.total != nullptr) *limit_.total = centroids_total_;
   return std::move(centroids_);
 }
 

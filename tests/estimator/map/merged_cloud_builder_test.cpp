@@ -43,8 +43,9 @@ std::optional<std::vector<Eigen::Vector3f>> Build(const std::vector<Node>& nodes
                                                   double voxel_m,
                                                   size_t max_records,
                                                   std::string* error,
-                                                  int* passes = nullptr) {
-  MergedCloudBuilder b(voxel_m, max_records);
+                                                  int* passes = nullptr,
+                                                  MergedCloudLimit limit = {}) {
+  MergedCloudBuilder b(voxel_m, max_records, limit);
   while (b.NextPass()) {
     for (const Node& n : nodes) b.AddNode(n.T_map_lidar, n.planes, n.edges);
   }
@@ -95,6 +96,30 @@ TEST(MergedCloudBuilder, EveryStripeSizeGivesTheReferenceCloudToTheLastBit) {
   }
   EXPECT_EQ(one_stripe, 2);  // the count, then one stripe
   EXPECT_GT(many, 20);       // one x-cell per stripe at the end
+}
+
+// A cap keeps the first points of the full cloud, counts them all, and holds no more than the
+// cap (reserved once, not grown by doubling).
+TEST(MergedCloudBuilder, ACapKeepsTheCloudsFirstPointsAndCountsThemAll) {
+  const std::vector<Node> nodes = RandomNodes(40, 300);
+  const std::vector<Eigen::Vector3f> expected = Reference(nodes, 0.5);
+  for (const size_t cap : {size_t{1}, size_t{1000}, expected.size() - 1, expected.size(),
+                           expected.size() + 1000}) {
+    for (const size_t max_records : {size_t{1} << 30, size_t{37}}) {
+      std::string error;
+      size_t total = 0;
+      const auto cloud = Build(nodes, 0.5, max_records, &error, nullptr, {cap, &total});
+      ASSERT_TRUE(cloud.has_value()) << error;
+      EXPECT_EQ(total, expected.size()) << "cap " << cap;
+      ASSERT_EQ(cloud->size(), std::min(cap, expected.size())) << "cap " << cap;
+      if (cap < expected.size()) {
+        EXPECT_EQ(cloud->capacity(), cap) << "reserved once";
+      }
+      for (size_t i = 0; i < cloud->size(); ++i) {
+        ASSERT_EQ((*cloud)[i], expected[i]) << "point " << i << ", cap " << cap;
+      }
+    }
+  }
 }
 
 TEST(MergedCloudBuilder, RefusesANonFinitePointWithItsNodeAndABadVoxel) {

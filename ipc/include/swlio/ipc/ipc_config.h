@@ -27,7 +27,7 @@ struct IpcConfig {
   int64_t path_max_poses = 5000;
   /// The published map cloud holds at most this many points (12 bytes each): the voxel is
   /// coarsened until it fits (daemon/output/map_publisher.h), bounding the sample's size.
-  int64_t map_max_points = 500'000;
+  int64_t map_max_points = 250'000;
   /// Mapping: the map cloud is rebuilt and published as the map grows and after loop
   /// corrections, at most once per this period (s). Localizing: the saved map is published
   /// once at start. 0: never.

@@ -31,6 +31,7 @@
 
 #include "swlio/daemon/output/stamp_clock.h"
 #include "swlio/daemon/runtime/watchdog.h"
+#include "swlio/estimator/map/merged_cloud_builder.h"
 #include "swlio/estimator/map/saved_map.h"
 #include "swlio/ipc/messages.h"
 #include "swlio/ipc/publisher.h"
@@ -50,10 +51,11 @@ struct MapCloud {
   int builds = 0;                           ///< MergedMapCloud calls it took
 };
 
-/// One merge of a map at a voxel size: estimator::MergedMapCloud of a SavedMap, or
-/// LoopClosure::MergedCloud of the graph's own store (no copy of it).
-using MergeFn =
-    std::function<std::optional<std::vector<Eigen::Vector3f>>(double voxel_m, std::string* error)>;
+/// One merge of a map at a voxel size, keeping at most `limit.max_points` centroids and counting
+/// all of them: estimator::MergedMapCloud of a SavedMap, or LoopClosure::MergedCloud of the
+/// graph's own store (no copy of it).
+using MergeFn = std::function<std::optional<std::vector<Eigen::Vector3f>>(
+    double voxel_m, const estimator::MergedCloudLimit& limit, std::string* error)>;
 
 /// Merges the map into at most `max_points` points (≥ 1), starting at `start_voxel_m` (the
 /// rule above), beating `beat` after each merge. std::nullopt with *error when the merge

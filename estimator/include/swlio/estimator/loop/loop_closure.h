@@ -38,6 +38,7 @@
 #include "swlio/estimator/loop/loop_closure_config.h"
 #include "swlio/estimator/loop/loop_verifier.h"
 #include "swlio/estimator/loop/pose_graph.h"
+#include "swlio/estimator/map/merged_cloud_builder.h"
 #include "swlio/estimator/loop/scan_context.h"
 #include "swlio/estimator/map/saved_map.h"
 
@@ -111,7 +112,10 @@ class LoopClosure {
   SavedMap ToSavedMap() const;
   /// MergedMapCloud(ToSavedMap(), voxel_m, error) (map_pcd.h), the same cloud to the last bit,
   /// without the SavedMap copy of every cloud in double.
-  std::optional<std::vector<Eigen::Vector3f>> MergedCloud(double voxel_m, std::string* error) const;
+  /// `limit` caps the centroids kept (merged_cloud_builder.h).
+  std::optional<std::vector<Eigen::Vector3f>> MergedCloud(double voxel_m,
+                                                          std::string* error,
+                                                          MergedCloudLimit limit = {}) const;
   /// The nodes ToSavedMap would hold (those that keep a cloud).
   size_t map_nodes() const { return store_.clouds(); }
 

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "swlio/estimator/map/merged_cloud_builder.h"
 #include "swlio/estimator/map/saved_map.h"
 
 namespace swlio::estimator {
@@ -44,9 +45,11 @@ inline constexpr double kMergedCloudMinVoxelM = 1e-3;
 /// centroid per voxel of side voxel_m, map frame, in voxel order. std::nullopt with *error
 /// ("merged cloud: ...") when voxel_m is not finite or below kMergedCloudMinVoxelM, or a
 /// map-frame point is not finite or beyond kMergedCloudMaxCoordinateM.
+/// `limit` caps the centroids kept (merged_cloud_builder.h).
 std::optional<std::vector<Eigen::Vector3f>> MergedMapCloud(const SavedMap& map,
                                                            double voxel_m,
-                                                           std::string* error);
+                                                           std::string* error,
+                                                           MergedCloudLimit limit = {});
 
 /// Writes the merged cloud; the number of points written, or -1 with *error ("merged cloud:
 /// ...") when MergedMapCloud refuses or the stream fails.

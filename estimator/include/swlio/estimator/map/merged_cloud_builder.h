@@ -23,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -30,13 +31,24 @@
 
 namespace swlio::estimator {
 
+/// A cap on the centroids kept, for a caller that merges again at a larger voxel when the cloud
+/// is too big (swliod's map publication): the first `max_points` centroids in voxel order are
+/// kept, in a vector reserved once (growing by doubling held 1.5× the cloud at its last step:
+/// 16 MB on a 943 m drive's map), and `*total` receives the count of all of them.
+struct MergedCloudLimit {
+  size_t max_points = std::numeric_limits<size_t>::max();
+  size_t* total = nullptr;  ///< if set, every centroid, kept or not
+};
+
 class MergedCloudBuilder {
  public:
   /// Points sorted at once at most (56 bytes each): 3.7 MB.
   static constexpr size_t kMaxRecords = 65'536;
 
   /// `voxel_m` is checked by Finish (finite, ≥ kMergedCloudMinVoxelM).
-  explicit MergedCloudBuilder(double voxel_m, size_t max_records = kMaxRecords);
+  explicit MergedCloudBuilder(double voxel_m,
+                              size_t max_records = kMaxRecords,
+                              MergedCloudLimit limit = {});
 
   /// Starts the next pass over the nodes; false once the cloud is complete (or refused).
   bool NextPass();
@@ -54,7 +66,8 @@ class MergedCloudBuilder {
     ++node_;
   }
 
-  /// The centroids, or std::nullopt with *error ("merged cloud: ...").
+  /// The centroids (the first limit.max_points of them), or std::nullopt with *error
+  /// ("merged cloud: ...").
   std::optional<std::vector<Eigen::Vector3f>> Finish(std::string* error);
 
   int passes() const { return pass_; }
@@ -72,6 +85,8 @@ class MergedCloudBuilder {
 
   double voxel_m_;
   size_t max_records_;
+  MergedCloudLimit limit_;
+  size_t centroids_total_ = 0;
   int pass_ = 0;                                      ///< passes started
   size_t node_ = 0;                                   ///< nodes added in this pass
   uint64_t order_ = 0;                                ///< points added in this pass
