@@ -8,9 +8,7 @@
 
 namespace swlio::estimator {
 
-MergedCloudBuilder::MergedCloudBuilder(double voxel_m,
-                                       size_t max_records,
-                                       MergedCloudLimit limit)
+MergedCloudBuilder::MergedCloudBuilder(double voxel_m, size_t max_records, MergedCloudLimit limit)
     : voxel_m_(voxel_m), max_records_(std::max<size_t>(max_records, 1)), limit_(limit) {}
 
 bool MergedCloudBuilder::VoxelOk() const {

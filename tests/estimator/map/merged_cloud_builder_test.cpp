@@ -103,8 +103,8 @@ TEST(MergedCloudBuilder, EveryStripeSizeGivesTheReferenceCloudToTheLastBit) {
 TEST(MergedCloudBuilder, ACapKeepsTheCloudsFirstPointsAndCountsThemAll) {
   const std::vector<Node> nodes = RandomNodes(40, 300);
   const std::vector<Eigen::Vector3f> expected = Reference(nodes, 0.5);
-  for (const size_t cap : {size_t{1}, size_t{1000}, expected.size() - 1, expected.size(),
-                           expected.size() + 1000}) {
+  for (const size_t cap :
+       {size_t{1}, size_t{1000}, expected.size() - 1, expected.size(), expected.size() + 1000}) {
     for (const size_t max_records : {size_t{1} << 30, size_t{37}}) {
       std::string error;
       size_t total = 0;
