@@ -232,8 +232,9 @@ SavedMap LoopClosure::ToSavedMap() const {
   return map;
 }
 
-std::optional<std::vector<Eigen::Vector3f>> LoopClosure::MergedCloud(
-    double voxel_m, std::string* error, MergedCloudLimit limit) const {
+std::optional<std::vector<Eigen::Vector3f>> LoopClosure::MergedCloud(double voxel_m,
+                                                                     std::string* error,
+                                                                     MergedCloudLimit limit) const {
   MergedCloudBuilder builder(voxel_m, MergedCloudBuilder::kMaxRecords, limit);
   while (builder.NextPass()) {
     for (size_t i = 0; i < nodes_.size(); ++i) {
