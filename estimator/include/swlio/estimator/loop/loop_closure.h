@@ -38,8 +38,8 @@
 #include "swlio/estimator/loop/loop_closure_config.h"
 #include "swlio/estimator/loop/loop_verifier.h"
 #include "swlio/estimator/loop/pose_graph.h"
-#include "swlio/estimator/map/merged_cloud_builder.h"
 #include "swlio/estimator/loop/scan_context.h"
+#include "swlio/estimator/map/merged_cloud_builder.h"
 #include "swlio/estimator/map/saved_map.h"
 
 namespace swlio::estimator {
