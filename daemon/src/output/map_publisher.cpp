@@ -75,10 +75,8 @@ std::optional<MapCloud> BuildMapCloud(const MergeFn& merge,
     const bool last = cloud.builds >= kMaxVoxelSteps;
     size_t n = 0;
     cloud.points_map = {};
-    std::optional<std::vector<Eigen::Vector3f>> points = merge(
-        cloud.voxel_m,
-        {last ? std::numeric_limits<size_t>::max() : max_points, &n},
-        error);
+    std::optional<std::vector<Eigen::Vector3f>> points =
+        merge(cloud.voxel_m, {last ? std::numeric_limits<size_t>::max() : max_points, &n}, error);
     beat.Beat();
     if (!points) return std::nullopt;
     cloud.points_map = std::move(*points);
