@@ -117,13 +117,18 @@ struct LiveDriveResult {
     }
   }
   /// Whether any published status `name` had a message containing `text`.
-  bool PublishedSaid(const std::string& name, const std::string& text) const {
+  /// The newest published health message of status `name` that contains `text`, or nullptr.
+  const std::string* LastPublished(const std::string& name, const std::string& text) const {
+    const std::string* found = nullptr;
     for (const auto& a : published_health) {
       for (const auto& s : a.msg.status) {
-        if (s.name == name && s.message.find(text) != std::string::npos) return true;
+        if (s.name == name && s.message.find(text) != std::string::npos) found = &s.message;
       }
     }
-    return false;
+    return found;
+  }
+  bool PublishedSaid(const std::string& name, const std::string& text) const {
+    return LastPublished(name, text) != nullptr;
   }
 };
 
