@@ -24,6 +24,28 @@ void SetNice(const char* name, int64_t nice, std::vector<std::string>* problems)
   }
 }
 
+void Pin(const char* name, int64_t cpu, std::vector<std::string>* problems) {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(static_cast<size_t>(cpu), &set);
+  if (const int err = pthread_setaffinity_np(pthread_self(), sizeof set, &set); err != 0) {
+    problems->push_back(Failure(name, ("pinning to CPU " + std::to_string(cpu)).c_str(), err));
+  }
+}
+
+/// SCHED_FIFO at `priority`: allowed with CAP_SYS_NICE, or without any capability up to
+/// RLIMIT_RTPRIO (sched(7); swliod.service sets LimitRTPRIO). Empty on success, else why not.
+std::string SetFifo(const char* name, int64_t priority) {
+  sched_param p{};
+  p.sched_priority = static_cast<int>(priority);
+  const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p);
+  if (err == 0) return {};
+  rlimit limit{};
+  getrlimit(RLIMIT_RTPRIO, &limit);
+  return Failure(name, ("SCHED_FIFO " + std::to_string(priority)).c_str(), err) +
+         " (RLIMIT_RTPRIO " + std::to_string(limit.rlim_cur) + ")";
+}
+
 }  // namespace
 
 std::vector<std::string> SetUpThisThread(const char* name, const RealtimeConfig& config) {
@@ -31,24 +53,15 @@ std::vector<std::string> SetUpThisThread(const char* name, const RealtimeConfig&
   pthread_setname_np(pthread_self(), name);
   for (const ThreadSchedConfig& t : config.threads) {
     if (t.name != name) continue;
-    const bool fifo = config.enabled && t.priority > 0;
+    bool fifo = config.enabled && t.priority > 0;
+    if (fifo) {
+      if (std::string problem = SetFifo(name, t.priority); !problem.empty()) {
+        problems.push_back(problem + "; nice " + std::to_string(t.nice) + " instead");
+        fifo = false;
+      }
+    }
     if (t.nice != 0 && !fifo) SetNice(name, t.nice, &problems);
-    if (!config.enabled) continue;
-    if (t.priority > 0) {
-      sched_param p{};
-      p.sched_priority = static_cast<int>(t.priority);
-      if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); err != 0) {
-        problems.push_back(Failure(name, "SCHED_FIFO", err));
-      }
-    }
-    if (t.cpu >= 0) {
-      cpu_set_t set;
-      CPU_ZERO(&set);
-      CPU_SET(static_cast<size_t>(t.cpu), &set);
-      if (const int err = pthread_setaffinity_np(pthread_self(), sizeof set, &set); err != 0) {
-        problems.push_back(Failure(name, ("pinning to CPU " + std::to_string(t.cpu)).c_str(), err));
-      }
-    }
+    if (config.enabled && t.cpu >= 0) Pin(name, t.cpu, &problems);
   }
   return problems;
 }

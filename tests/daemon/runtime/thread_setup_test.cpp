@@ -7,6 +7,7 @@
 #include <pthread.h>
 #include <sched.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -100,6 +101,54 @@ TEST(ThreadSetup, SetsTheNiceValueOfThisThreadOnlyEvenWithoutRealtime) {
   EXPECT_EQ(nice, target);
   EXPECT_EQ(getpriority(PRIO_PROCESS, static_cast<id_t>(gettid())), inherited)
       << "other threads keep theirs";
+}
+
+// What the child of RunUnprivileged found, as its exit status.
+enum Outcome : int { kFifo = 10, kNiceFallback = 11, kNeither = 12, kCannotRaiseLimit = 13 };
+
+// Forks; the child sets RLIMIT_RTPRIO (swliod.service: LimitRTPRIO), becomes an unprivileged
+// user (no capabilities left, as swliod under its unit), applies the schedule
+// `imu_rx: FIFO 70, nice 5` to its only thread and exits with what it got. (Nice 5, not the
+// daemon's -10: raising the nice value needs no RLIMIT_NICE.)
+int RunUnprivileged(rlim_t rtprio) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const rlimit rt_limit{rtprio, rtprio};
+    if (setrlimit(RLIMIT_RTPRIO, &rt_limit) != 0) _exit(kCannotRaiseLimit);
+    if (setresgid(65534, 65534, 65534) != 0 || setresuid(65534, 65534, 65534) != 0) _exit(1);
+    RealtimeConfig config;
+    config.enabled = true;
+    config.threads = {{"imu_rx", 70, -1, 5}};
+    const std::vector<std::string> problems = SetUpThisThread("imu_rx", config);
+    if (sched_getscheduler(0) == SCHED_FIFO && problems.empty()) _exit(kFifo);
+    const bool said = problems.size() == 1 &&
+                      problems[0].find("SCHED_FIFO 70 failed") != std::string::npos &&
+                      problems[0].find("nice 5 instead") != std::string::npos;
+    errno = 0;
+    const int nice = getpriority(PRIO_PROCESS, 0);
+    _exit(said && sched_getscheduler(0) == SCHED_OTHER && nice == 5 ? kNiceFallback : kNeither);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// swliod.service gives the daemon no capability: where RLIMIT_RTPRIO forbids SCHED_FIFO, the
+// thread keeps its nice value instead of running at 0.
+TEST(ThreadSetup, WithoutTheRtprioLimitTheThreadKeepsItsNiceValue) {
+  if (geteuid() != 0) GTEST_SKIP() << "needs root to become an unprivileged user with limits";
+  EXPECT_EQ(RunUnprivileged(0), kNiceFallback);
+}
+
+// ... and SCHED_FIFO comes from LimitRTPRIO alone.
+TEST(ThreadSetup, FifoNeedsOnlyTheRtprioLimit) {
+  if (geteuid() != 0) GTEST_SKIP() << "needs root to become an unprivileged user with limits";
+  const int outcome = RunUnprivileged(80);
+  if (outcome == kCannotRaiseLimit) {
+    GTEST_SKIP() << "this process cannot raise RLIMIT_RTPRIO to 80 (no CAP_SYS_RESOURCE and a "
+                    "lower hard limit), as systemd does for the unit";
+  }
+  EXPECT_EQ(outcome, kFifo);
 }
 
 TEST(RealtimeConfig, NiceIsLoadedAndBounded) {

@@ -41,24 +41,26 @@ struct ThreadSchedConfig {
   std::string name;
   int64_t priority = 0;  ///< SCHED_FIFO priority 1–99; 0 keeps normal (SCHED_OTHER) scheduling
   int64_t cpu = -1;      ///< pin to this CPU; −1: any
-  /// Nice value −20..19 under normal scheduling, applied even when `enabled` is false (Linux
-  /// nice is per thread). Below 0 it needs RLIMIT_NICE, which swliod.service grants down to −10
-  /// (LimitNICE), or CAP_SYS_NICE; ignored for a thread given a SCHED_FIFO priority.
+  /// Nice value −20..19 under normal scheduling: for a thread without a SCHED_FIFO priority,
+  /// or with one when `enabled` is false or SCHED_FIFO is refused (Linux nice is per thread).
+  /// Below 0 it needs RLIMIT_NICE, which swliod.service grants down to −10 (LimitNICE), or
+  /// CAP_SYS_NICE.
   int64_t nice = 0;
 };
 
 /// The schedule swliod runs with unless the YAML lists its own: the sensor-to-pose path
-/// (lidar_rx, imu_rx, propagator, publisher) at nice −10 (what swliod.service's LimitNICE
-/// allows without a capability), so that on a busy computer its threads, which sleep most of
-/// the time, run as soon as they wake; loop closure at nice 5, below the optimizer (0). The
-/// SCHED_FIFO priorities apply only with `enabled` (docs/scheduling.md).
+/// (lidar_rx, imu_rx, propagator, publisher) at SCHED_FIFO 80/80/70/60 (swliod.service allows
+/// up to 80 with LimitRTPRIO, no capability), or at nice −10 where real-time scheduling is off
+/// or refused, so that on a busy computer its threads, which sleep most of the time, run as
+/// soon as they wake; the optimizer at nice 0, loop closure at nice 5 (docs/scheduling.md).
 std::vector<ThreadSchedConfig> DefaultThreadSchedule();
 
-/// Real-time options (YAML `realtime`). Scheduling and memory locking are off by default; they
-/// need the capabilities the systemd drop-in swliod-realtime.conf grants (CAP_SYS_NICE,
-/// CAP_IPC_LOCK); a refusal is logged and the daemon runs on without it.
+/// Real-time options (YAML `realtime`). SCHED_FIFO is on by default: an unprivileged thread may
+/// use it up to RLIMIT_RTPRIO (sched(7)), which swliod.service sets; a refusal is logged and
+/// the thread keeps its nice value. CPU pinning above and memory locking need the drop-in
+/// swliod-realtime.conf (CAP_SYS_NICE, LimitMEMLOCK).
 struct RealtimeConfig {
-  bool enabled = false;      ///< apply `threads`' priorities and CPU pinning (nice: always)
+  bool enabled = true;       ///< apply `threads`' SCHED_FIFO priorities and CPU pinning
   bool lock_memory = false;  ///< mlockall(MCL_CURRENT | MCL_FUTURE) once the threads run
   /// When the estimator runs this far behind the LiDAR (a sweep's last packet arrived longer
   /// ago, sensor time), it skips every other sweep until it has caught up, and longer runs
