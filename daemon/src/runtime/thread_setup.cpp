@@ -7,6 +7,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
+#include <fstream>
 
 #include <cstring>
 
@@ -33,8 +35,22 @@ void Pin(const char* name, int64_t cpu, std::vector<std::string>* problems) {
   }
 }
 
+/// Whether the process holds CAP_SYS_NICE (bit 23 of CapEff in /proc/self/status, proc(5)).
+bool HoldsCapSysNice() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("CapEff:", 0) != 0) continue;
+    const unsigned long long caps = std::strtoull(line.c_str() + 7, nullptr, 16);
+    return ((caps >> 23) & 1ULL) != 0;
+  }
+  return false;
+}
+
 /// SCHED_FIFO at `priority`: allowed with CAP_SYS_NICE, or without any capability up to
-/// RLIMIT_RTPRIO (sched(7); swliod.service sets LimitRTPRIO). Empty on success, else why not.
+/// RLIMIT_RTPRIO (sched(7); swliod.service sets LimitRTPRIO), unless the kernel has
+/// CONFIG_RT_GROUP_SCHED and the thread's cpu cgroup no real-time budget. Empty on success,
+/// else what failed and which of these it was.
 std::string SetFifo(const char* name, int64_t priority) {
   sched_param p{};
   p.sched_priority = static_cast<int>(priority);
@@ -42,8 +58,10 @@ std::string SetFifo(const char* name, int64_t priority) {
   if (err == 0) return {};
   rlimit limit{};
   getrlimit(RLIMIT_RTPRIO, &limit);
+  const bool allowed = HoldsCapSysNice() || limit.rlim_cur >= static_cast<rlim_t>(priority);
   return Failure(name, ("SCHED_FIFO " + std::to_string(priority)).c_str(), err) +
-         " (RLIMIT_RTPRIO " + std::to_string(limit.rlim_cur) + ")";
+         (allowed ? " (permitted, so the cpu cgroup has no real-time budget: docs/scheduling.md)"
+                  : " (RLIMIT_RTPRIO " + std::to_string(limit.rlim_cur) + ", no CAP_SYS_NICE)");
 }
 
 }  // namespace
