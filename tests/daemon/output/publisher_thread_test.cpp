@@ -17,7 +17,7 @@ TEST(PublisherThread, KeyframePathKeepsTheNewestKeyframesOnly) {
   SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 16);
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 64);
   Doorbell bell;
-  PublisherThread publisher(nullptr, FrameIds{}, PublisherQueues{&poses, &odometry, &bell}, {},
+  PublisherThread publisher(nullptr, OutputFrames{}, PublisherQueues{&poses, &odometry, &bell}, {},
                             nullptr, 1'000'000'000, 10);
   for (int i = 0; i < 30; ++i) {
     SweepEstimate e;
@@ -40,7 +40,7 @@ TEST(PublisherThread, NonFiniteStatesAreNeverPublishedButCounted) {
   SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 16);
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 16);
   Doorbell bell;
-  PublisherThread publisher(nullptr, FrameIds{}, PublisherQueues{&poses, &odometry, &bell}, {},
+  PublisherThread publisher(nullptr, OutputFrames{}, PublisherQueues{&poses, &odometry, &bell}, {},
                             nullptr);
   ImuRatePose good;
   good.state.t_ns = 1'000'000;
@@ -67,7 +67,7 @@ TEST(PublisherThread, AMapCorrectionIsFollowedAtTheConfiguredRate) {
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 128);
   SpscQueue<MapCorrection> corrections("corrections", "test", "publisher", 4);
   Doorbell bell;
-  PublisherThread publisher(nullptr, FrameIds{},
+  PublisherThread publisher(nullptr, OutputFrames{},
                             PublisherQueues{&poses, &odometry, &bell, &corrections}, {}, nullptr,
                             1'000'000'000, 100, {.max_rate_mps = 0.2, .max_rate_radps = 0.05});
   MapCorrection c;
@@ -98,7 +98,7 @@ TEST(PublisherThread, ALoopReplacesTheKeyframePathByTheCorrectedNodes) {
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 16);
   SpscQueue<MapCorrection> corrections("corrections", "test", "publisher", 4);
   Doorbell bell;
-  PublisherThread publisher(nullptr, FrameIds{},
+  PublisherThread publisher(nullptr, OutputFrames{},
                             PublisherQueues{&poses, &odometry, &bell, &corrections}, {}, nullptr,
                             1'000'000'000, 4);
   auto nodes = std::make_shared<std::vector<estimator::MapNode>>();
@@ -134,7 +134,7 @@ TEST(PublisherThread, WithoutCorrectionsPosesAreUntouched) {
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 4);
   SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 4);
   Doorbell bell;
-  PublisherThread publisher(nullptr, FrameIds{}, PublisherQueues{&poses, &odometry, &bell}, {},
+  PublisherThread publisher(nullptr, OutputFrames{}, PublisherQueues{&poses, &odometry, &bell}, {},
                             nullptr, 1'000'000'000, 10);
   SweepEstimate e;
   e.status = estimator::OdometryStatus::kTracking;
@@ -154,8 +154,8 @@ int64_t PublishedStamp(int64_t t_ns, StampClock* stamps, const TimeScale& time =
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 4);
   SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 4);
   Doorbell bell;
-  PublisherThread publisher(nullptr, FrameIds{}, PublisherQueues{&poses, &odometry, &bell}, time,
-                            nullptr, 1'000'000'000, 10);
+  PublisherThread publisher(nullptr, OutputFrames{}, PublisherQueues{&poses, &odometry, &bell},
+                            time, nullptr, 1'000'000'000, 10);
   if (stamps != nullptr) publisher.StampWith(stamps);
   SweepEstimate e;
   e.status = estimator::OdometryStatus::kTracking;
