@@ -93,17 +93,19 @@ void PublisherThread::ReplacePath(const std::vector<estimator::MapNode>& nodes) 
 }
 
 const Eigen::Isometry3d& PublisherThread::StepCorrection(int64_t t_ns,
-                                                         const Eigen::Isometry3d& T_odom_imu) {
+                                                         const Eigen::Isometry3d& T_odom_imu,
+                                                         bool send) {
   const Eigen::Isometry3d& C = slew_.Step(t_ns, T_odom_imu);
-  // Only forward in time: C moves only then, and a map → odom stamped before one already sent
-  // would claim a newer C for poses published with the older one (a sweep's odometry is
-  // older than the IMU-rate poses).
+  if (!send) return C;
+  // Sent whenever the C applied to this pose is not the one sent last, so that every sample
+  // holds for the poses up to the next; stamped like this pose even when a sweep's odometry
+  // stepped C to a later time (its end may lie up to max_imu_lag_s past the newest pose).
   const bool changed = C.matrix() != sent_T_map_odom_.matrix();
   const bool due = t_ns - sent_map_odom_t_ns_ >= map_odom_period_ns_;
-  if (!sent_map_odom_ || (t_ns > sent_map_odom_t_ns_ && (changed || due))) {
+  if (!sent_map_odom_ || changed || due) {
     tf_.transforms.push_back(ToTransform(Stamp(t_ns), frames_.names.map, frames_.names.odom, C));
     sent_T_map_odom_ = C;
-    sent_map_odom_t_ns_ = t_ns;
+    sent_map_odom_t_ns_ = std::max(sent_map_odom_t_ns_, t_ns);
     sent_map_odom_ = true;
   }
   return C;
@@ -166,7 +168,7 @@ void PublisherThread::WritePose(const ImuRatePose& pose) {
     WriteTf();
     return;
   }
-  const Eigen::Isometry3d& C = StepCorrection(pose.state.t_ns, pose.state.T_world_imu);
+  const Eigen::Isometry3d& C = StepCorrection(pose.state.t_ns, pose.state.T_world_imu, true);
   ipc::PoseWithCovarianceStamped m;
   m.t_ns = stamp;
   m.frame_id = frames_.names.map;
@@ -201,9 +203,7 @@ void PublisherThread::WriteOdometry(const SweepEstimate& e) {
     held_.fetch_add(1, std::memory_order_relaxed);
     return;
   }
-  tf_.transforms.clear();
-  const Eigen::Isometry3d& C = StepCorrection(e.state.t_ns, e.state.T_world_imu);
-  WriteTf();  // map → odom, if C moved
+  const Eigen::Isometry3d& C = StepCorrection(e.state.t_ns, e.state.T_world_imu, false);
   ipc::Odometry m = ToOdometryMessage(InMap(C, e.state), last_gyro_imu_radps_, e.covariance,
                                       frames_.T_imu_base, names.map, names.base_link);
   m.t_ns = odom.t_ns;

@@ -183,5 +183,52 @@ TEST(PublisherThread, StampsAreTheStampClocksConversionOfHostTime) {
   EXPECT_EQ(PublishedStamp(104'000'000'000, &realtime, twice), 102'000'000'000 + kOffsetNs);
 }
 
+// Localizing in a saved map: before the relocalization only the odom frame is published
+// (odom → base_link with every pose, the odom-frame odometry; REP 105's odom needs no map);
+// the map-frame pose, odometry and map → odom start with the first (jumping) correction.
+TEST(PublisherThread, BeforeTheFirstLocalizationOnlyTheOdomFrameIsPublished) {
+  SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 16);
+  SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 16);
+  SpscQueue<MapCorrection> corrections("corrections", "test", "publisher", 4);
+  Doorbell bell;
+  PublisherThread publisher(nullptr, OutputFrames{},
+                            PublisherQueues{&poses, &odometry, &bell, &corrections}, {}, nullptr);
+  publisher.HoldUntilLocalized();
+  auto feed = [&](int64_t t0_ns) {
+    for (int i = 0; i < 4; ++i) {
+      ImuRatePose p;
+      p.state.t_ns = t0_ns + i * 10'000'000;
+      ASSERT_TRUE(poses.Push(p));
+    }
+    SweepEstimate e;
+    e.status = estimator::OdometryStatus::kTracking;
+    e.state.t_ns = t0_ns;
+    ASSERT_TRUE(odometry.Push(e));
+  };
+  feed(1'000'000'000);
+  const std::atomic<bool> stop{true};
+  publisher.Run(stop, Watchdog::Handle{});
+  PublisherCounters c = publisher.counters();
+  EXPECT_EQ(c.poses, 0u);
+  EXPECT_EQ(c.odometry, 0u);
+  EXPECT_EQ(c.held, 5u);
+  EXPECT_EQ(c.odom_odometry, 1u);
+  EXPECT_EQ(c.transforms, 1u + 4u) << "/tf_static, then odom → base_link per pose";
+
+  MapCorrection relocalized;
+  relocalized.jump = true;
+  relocalized.T_map_odom.translation() = Eigen::Vector3d(5.0, 0.0, 0.0);
+  ASSERT_TRUE(corrections.Push(relocalized));
+  feed(2'000'000'000);
+  publisher.Run(stop, Watchdog::Handle{});
+  c = publisher.counters();
+  EXPECT_EQ(c.poses, 4u);
+  EXPECT_EQ(c.odometry, 1u);
+  EXPECT_EQ(c.held, 5u);
+  EXPECT_EQ(c.odom_odometry, 2u);
+  // A second /tf_static (this Run), a /tf per pose (map → odom riding with the first).
+  EXPECT_EQ(c.transforms, 5u + 1u + 4u);
+}
+
 }  // namespace
 }  // namespace swlio::daemon

@@ -15,12 +15,13 @@
 ///
 /// REP 105: odom is the estimator's own frame, continuous (no loop correction ever reaches
 /// it). /tf gets odom → base_link with every pose (IMU rate) and map → odom = C, stamped like
-/// the pose it was applied to, whenever C changed and otherwise at least every
-/// SetMapOdomPeriod; so map → odom (the latest at or before a pose's stamp) ∘ odom → base_link
-/// is the published map-frame pose. /tf_static gets base_link → imu and base_link → lidar once
-/// at start. The odom-frame odometry (nav_msgs/Odometry, frame odom) goes out beside the
-/// map-frame one. Before the first localization in a saved map (HoldUntilLocalized) only the
-/// odom-frame outputs are published.
+/// the pose it was applied to, with the first pose whose C differs from the one sent last and
+/// otherwise at least every SetMapOdomPeriod (pose time); so map → odom (the latest at or
+/// before a pose's stamp) ∘ odom → base_link is the published map-frame pose. Map → odom goes
+/// out with poses only: a sweep's odometry may step C but takes the C then current. /tf_static gets
+/// base_link → imu and base_link → lidar once at start. The odom-frame odometry (nav_msgs/Odometry,
+/// frame odom) goes out beside the map-frame one. Before the first localization in a saved map
+/// (HoldUntilLocalized) only the odom-frame outputs are published.
 ///
 /// Stamps: each message's stamp is converted once, when it is written, from the daemon's time
 /// by the StampClock (stamp_clock.h; CLOCK_REALTIME by default), whose offset this thread
@@ -108,9 +109,12 @@ class PublisherThread {
   /// The keyframe path becomes the graph's nodes at their corrected poses (newest
   /// path_max_poses); later keyframes are appended as published.
   void ReplacePath(const std::vector<estimator::MapNode>& nodes);
-  /// Steps the map correction C to `t_ns` (for the IMU pose `T_odom_imu`) and returns it; adds
-  /// map → odom to tf_ when C changed or the period passed since it was last sent.
-  const Eigen::Isometry3d& StepCorrection(int64_t t_ns, const Eigen::Isometry3d& T_odom_imu);
+  /// Steps the map correction C to `t_ns` (for the IMU pose `T_odom_imu`) and returns it. With
+  /// `send` (an IMU-rate pose), adds map → odom to tf_ when C is not the one sent last or the
+  /// period passed since.
+  const Eigen::Isometry3d& StepCorrection(int64_t t_ns,
+                                          const Eigen::Isometry3d& T_odom_imu,
+                                          bool send);
   void WritePose(const ImuRatePose& pose);
   void WriteOdometry(const SweepEstimate& e);
   void WriteTf();
@@ -135,7 +139,7 @@ class PublisherThread {
   ipc::TFMessage tf_;  ///< the /tf sample being built
   int64_t map_odom_period_ns_ = 100'000'000;
   Eigen::Isometry3d sent_T_map_odom_ = Eigen::Isometry3d::Identity();
-  int64_t sent_map_odom_t_ns_ = 0;  ///< daemon time of the last map → odom sent
+  int64_t sent_map_odom_t_ns_ = 0;  ///< daemon time of the newest map → odom sent
   bool sent_map_odom_ = false;
   Eigen::Vector3d last_gyro_imu_radps_ = Eigen::Vector3d::Zero();
   LatencyHistogram pose_latency_;
