@@ -552,6 +552,15 @@ void Bind(Section s,
   s.Finish();
 }
 
+void Bind(Section s, ipc::FrameNames& c) {
+  s.Get("map", c.map);
+  s.Get("odom", c.odom);
+  s.Get("base_link", c.base_link);
+  s.Get("imu", c.imu);
+  s.Get("lidar", c.lidar);
+  s.Finish();
+}
+
 void Bind(Section s, ipc::IpcConfig& c) {
   s.Get("domain_id", c.domain_id);
   s.Get("dds_config_file", c.dds_config_file);
@@ -565,6 +574,11 @@ void Bind(Section s, ipc::IpcConfig& c) {
   s.Get("map_max_points", c.map_max_points);
   s.Get("map_publish_period_s", c.map_publish_period_s);
   s.Get("stamp_clock", c.stamp_clock);
+  s.Get("odom_odometry_topic", c.odom_odometry_topic);
+  s.Get("tf_topic", c.tf_topic);
+  s.Get("tf_static_topic", c.tf_static_topic);
+  s.Get("map_odom_period_s", c.map_odom_period_s);
+  Bind(s.Child("frames"), c.frames);
   s.Finish();
 }
 

@@ -139,8 +139,11 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
         LoopClosureQueues{&q.keyframes, &q.corrections, gnss ? &q.gnss : nullptr});
   }
   if (localize && !rt->LoadLocalization(error)) return nullptr;
-  const FrameIds frames;
-  rt->MakeMapPublisher(frames.world);
+  OutputFrames frames;
+  frames.names = config.ipc.frames;
+  frames.T_imu_base = config.window.wheel.T_imu_base.ToIsometry();  // identity unless configured
+  frames.T_imu_lidar = T_imu_lidar;
+  rt->MakeMapPublisher(frames.names.map);
   Runtime* self = rt.get();
   rt->publisher_thread_ = std::make_unique<PublisherThread>(
       rt->publisher_.get(), frames,
@@ -151,6 +154,7 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
       estimator::CorrectionSlewConfig{config.loop_closure.output_max_rate_mps,
                                       config.loop_closure.output_max_rate_radps});
   rt->publisher_thread_->StampWith(rt->stamp_clock_.get());
+  rt->publisher_thread_->SetMapOdomPeriod(SecToNs(config.ipc.map_odom_period_s));
   if (localize) rt->publisher_thread_->HoldUntilLocalized();
   return rt;
 }
