@@ -10,7 +10,7 @@
 # build was configured with. systemd units go to lib/, not to the multiarch libdir.
 include(GNUInstallDirs)
 
-foreach(_program swliod swlio-decode swlio-echo swlio-eval swlio-run swlio-sim)
+foreach(_program swliod swlioctl swlio-decode swlio-echo swlio-eval swlio-run swlio-sim)
   if(TARGET ${_program})
     install(TARGETS ${_program} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   endif()

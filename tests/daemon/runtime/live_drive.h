@@ -48,7 +48,8 @@ struct LiveDrive {
   /// Every test its own DDS domain, or one test's subscriber takes another's samples (the ipc
   /// tests publish edge values such as NaN and DBL_MAX: a CI-like run of ctest -j2 saw them
   /// arrive here). tests/ipc uses 101..133; the daemon tests 140..159: Runtime.* 140,
-  /// RuntimeFaults.* 141..153 and 156, SwliodCommand 154, Runtime.AWallClockStep… 157.
+  /// RuntimeFaults.* 141..153 and 156, SwliodCommand 154, Runtime.AWallClockStep… 157,
+  /// RuntimeControl.* 158.
   uint32_t dds_domain = 140;
 };
 
