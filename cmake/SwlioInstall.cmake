@@ -2,6 +2,7 @@
 #   <prefix>/bin/                        swliod and the command-line tools
 #   <prefix>/lib/systemd/system/         swliod.service (paths of this install filled in)
 #   <prefix>/lib/sysusers.d/swlio.conf   the swlio system user (systemd-sysusers)
+#   <prefix>/lib/tmpfiles.d/swlio.conf   /run/swlio for the control socket (systemd-tmpfiles)
 #   <prefix>/share/swlio/                swliod-realtime.conf, an opt-in drop-in
 #   <sysconfdir>/swlio/                  swlio.yaml and the DDS XML files it names
 # sysconfdir follows GNUInstallDirs: /etc for prefix /usr, /etc/opt/... for /opt/..., else
@@ -16,6 +17,7 @@ foreach(_program swliod swlioctl swlio-decode swlio-echo swlio-eval swlio-run sw
   endif()
 endforeach()
 install(FILES systemd/swlio.sysusers.conf DESTINATION lib/sysusers.d RENAME swlio.conf)
+install(FILES systemd/swlio.tmpfiles.conf DESTINATION lib/tmpfiles.d RENAME swlio.conf)
 install(FILES systemd/swliod-realtime.conf DESTINATION ${CMAKE_INSTALL_DATADIR}/swlio)
 install(CODE "
   set(SWLIO_SOURCE_DIR \"${CMAKE_SOURCE_DIR}\")

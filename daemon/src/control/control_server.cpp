@@ -89,8 +89,8 @@ std::optional<gid_t> ApplyGroup(const std::string& path,
     return std::nullopt;
   }
   struct stat st {};
-  // Under swliod.service the RuntimeDirectory is set-group-ID and of this group already
-  // (swliod.service.in), and chown(2) is not among the unit's allowed system calls.
+  // Under swliod.service /run/swlio is set-group-ID and of this group already
+  // (swlio.tmpfiles.conf), and chown(2) is not among the unit's allowed system calls.
   if (stat(path.c_str(), &st) == 0 && st.st_gid == *gid) return gid;
   if (chown(path.c_str(), static_cast<uid_t>(-1), *gid) != 0) {
     *warning = Errno("control.group '" + name + "': chown of " + path) +

@@ -88,7 +88,7 @@ struct MapFilesConfig {
 /// The control socket swlioctl talks to (YAML `control`; docs/control.md).
 struct ControlConfig {
   /// UNIX stream socket path; relative paths are taken from the config file's directory.
-  /// Empty: no control socket. The default lies in the unit's RuntimeDirectory (/run/swlio);
+  /// Empty: no control socket. The default lies in /run/swlio (swlio.tmpfiles.conf);
   /// where it cannot be created (swliod run by hand), the daemon logs why and runs on without.
   std::string socket = "/run/swlio/swliod.sock";
   /// The socket's group (mode 0660): the operators who may use swlioctl besides the daemon's
