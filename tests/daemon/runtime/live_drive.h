@@ -142,6 +142,9 @@ inline DaemonConfig LiveDriveConfig(const std::filesystem::path& dir, uint32_t d
   config.ipc.stamp_clock = "monotonic";
   config.ipc.dds_config_file =
       (::swlio::test::SourceDir() / "config" / "cyclonedds-loopback.xml").string();
+  // No control socket unless a test asks (RuntimeControl.*): the default /run/swlio is the
+  // installed daemon's.
+  config.control.socket = "";
   return config;
 }
 
