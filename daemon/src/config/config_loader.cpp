@@ -610,6 +610,15 @@ void Bind(Section s, RealtimeConfig& c) {
   s.Finish();
 }
 
+void Bind(Section s, ControlConfig& c) {
+  s.Get("socket", c.socket);
+  s.Get("group", c.group);
+  s.Get("request_timeout_s", c.request_timeout_s);
+  s.Get("command_timeout_s", c.command_timeout_s);
+  s.Get("max_clients", c.max_clients);
+  s.Finish();
+}
+
 void BindRoot(Section root, DaemonConfig& c, Context& ctx) {
   c.config_version = -1;
   root.Get("config_version", c.config_version);
@@ -627,6 +636,7 @@ void BindRoot(Section root, DaemonConfig& c, Context& ctx) {
   Bind(root.Child("ipc"), c.ipc);
   Bind(root.Child("logging"), c.logging);
   Bind(root.Child("realtime"), c.realtime);
+  Bind(root.Child("control"), c.control);
   root.Finish();
 }
 
@@ -641,6 +651,7 @@ void ResolvePaths(DaemonConfig& c, const std::filesystem::path& base_dir) {
   resolve(c.ipc.dds_config_file);
   resolve(c.map.save_path);
   resolve(c.map.load_path);
+  resolve(c.control.socket);
 }
 
 /// Validate() results carry key names only; add the place of each key in the file.

@@ -447,6 +447,16 @@ void Emit(ConfigWriter& w, const RealtimeConfig& c) {
   w.EndMap();
 }
 
+void Emit(ConfigWriter& w, const ControlConfig& c) {
+  w.BeginMap("control");
+  w.Put("socket", c.socket);
+  w.Put("group", c.group);
+  w.Put("request_timeout_s", c.request_timeout_s);
+  w.Put("command_timeout_s", c.command_timeout_s);
+  w.Put("max_clients", c.max_clients);
+  w.EndMap();
+}
+
 }  // namespace
 
 std::string PrintConfig(const DaemonConfig& config) {
@@ -464,6 +474,7 @@ std::string PrintConfig(const DaemonConfig& config) {
   Emit(w, config.ipc);
   Emit(w, config.logging);
   Emit(w, config.realtime);
+  Emit(w, config.control);
   w.EndMap();
   return w.Text();
 }
