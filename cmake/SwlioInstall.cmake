@@ -2,6 +2,7 @@
 #   <prefix>/bin/                        swliod and the command-line tools
 #   <prefix>/lib/systemd/system/         swliod.service (paths of this install filled in)
 #   <prefix>/lib/sysusers.d/swlio.conf   the swlio system user (systemd-sysusers)
+#   <prefix>/lib/tmpfiles.d/swlio.conf   /run/swlio for the control socket (systemd-tmpfiles)
 #   <prefix>/share/swlio/                swliod-realtime.conf, an opt-in drop-in
 #   <sysconfdir>/swlio/                  swlio.yaml and the DDS XML files it names
 # sysconfdir follows GNUInstallDirs: /etc for prefix /usr, /etc/opt/... for /opt/..., else
@@ -10,12 +11,13 @@
 # build was configured with. systemd units go to lib/, not to the multiarch libdir.
 include(GNUInstallDirs)
 
-foreach(_program swliod swlio-decode swlio-echo swlio-eval swlio-run swlio-sim)
+foreach(_program swliod swlioctl swlio-decode swlio-echo swlio-eval swlio-run swlio-sim)
   if(TARGET ${_program})
     install(TARGETS ${_program} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   endif()
 endforeach()
 install(FILES systemd/swlio.sysusers.conf DESTINATION lib/sysusers.d RENAME swlio.conf)
+install(FILES systemd/swlio.tmpfiles.conf DESTINATION lib/tmpfiles.d RENAME swlio.conf)
 install(FILES systemd/swliod-realtime.conf DESTINATION ${CMAKE_INSTALL_DATADIR}/swlio)
 install(CODE "
   set(SWLIO_SOURCE_DIR \"${CMAKE_SOURCE_DIR}\")

@@ -1,6 +1,8 @@
 #include "swlio/ipc/ipc_config.h"
 
+#include <array>
 #include <cctype>
+#include <utility>
 
 namespace swlio::ipc {
 namespace {
@@ -22,7 +24,37 @@ void CheckTopic(ConfigIssues& issues, const char* key, const std::string& name) 
                 name + "'");
 }
 
+/// tf2 frame ids: not empty, no leading '/' (tf2 refuses them), no whitespace.
+bool IsValidFrameId(const std::string& id) {
+  if (id.empty() || id.front() == '/') return false;
+  for (const char c : id) {
+    if (std::isspace(static_cast<unsigned char>(c)) != 0) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+ConfigIssues FrameNames::Validate() const {
+  ConfigIssues issues;
+  const std::array<std::pair<const char*, const std::string*>, 5> frames = {
+      {{"map", &map},
+       {"odom", &odom},
+       {"base_link", &base_link},
+       {"imu", &imu},
+       {"lidar", &lidar}}};
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const std::string& id = *frames[i].second;
+    CheckThat(issues, IsValidFrameId(id), frames[i].first,
+              "must be a tf2 frame id (not empty, no leading '/', no spaces), got '" + id + "'");
+    for (size_t j = 0; j < i; ++j) {
+      CheckThat(issues, id != *frames[j].second, frames[i].first,
+                "must differ from " + std::string(frames[j].first) + " ('" + id +
+                    "'): tf2 needs one frame per node of the tree");
+    }
+  }
+  return issues;
+}
 
 ConfigIssues IpcConfig::Validate() const {
   ConfigIssues issues;
@@ -40,6 +72,12 @@ ConfigIssues IpcConfig::Validate() const {
   CheckTopic(issues, "health_topic", health_topic);
   CheckTopic(issues, "path_topic", path_topic);
   CheckTopic(issues, "map_topic", map_topic);
+  CheckTopic(issues, "odom_odometry_topic", odom_odometry_topic);
+  CheckTopic(issues, "tf_topic", tf_topic);
+  CheckTopic(issues, "tf_static_topic", tf_static_topic);
+  // At least 1 Hz (REP 105 consumers look map → odom up continuously).
+  CheckInRange(issues, "map_odom_period_s", map_odom_period_s, 0.0, 1.0);
+  AppendWithPrefix(issues, "frames", frames.Validate());
   return issues;
 }
 

@@ -16,6 +16,12 @@ const char* TopicLabel(Topic topic) {
       return "path";
     case Topic::kMap:
       return "map";
+    case Topic::kOdomOdometry:
+      return "odom_odometry";
+    case Topic::kTf:
+      return "tf";
+    case Topic::kTfStatic:
+      return "tf_static";
   }
   return "?";
 }
@@ -76,6 +82,23 @@ bool Publisher::PublishOdometry(const Odometry& odometry) {
   if (!wire::ToWire(odometry, &msg)) return Count(false);
   return Count(dds_write(writers_[Index(Topic::kOdometry)], &msg) == DDS_RETCODE_OK);
 }
+
+bool Publisher::PublishOdomOdometry(const Odometry& odometry) {
+  wire::OdometryMsg msg{};
+  if (!wire::ToWire(odometry, &msg)) return Count(false);
+  return Count(dds_write(writers_[Index(Topic::kOdomOdometry)], &msg) == DDS_RETCODE_OK);
+}
+
+bool Publisher::WriteTf(Topic topic, const TFMessage& tf) {
+  wire::TfStorage storage;
+  wire::TFMessageMsg msg{};
+  if (!wire::ToWire(tf, &storage, &msg)) return Count(false);
+  return Count(dds_write(writers_[Index(topic)], &msg) == DDS_RETCODE_OK);
+}
+
+bool Publisher::PublishTf(const TFMessage& tf) { return WriteTf(Topic::kTf, tf); }
+
+bool Publisher::PublishTfStatic(const TFMessage& tf) { return WriteTf(Topic::kTfStatic, tf); }
 
 bool Publisher::PublishHealth(const DiagnosticArray& health) {
   wire::DiagnosticStorage storage;

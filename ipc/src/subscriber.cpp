@@ -127,6 +127,18 @@ std::vector<Received<PointCloud2>> Subscriber::TakeMaps() {
   return Take<PointCloud2, wire::PointCloud2Msg>(Topic::kMap);
 }
 
+std::vector<Received<Odometry>> Subscriber::TakeOdomOdometry() {
+  return Take<Odometry, wire::OdometryMsg>(Topic::kOdomOdometry);
+}
+
+std::vector<Received<TFMessage>> Subscriber::TakeTf() {
+  return Take<TFMessage, wire::TFMessageMsg>(Topic::kTf);
+}
+
+std::vector<Received<TFMessage>> Subscriber::TakeTfStatic() {
+  return Take<TFMessage, wire::TFMessageMsg>(Topic::kTfStatic);
+}
+
 int Subscriber::MatchedPublications(Topic topic) const {
   const int32_t reader = readers_[static_cast<size_t>(topic)];
   dds_subscription_matched_status_t status{};

@@ -216,6 +216,51 @@ bool FromWire(const PointCloud2Msg& in, PointCloud2* out) {
   return FromHeader(in.header, &out->t_ns, &out->frame_id);
 }
 
+namespace {
+
+bool ToWire(const TransformStamped& in, TransformStampedMsg* out) {
+  out->child_frame_id = Borrow(in.child_frame_id);
+  const auto& t = in.transform.translation_m;
+  const auto& q = in.transform.rotation_xyzw;
+  out->transform.translation = {t[0], t[1], t[2]};
+  out->transform.rotation = {q[0], q[1], q[2], q[3]};
+  return ToHeader(in.t_ns, in.frame_id, &out->header);
+}
+
+}  // namespace
+
+bool ToWire(const TFMessage& in, TfStorage* storage, TFMessageMsg* out) {
+  const size_t n = in.transforms.size();
+  TransformStampedMsg* buffer = storage->inline_transforms.data();
+  if (n > TfStorage::kInline) {
+    storage->more.resize(n);
+    buffer = storage->more.data();
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (!ToWire(in.transforms[i], &buffer[i])) return false;
+  }
+  out->transforms._length = static_cast<uint32_t>(n);
+  out->transforms._maximum = out->transforms._length;
+  out->transforms._buffer = n == 0 ? nullptr : buffer;
+  out->transforms._release = false;
+  return true;
+}
+
+bool FromWire(const TFMessageMsg& in, TFMessage* out) {
+  out->transforms.resize(in.transforms._length);
+  for (uint32_t i = 0; i < in.transforms._length; ++i) {
+    const TransformStampedMsg& m = in.transforms._buffer[i];
+    TransformStamped& t = out->transforms[i];
+    t.child_frame_id = Copy(m.child_frame_id);
+    t.transform.translation_m = {m.transform.translation.x, m.transform.translation.y,
+                                 m.transform.translation.z};
+    const auto& q = m.transform.rotation;
+    t.transform.rotation_xyzw = {q.x, q.y, q.z, q.w};
+    if (!FromHeader(m.header, &t.t_ns, &t.frame_id)) return false;
+  }
+  return true;
+}
+
 const dds_topic_descriptor_t* Descriptor(Topic topic) {
   switch (topic) {
     case Topic::kPose:
@@ -228,6 +273,11 @@ const dds_topic_descriptor_t* Descriptor(Topic topic) {
       return &nav_msgs_msg_dds__Path__desc;
     case Topic::kMap:
       return &sensor_msgs_msg_dds__PointCloud2__desc;
+    case Topic::kOdomOdometry:
+      return &nav_msgs_msg_dds__Odometry__desc;
+    case Topic::kTf:
+    case Topic::kTfStatic:
+      return &tf2_msgs_msg_dds__TFMessage__desc;
   }
   return nullptr;
 }
@@ -244,6 +294,12 @@ std::string DdsTopicName(const IpcConfig& config, Topic topic) {
       return "rt/" + config.path_topic;
     case Topic::kMap:
       return "rt/" + config.map_topic;
+    case Topic::kOdomOdometry:
+      return "rt/" + config.odom_odometry_topic;
+    case Topic::kTf:
+      return "rt/" + config.tf_topic;
+    case Topic::kTfStatic:
+      return "rt/" + config.tf_static_topic;
   }
   return {};
 }

@@ -8,6 +8,7 @@
 
 #include <dds/dds.h>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "sensor_msgs.h"
 #include "swlio/ipc/ipc_config.h"
 #include "swlio/ipc/messages.h"
+#include "tf2_msgs.h"
 
 namespace swlio::ipc::wire {
 
@@ -34,6 +36,8 @@ using StatusMsg = diagnostic_msgs_msg_dds__DiagnosticStatus_;
 using DiagnosticArrayMsg = diagnostic_msgs_msg_dds__DiagnosticArray_;
 using PointFieldMsg = sensor_msgs_msg_dds__PointField_;
 using PointCloud2Msg = sensor_msgs_msg_dds__PointCloud2_;
+using TransformStampedMsg = geometry_msgs_msg_dds__TransformStamped_;
+using TFMessageMsg = tf2_msgs_msg_dds__TFMessage_;
 
 /// int64 ns ↔ builtin_interfaces/Time (sec = floor(t_ns / 1e9)). ToTime fails when the
 /// seconds do not fit an int32; FromTime fails when nanosec ≥ 1e9.
@@ -75,6 +79,16 @@ struct PointCloudStorage {
 };
 bool ToWire(const PointCloud2& in, PointCloudStorage* storage, PointCloud2Msg* out);
 bool FromWire(const PointCloud2Msg& in, PointCloud2* out);
+
+/// Storage the borrowed C structs of a TFMessage point into: up to kInline transforms (what
+/// swliod sends at IMU rate) without allocating.
+struct TfStorage {
+  static constexpr size_t kInline = 4;
+  std::array<TransformStampedMsg, kInline> inline_transforms{};
+  std::vector<TransformStampedMsg> more;
+};
+bool ToWire(const TFMessage& in, TfStorage* storage, TFMessageMsg* out);
+bool FromWire(const TFMessageMsg& in, TFMessage* out);
 
 /// The generated type descriptor of `topic`'s message.
 const dds_topic_descriptor_t* Descriptor(Topic topic);

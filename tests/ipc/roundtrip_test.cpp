@@ -1,5 +1,6 @@
 // Round trip of every swlio message through Cyclone DDS on loopback: Publisher → Subscriber in
-// one process, values compared bit for bit. Each test has its own domain id (111..119).
+// one process, values compared bit for bit. Each test has its own domain id (111..119, 126,
+// 127).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -237,6 +238,78 @@ TEST(IpcRoundTrip, CustomTopicNamesGetTheRosPrefix) {
   config.pose_topic = "/absolute";
   EXPECT_EQ(Publisher::Create(*participant, config, &error), nullptr);
   EXPECT_NE(error.find("pose_topic"), std::string::npos) << error;
+}
+
+/// A TFMessage of `n` transforms, every double awkward and distinct per (seed, index).
+TFMessage MakeTf(int seed, size_t n) {
+  TFMessage tf;
+  for (size_t i = 0; i < n; ++i) {
+    const int k = seed + static_cast<int>(7 * i);
+    TransformStamped t;
+    t.t_ns = 1'700'000'000'000'000'000 + k;
+    t.frame_id = i % 2 == 0 ? "odom" : "map";
+    t.child_frame_id = i % 2 == 0 ? "base_link" : "odom";
+    t.transform.translation_m = {Awkward(k), 1.0e6 + k, Awkward(k + 3)};
+    t.transform.rotation_xyzw = {Awkward(k + 5), -0.5, 0.5, std::sqrt(0.5) + k};
+    tf.transforms.push_back(t);
+  }
+  return tf;
+}
+
+void ExpectSameTf(const TFMessage& a, const TFMessage& b) {
+  ASSERT_EQ(a.transforms.size(), b.transforms.size());
+  for (size_t i = 0; i < a.transforms.size(); ++i) {
+    const TransformStamped& x = a.transforms[i];
+    const TransformStamped& y = b.transforms[i];
+    EXPECT_EQ(x.t_ns, y.t_ns) << i;
+    EXPECT_EQ(x.frame_id, y.frame_id) << i;
+    EXPECT_EQ(x.child_frame_id, y.child_frame_id) << i;
+    EXPECT_TRUE(SameBits(x.transform.translation_m, y.transform.translation_m)) << i;
+    EXPECT_TRUE(SameBits(x.transform.rotation_xyzw, y.transform.rotation_xyzw)) << i;
+  }
+}
+
+// /tf as tf2 reads it: DDS topic "rt/tf", type tf2_msgs::msg::dds_::TFMessage_; messages of 0,
+// 1, 2 and 9 transforms (more than the writer's inline storage) arrive bit for bit, in order.
+TEST(IpcRoundTrip, TfIsBitExact) {
+  Loop loop(126, Topic::kTf);
+  ASSERT_TRUE(loop.matched);
+  EXPECT_EQ(loop.publisher->DdsTopicName(Topic::kTf), "rt/tf");
+  EXPECT_EQ(loop.publisher->DdsTopicName(Topic::kTfStatic), "rt/tf_static");
+  std::vector<TFMessage> sent = {MakeTf(1, 1), MakeTf(2, 2), MakeTf(3, 0), MakeTf(4, 9)};
+  for (const TFMessage& tf : sent) ASSERT_TRUE(loop.publisher->PublishTf(tf));
+  const auto got =
+      Collect(*loop.subscriber, sent.size(), [&] { return loop.subscriber->TakeTf(); });
+  ASSERT_EQ(got.size(), sent.size());
+  for (size_t i = 0; i < sent.size(); ++i) ExpectSameTf(got[i].msg, sent[i]);
+  EXPECT_TRUE(loop.subscriber->TakeTfStatic().empty()) << "/tf samples only on /tf";
+  EXPECT_EQ(loop.publisher->failures(), 0u);
+  // A stamp outside builtin_interfaces/Time in any transform refuses the whole message.
+  TFMessage bad = MakeTf(5, 3);
+  bad.transforms[2].t_ns = 2'147'483'648'000'000'000;
+  EXPECT_FALSE(loop.publisher->PublishTf(bad));
+  EXPECT_EQ(loop.publisher->failures(), 1u);
+}
+
+// /tf_static is latched like tf2_ros's StaticTransformBroadcaster (TRANSIENT_LOCAL, KEEP_LAST
+// 1): a listener that joins later gets the newest set of static transforms, and only it.
+TEST(IpcRoundTrip, LateSubscriberGetsTheLastStaticTransforms) {
+  const IpcConfig config = LoopbackConfig(127);
+  std::string error;
+  auto participant = Participant::Create(config, &error);
+  ASSERT_NE(participant, nullptr) << error;
+  auto publisher = Publisher::Create(*participant, config, &error);
+  ASSERT_NE(publisher, nullptr) << error;
+  ASSERT_TRUE(publisher->PublishTfStatic(MakeTf(10, 1)));
+  const TFMessage newest = MakeTf(11, 2);
+  ASSERT_TRUE(publisher->PublishTfStatic(newest));
+  ASSERT_TRUE(publisher->PublishTf(MakeTf(12, 1)));  // volatile: not for a late joiner
+  auto subscriber = Subscriber::Create(*participant, config, SubscriberOptions{}, &error);
+  ASSERT_NE(subscriber, nullptr) << error;
+  const auto got = Collect(*subscriber, 1, [&] { return subscriber->TakeTfStatic(); });
+  ASSERT_EQ(got.size(), 1u);
+  ExpectSameTf(got[0].msg, newest);
+  EXPECT_TRUE(subscriber->TakeTf().empty());
 }
 
 }  // namespace

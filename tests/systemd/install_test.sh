@@ -33,6 +33,8 @@ unit="$destdir/usr/lib/systemd/system/swliod.service"
 config="$destdir/etc/swlio/swlio.yaml"
 
 fail() { echo "FAIL: $*" >&2; exit 1; }
+# The numeric id of NAME in a passwd or group file.
+id_in() { awk -F: -v n="$2" '$1 == n { print $3 }' "$1"; }
 skip_without() {
   command -v "$1" >/dev/null || { echo "SKIP: $1 not found (Debian package systemd)"; exit 77; }
 }
@@ -79,7 +81,9 @@ case $mode in
     grep -qx 'ExecStart=/usr/bin/swliod --config /etc/swlio/swlio.yaml' "$unit" ||
       fail "ExecStart does not name the installed binary and config: $(grep ExecStart "$unit")"
     ! grep -n '@[A-Z_]*@' "$unit" || fail "unsubstituted placeholders in $unit"
-    for tool in swlio-decode swlio-echo swlio-eval swlio-run swlio-sim; do
+    grep -qx 'ReadWritePaths=-/run/swlio' "$unit" && [[ -f "$destdir/usr/lib/tmpfiles.d/swlio.conf" ]] ||
+      fail "no /run/swlio (tmpfiles.d, ReadWritePaths) for the control socket (docs/control.md)"
+    for tool in swlioctl swlio-decode swlio-echo swlio-eval swlio-run swlio-sim; do
       if [[ -x "$build/bin/$tool" && ! -x "$destdir/usr/bin/$tool" ]]; then
         fail "$tool is built but not installed"
       fi
@@ -147,7 +151,20 @@ case $mode in
     grep -q '^swlio:x:[0-9]*:[0-9]*:.*:/usr/sbin/nologin$' "$root/etc/passwd" ||
       fail "no swlio system user: $(cat "$root/etc/passwd")"
     grep -qx 'dialout:x:20:swlio' "$root/etc/group" || fail "swlio not in dialout"
-    echo "sysusers: $(grep '^swlio:' "$root/etc/passwd"); $(grep '^dialout:' "$root/etc/group")"
+    grep -q '^swlio-operators:x:[0-9]*:$' "$root/etc/group" ||
+      fail "no swlio-operators group (control.group): $(cat "$root/etc/group")"
+    echo "sysusers: $(grep '^swlio:' "$root/etc/passwd"); $(grep '^dialout:' "$root/etc/group");" \
+      "$(grep '^swlio-operators:' "$root/etc/group")"
+    # The control socket's directory, as systemd-tmpfiles makes it at boot: swlio's, group
+    # swlio-operators, set-group-ID (the socket inherits the group; docs/control.md).
+    if command -v systemd-tmpfiles >/dev/null; then
+      systemd-tmpfiles --root="$root" --create "$destdir/usr/lib/tmpfiles.d/swlio.conf" ||
+        fail "systemd-tmpfiles --create failed"
+      want="2750 $(id_in "$root/etc/passwd" swlio) $(id_in "$root/etc/group" swlio-operators)"
+      got=$(stat -c '%a %u %g' "$root/run/swlio") || fail "no $root/run/swlio"
+      [[ $got == "$want" ]] || fail "/run/swlio is '$got' (mode uid gid), want '$want'"
+      echo "tmpfiles: /run/swlio $got"
+    fi
     ;;
   *) fail "unknown mode $mode" ;;
 esac

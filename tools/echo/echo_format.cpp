@@ -94,6 +94,18 @@ std::string FormatLine(const ipc::Odometry& m) {
   return out;
 }
 
+std::string FormatLine(const ipc::TFMessage& m) {
+  std::string out = "tf n=" + std::to_string(m.transforms.size());
+  for (const ipc::TransformStamped& t : m.transforms) {
+    out.append(" | ").append(t.frame_id).append(" -> ").append(t.child_frame_id);
+    out.append(" t=").append(FormatStamp(t.t_ns)).append(" p=");
+    AppendVector(out, t.transform.translation_m);
+    out += " q=";
+    AppendVector(out, t.transform.rotation_xyzw);
+  }
+  return out;
+}
+
 std::string FormatLine(const ipc::DiagnosticArray& m) {
   std::string out;
   out.append("health t=").append(FormatStamp(m.t_ns)).append(" n=");

@@ -110,6 +110,10 @@ class Sink {
                  static_cast<long long>(counts_[0]), static_cast<long long>(counts_[1]),
                  static_cast<long long>(counts_[2]), static_cast<long long>(counts_[3]),
                  static_cast<long long>(counts_[4]));
+    for (const Topic t : {Topic::kOdomOdometry, Topic::kTf, Topic::kTfStatic}) {
+      const int64_t n = counts_[static_cast<size_t>(t)];
+      if (n > 0) std::fprintf(stderr, ", %s %lld", ipc::TopicLabel(t), static_cast<long long>(n));
+    }
     if (!transport_ns_.empty()) {
       std::sort(transport_ns_.begin(), transport_ns_.end());
       auto at = [&](double q) {
@@ -154,7 +158,8 @@ void AddOptions(CLI::App& app, EchoOptions& o) {
       ->capture_default_str();
   app.add_option("--topics", o.topics, "which topics to read")
       ->delimiter(',')
-      ->check(CLI::IsMember({"pose", "odometry", "health", "path", "map"}))
+      ->check(CLI::IsMember(
+          {"pose", "odometry", "health", "path", "map", "odom_odometry", "tf", "tf_static"}))
       ->capture_default_str();
   app.add_option("--pose-topic", o.ipc.pose_topic, "ROS 2 name (DDS adds rt/)")
       ->capture_default_str();
@@ -162,9 +167,12 @@ void AddOptions(CLI::App& app, EchoOptions& o) {
   app.add_option("--health-topic", o.ipc.health_topic)->capture_default_str();
   app.add_option("--path-topic", o.ipc.path_topic)->capture_default_str();
   app.add_option("--map-topic", o.ipc.map_topic)->capture_default_str();
+  app.add_option("--odom-odometry-topic", o.ipc.odom_odometry_topic)->capture_default_str();
+  app.add_option("--tf-topic", o.ipc.tf_topic)->capture_default_str();
+  app.add_option("--tf-static-topic", o.ipc.tf_static_topic)->capture_default_str();
   app.add_option("--record", o.record_tum, "write received poses to this TUM file");
   app.add_option("--record-from", o.record_from, "topic whose poses --record writes")
-      ->check(CLI::IsMember({"pose", "odometry"}))
+      ->check(CLI::IsMember({"pose", "odometry", "odom_odometry"}))
       ->capture_default_str();
   app.add_option("--record-path", o.record_path_tum,
                  "at exit, write the last keyframe path received (with loop closure: the pose "
@@ -227,6 +235,9 @@ int Run(EchoOptions& options) {
     sink.Handle(Topic::kHealth, subscriber->TakeHealth());
     sink.Handle(Topic::kPath, subscriber->TakePaths());
     sink.Handle(Topic::kMap, subscriber->TakeMaps());
+    sink.Handle(Topic::kOdomOdometry, subscriber->TakeOdomOdometry());
+    sink.Handle(Topic::kTf, subscriber->TakeTf());
+    sink.Handle(Topic::kTfStatic, subscriber->TakeTfStatic());
   }
   sink.Summary();
   if (!sink.WritePath(&error)) {

@@ -47,22 +47,24 @@ class DdsOut {
     participant_ = swlio::ipc::Participant::Create(ipc, error);
     if (!participant_) return false;
     publisher_ = swlio::ipc::Publisher::Create(*participant_, ipc, error);
-    path_.frame_id = frames_.world;
+    path_.frame_id = frames_.map;
     return publisher_ != nullptr;
   }
   /// `state`: the sweep's state with its stamp on the host clock.
   void Sweep(const swlio::State& state, const swlio::estimator::WindowResult& r) {
+    // The IMU's odometry (no base frame, no TF: a replay publishes the estimate only).
     const swlio::ipc::Odometry m =
-        swlio::daemon::ToOdometryMessage(state, Eigen::Vector3d::Zero(), r.covariance, frames_);
+        swlio::daemon::ToOdometryMessage(state, Eigen::Vector3d::Zero(), r.covariance,
+                                         Eigen::Isometry3d::Identity(), frames_.map, frames_.imu);
     publisher_->PublishOdometry(m);
     if (!r.odometry.keyframe) return;
-    path_.poses.push_back({m.t_ns, frames_.world, m.pose});
+    path_.poses.push_back({m.t_ns, frames_.map, m.pose});
     path_.t_ns = m.t_ns;
     publisher_->PublishPath(path_);
   }
 
  private:
-  swlio::daemon::FrameIds frames_;
+  swlio::ipc::FrameNames frames_;
   std::unique_ptr<swlio::ipc::Participant> participant_;
   std::unique_ptr<swlio::ipc::Publisher> publisher_;
   swlio::ipc::Path path_;

@@ -552,6 +552,15 @@ void Bind(Section s,
   s.Finish();
 }
 
+void Bind(Section s, ipc::FrameNames& c) {
+  s.Get("map", c.map);
+  s.Get("odom", c.odom);
+  s.Get("base_link", c.base_link);
+  s.Get("imu", c.imu);
+  s.Get("lidar", c.lidar);
+  s.Finish();
+}
+
 void Bind(Section s, ipc::IpcConfig& c) {
   s.Get("domain_id", c.domain_id);
   s.Get("dds_config_file", c.dds_config_file);
@@ -565,6 +574,11 @@ void Bind(Section s, ipc::IpcConfig& c) {
   s.Get("map_max_points", c.map_max_points);
   s.Get("map_publish_period_s", c.map_publish_period_s);
   s.Get("stamp_clock", c.stamp_clock);
+  s.Get("odom_odometry_topic", c.odom_odometry_topic);
+  s.Get("tf_topic", c.tf_topic);
+  s.Get("tf_static_topic", c.tf_static_topic);
+  s.Get("map_odom_period_s", c.map_odom_period_s);
+  Bind(s.Child("frames"), c.frames);
   s.Finish();
 }
 
@@ -596,6 +610,15 @@ void Bind(Section s, RealtimeConfig& c) {
   s.Finish();
 }
 
+void Bind(Section s, ControlConfig& c) {
+  s.Get("socket", c.socket);
+  s.Get("group", c.group);
+  s.Get("request_timeout_s", c.request_timeout_s);
+  s.Get("command_timeout_s", c.command_timeout_s);
+  s.Get("max_clients", c.max_clients);
+  s.Finish();
+}
+
 void BindRoot(Section root, DaemonConfig& c, Context& ctx) {
   c.config_version = -1;
   root.Get("config_version", c.config_version);
@@ -613,6 +636,7 @@ void BindRoot(Section root, DaemonConfig& c, Context& ctx) {
   Bind(root.Child("ipc"), c.ipc);
   Bind(root.Child("logging"), c.logging);
   Bind(root.Child("realtime"), c.realtime);
+  Bind(root.Child("control"), c.control);
   root.Finish();
 }
 
@@ -627,6 +651,7 @@ void ResolvePaths(DaemonConfig& c, const std::filesystem::path& base_dir) {
   resolve(c.ipc.dds_config_file);
   resolve(c.map.save_path);
   resolve(c.map.load_path);
+  resolve(c.control.socket);
 }
 
 /// Validate() results carry key names only; add the place of each key in the file.

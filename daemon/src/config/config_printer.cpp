@@ -403,6 +403,17 @@ void Emit(ConfigWriter& w, const ipc::IpcConfig& c) {
   w.Put("map_max_points", c.map_max_points);
   w.Put("map_publish_period_s", c.map_publish_period_s);
   w.Put("stamp_clock", c.stamp_clock);
+  w.Put("odom_odometry_topic", c.odom_odometry_topic);
+  w.Put("tf_topic", c.tf_topic);
+  w.Put("tf_static_topic", c.tf_static_topic);
+  w.Put("map_odom_period_s", c.map_odom_period_s);
+  w.BeginMap("frames");
+  w.Put("map", c.frames.map);
+  w.Put("odom", c.frames.odom);
+  w.Put("base_link", c.frames.base_link);
+  w.Put("imu", c.frames.imu);
+  w.Put("lidar", c.frames.lidar);
+  w.EndMap();
   w.EndMap();
 }
 
@@ -436,6 +447,16 @@ void Emit(ConfigWriter& w, const RealtimeConfig& c) {
   w.EndMap();
 }
 
+void Emit(ConfigWriter& w, const ControlConfig& c) {
+  w.BeginMap("control");
+  w.Put("socket", c.socket);
+  w.Put("group", c.group);
+  w.Put("request_timeout_s", c.request_timeout_s);
+  w.Put("command_timeout_s", c.command_timeout_s);
+  w.Put("max_clients", c.max_clients);
+  w.EndMap();
+}
+
 }  // namespace
 
 std::string PrintConfig(const DaemonConfig& config) {
@@ -453,6 +474,7 @@ std::string PrintConfig(const DaemonConfig& config) {
   Emit(w, config.ipc);
   Emit(w, config.logging);
   Emit(w, config.realtime);
+  Emit(w, config.control);
   w.EndMap();
   return w.Text();
 }

@@ -59,16 +59,16 @@ std::vector<ThreadSchedConfig> DefaultThreadSchedule() {
 
 ConfigIssues RealtimeConfig::Validate() const {
   ConfigIssues issues;
-  constexpr std::array<const char*, 9> kThreads = {"lidar_rx",   "imu_rx",       "can_rx",
-                                                   "propagator", "optimizer",    "publisher",
-                                                   "recorder",   "loop_closure", "localization"};
+  constexpr std::array<const char*, 10> kThreads = {
+      "lidar_rx",  "imu_rx",   "can_rx",       "propagator",   "optimizer",
+      "publisher", "recorder", "loop_closure", "localization", "control"};
   for (size_t i = 0; i < threads.size(); ++i) {
     const ThreadSchedConfig& t = threads[i];
     const std::string key = "threads[" + std::to_string(i) + "]";
     const bool known = std::find(kThreads.begin(), kThreads.end(), t.name) != kThreads.end();
     CheckThat(issues, known, key + ".name",
               "must be lidar_rx, imu_rx, can_rx, propagator, optimizer, publisher, recorder, "
-              "loop_closure or localization, got '" +
+              "loop_closure, localization or control, got '" +
                   t.name + "'");
     CheckInRange<int64_t>(issues, key + ".priority", t.priority, 0, 99);
     CheckInRange<int64_t>(issues, key + ".cpu", t.cpu, -1, 1023);
@@ -84,6 +84,20 @@ ConfigIssues MapFilesConfig::Validate() const {
             "localize needs a map to load (map.load_path or --map)");
   CheckThat(issues, !localize || save_path.empty(), "save_path",
             "a map is saved from loop closure, which is off while localizing");
+  return issues;
+}
+
+ConfigIssues ControlConfig::Validate() const {
+  ConfigIssues issues;
+  // sockaddr_un::sun_path holds 108 bytes with the terminating NUL.
+  CheckThat(
+      issues, socket.size() < 108, "socket",
+      "a UNIX socket path must be shorter than 108 bytes, got " + std::to_string(socket.size()));
+  CheckThat(issues, group.find_first_of(" :/\n") == std::string::npos, "group",
+            "must be a group name, got '" + group + "'");
+  CheckInRange(issues, "request_timeout_s", request_timeout_s, 0.01, 60.0);
+  CheckInRange(issues, "command_timeout_s", command_timeout_s, 0.1, 3600.0);
+  CheckInRange<int64_t>(issues, "max_clients", max_clients, 1, 64);
   return issues;
 }
 
@@ -111,6 +125,7 @@ ConfigIssues DaemonConfig::Validate() const {
   AppendWithPrefix(issues, "ipc", ipc.Validate());
   AppendWithPrefix(issues, "logging", logging.Validate());
   AppendWithPrefix(issues, "realtime", realtime.Validate());
+  AppendWithPrefix(issues, "control", control.Validate());
   return issues;
 }
 

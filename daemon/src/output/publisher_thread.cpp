@@ -9,7 +9,7 @@
 namespace swlio::daemon {
 
 PublisherThread::PublisherThread(ipc::Publisher* publisher,
-                                 FrameIds frames,
+                                 OutputFrames frames,
                                  const PublisherQueues& queues,
                                  const TimeScale& time,
                                  HealthFn health,
@@ -24,12 +24,15 @@ PublisherThread::PublisherThread(ipc::Publisher* publisher,
       health_period_ns_(health_period_ns),
       path_max_poses_(std::max<size_t>(path_max_poses, 1)),
       slew_(slew) {
-  path_.frame_id = frames_.world;
+  path_.frame_id = frames_.names.map;
+  tf_.transforms.reserve(2);
 }
 
 void PublisherThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
   ImuRatePose pose;
   SweepEstimate estimate;
+  UpdateStampClock();
+  WriteStaticTf();
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
     q_.wake->Wait(20'000);  // a pose or an odometry, whichever comes first
@@ -80,24 +83,32 @@ void PublisherThread::ReplacePath(const std::vector<estimator::MapNode>& nodes) 
   keyframes_.clear();
   const size_t first = nodes.size() > path_max_poses_ ? nodes.size() - path_max_poses_ : 0;
   for (size_t i = first; i < nodes.size(); ++i) {
-    State s;
-    s.t_ns = nodes[i].t_ns;
-    s.T_world_imu = nodes[i].T_map_imu;
     ipc::PoseStamped p;
-    p.t_ns = Stamp(s.t_ns);
-    p.frame_id = frames_.world;
-    p.pose = ToPose(s);
+    p.t_ns = Stamp(nodes[i].t_ns);
+    p.frame_id = frames_.names.map;
+    p.pose = ToPose(BasePose(nodes[i].T_map_imu, frames_.T_imu_base));
     keyframes_.push_back(std::move(p));
   }
   path_changed_ = true;
 }
 
-State PublisherThread::Corrected(State s) {
-  const Eigen::Isometry3d& C = slew_.Step(s.t_ns, s.T_world_imu);
-  if (C.matrix() == Eigen::Matrix4d::Identity()) return s;  // no correction yet: exact
-  s.T_world_imu = C * s.T_world_imu;
-  s.vel_world = C.linear() * s.vel_world;
-  return s;
+const Eigen::Isometry3d& PublisherThread::StepCorrection(int64_t t_ns,
+                                                         const Eigen::Isometry3d& T_odom_imu,
+                                                         bool send) {
+  const Eigen::Isometry3d& C = slew_.Step(t_ns, T_odom_imu);
+  if (!send) return C;
+  // Sent whenever the C applied to this pose is not the one sent last, so that every sample
+  // holds for the poses up to the next; stamped like this pose even when a sweep's odometry
+  // stepped C to a later time (its end may lie up to max_imu_lag_s past the newest pose).
+  const bool changed = C.matrix() != sent_T_map_odom_.matrix();
+  const bool due = t_ns - sent_map_odom_t_ns_ >= map_odom_period_ns_;
+  if (!sent_map_odom_ || changed || due) {
+    tf_.transforms.push_back(ToTransform(Stamp(t_ns), frames_.names.map, frames_.names.odom, C));
+    sent_T_map_odom_ = C;
+    sent_map_odom_t_ns_ = std::max(sent_map_odom_t_ns_, t_ns);
+    sent_map_odom_ = true;
+  }
+  return C;
 }
 
 void PublisherThread::Count(bool ok, std::atomic<uint64_t>* counter) {
@@ -113,25 +124,65 @@ bool Finite(const ipc::Pose& p) {
   return finite;
 }
 
+/// C · T, exactly T while there is no correction.
+Eigen::Isometry3d Apply(const Eigen::Isometry3d& C, const Eigen::Isometry3d& T) {
+  return C.matrix() == Eigen::Matrix4d::Identity() ? T : C * T;
+}
+
+/// `s` moved into the map frame by the correction C.
+State InMap(const Eigen::Isometry3d& C, State s) {
+  if (C.matrix() == Eigen::Matrix4d::Identity()) return s;
+  s.T_world_imu = C * s.T_world_imu;
+  s.vel_world = C.linear() * s.vel_world;
+  return s;
+}
+
 }  // namespace
+
+void PublisherThread::WriteTf() {
+  if (tf_.transforms.empty()) return;
+  Count(publisher_ == nullptr || publisher_->PublishTf(tf_), &transforms_);
+  tf_.transforms.clear();
+}
+
+void PublisherThread::WriteStaticTf() {
+  const int64_t host_ns = MonotonicNowNs();
+  const ipc::TFMessage tf =
+      StaticTransforms(stamps_ != nullptr ? stamps_->ToStamp(host_ns) : host_ns, frames_);
+  Count(publisher_ == nullptr || publisher_->PublishTfStatic(tf), &transforms_);
+}
 
 void PublisherThread::WritePose(const ImuRatePose& pose) {
   last_gyro_imu_radps_ = pose.gyro_imu_radps;
-  if (holding_) {
-    held_.fetch_add(1, std::memory_order_relaxed);
-    return;
-  }
-  ipc::PoseWithCovarianceStamped m;
-  m.t_ns = Stamp(pose.state.t_ns);
-  m.frame_id = frames_.world;
-  m.pose = ToPose(Corrected(pose.state));
-  if (!Finite(m.pose)) {  // the planner must never receive one
+  const Eigen::Isometry3d T_odom_base = BasePose(pose.state.T_world_imu, frames_.T_imu_base);
+  if (!Finite(ToPose(T_odom_base))) {  // the planner must never receive one
     non_finite_.fetch_add(1, std::memory_order_relaxed);
     return;
   }
-  m.covariance = pose.pose_covariance;
+  const int64_t stamp = Stamp(pose.state.t_ns);
+  tf_.transforms.clear();
+  tf_.transforms.push_back(
+      ToTransform(stamp, frames_.names.odom, frames_.names.base_link, T_odom_base));
+  if (holding_) {
+    held_.fetch_add(1, std::memory_order_relaxed);
+    WriteTf();
+    return;
+  }
+  const Eigen::Isometry3d& C = StepCorrection(pose.state.t_ns, pose.state.T_world_imu, true);
+  ipc::PoseWithCovarianceStamped m;
+  m.t_ns = stamp;
+  m.frame_id = frames_.names.map;
+  m.pose = ToPose(Apply(C, T_odom_base));
+  if (!Finite(m.pose)) {
+    non_finite_.fetch_add(1, std::memory_order_relaxed);
+    WriteTf();
+    return;
+  }
+  m.covariance = BasePoseCovariance(pose.pose_covariance, pose.state.T_world_imu.linear(),
+                                    frames_.T_imu_base.translation());
   Count(publisher_ == nullptr || publisher_->PublishPose(m), &poses_);
   pose_latency_.Add(MonotonicNowNs() - pose.rx_ns);
+  WriteTf();
 }
 
 void PublisherThread::WriteOdometry(const SweepEstimate& e) {
@@ -139,13 +190,23 @@ void PublisherThread::WriteOdometry(const SweepEstimate& e) {
       e.status == estimator::OdometryStatus::kSkipped) {
     return;
   }
+  const ipc::FrameNames& names = frames_.names;
+  ipc::Odometry odom = ToOdometryMessage(e.state, last_gyro_imu_radps_, e.covariance,
+                                         frames_.T_imu_base, names.odom, names.base_link);
+  if (!Finite(odom.pose)) {
+    non_finite_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  odom.t_ns = Stamp(odom.t_ns);
+  Count(publisher_ == nullptr || publisher_->PublishOdomOdometry(odom), &odom_odometry_);
   if (holding_) {
     held_.fetch_add(1, std::memory_order_relaxed);
     return;
   }
-  ipc::Odometry m =
-      ToOdometryMessage(Corrected(e.state), last_gyro_imu_radps_, e.covariance, frames_);
-  m.t_ns = Stamp(m.t_ns);
+  const Eigen::Isometry3d& C = StepCorrection(e.state.t_ns, e.state.T_world_imu, false);
+  ipc::Odometry m = ToOdometryMessage(InMap(C, e.state), last_gyro_imu_radps_, e.covariance,
+                                      frames_.T_imu_base, names.map, names.base_link);
+  m.t_ns = odom.t_ns;
   if (!Finite(m.pose)) {
     non_finite_.fetch_add(1, std::memory_order_relaxed);
     return;
@@ -154,7 +215,7 @@ void PublisherThread::WriteOdometry(const SweepEstimate& e) {
   if (e.keyframe) {
     ipc::PoseStamped p;
     p.t_ns = m.t_ns;
-    p.frame_id = frames_.world;
+    p.frame_id = names.map;
     p.pose = m.pose;
     keyframes_.push_back(p);
     if (keyframes_.size() > path_max_poses_) keyframes_.pop_front();
@@ -188,6 +249,8 @@ PublisherCounters PublisherThread::counters() const {
   c.failures = failures_.load(kRelaxed);
   c.non_finite = non_finite_.load(kRelaxed);
   c.held = held_.load(kRelaxed);
+  c.odom_odometry = odom_odometry_.load(kRelaxed);
+  c.transforms = transforms_.load(kRelaxed);
   c.pose_latency = pose_latency_.Snapshot();
   return c;
 }

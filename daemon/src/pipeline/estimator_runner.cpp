@@ -37,6 +37,12 @@ void EstimatorRunner::AddWheel(const WheelOdometry& sample) {
   if (window_) window_->AddWheel(sample);
 }
 
+bool EstimatorRunner::Reset() {
+  if (!window_) return false;
+  window_->Reset();
+  return true;
+}
+
 void EstimatorRunner::AddImu(const ImuSample& sample) {
   if (odometry_) {
     odometry_->AddImu(sample);

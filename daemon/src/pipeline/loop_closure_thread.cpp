@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <numbers>
 
 #include "swlio/core/time.h"
@@ -18,6 +19,7 @@ void LoopClosureThread::Run(const std::atomic<bool>& stop, const Watchdog::Handl
   KeyframePtr keyframe;
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
+    ServeSaves(beat);
     PublishMapIfDue(beat);  // also when idle: a correction may wait for the period to end
     DrainGnss();            // 4 Hz at most: the keyframe wait below is short enough
     if (!q_.keyframes_in->WaitPop(&keyframe, 100'000)) continue;
@@ -120,12 +122,45 @@ void LoopClosureThread::PublishMapIfDue(const Watchdog::Handle& beat) {
 
 size_t LoopClosureThread::SaveMap(const std::string& path,
                                   const std::string& pcd_path,
-                                  std::string* error) const {
+                                  std::string* error,
+                                  const Watchdog::Handle& beat) const {
   const estimator::SavedMap map = closure_.ToSavedMap();
+  beat.Beat();
   if (estimator::SaveMapFile(path, map, error)) {
+    beat.Beat();
     estimator::SaveMergedPcd(pcd_path, map, estimator::kMergedCloudVoxelM, error);
   }
   return map.nodes.size();
+}
+
+bool LoopClosureThread::RequestSave(std::shared_ptr<PendingCommand> command) {
+  return saves_.Push(std::move(command));
+}
+
+void LoopClosureThread::ServeSaves(const Watchdog::Handle& beat) {
+  std::shared_ptr<PendingCommand> command;
+  while (saves_.Pop(&command)) {
+    if (command->cancelled()) continue;
+    const std::string& path = command->request().argument;
+    if (closure_.map_nodes() == 0) {
+      command->Finish({control::ReplyStatus::kRefused,
+                       "no keyframes in the map yet: the estimator has not moved far enough", ""});
+      continue;
+    }
+    const int64_t t0 = MonotonicNowNs();
+    std::string error;
+    const size_t nodes = SaveMap(path, path + ".pcd", &error, beat);
+    if (!error.empty()) {
+      command->Finish({control::ReplyStatus::kFailed, error, ""});
+      continue;
+    }
+    char message[160];
+    std::snprintf(message, sizeof message, "saved %zu nodes in %.2f s", nodes,
+                  static_cast<double>(MonotonicNowNs() - t0) * 1e-9);
+    command->Finish(
+        {control::ReplyStatus::kOk, message,
+         "map: " + path + "\nnodes: " + std::to_string(nodes) + "\ncloud: " + path + ".pcd\n"});
+  }
 }
 
 LoopClosureCounters LoopClosureThread::counters() const {

@@ -24,6 +24,7 @@ void OptimizerThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle&
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
     q_.wake->Wait(20'000);  // a LiDAR packet or an IMU sample, whichever comes first
+    ServeResets();
     // IMU first: a sweep is processed once a sample past its end has arrived (wheel odometry
     // before it, so a sweep's wheel samples are in by then).
     DrainWheel();
@@ -36,6 +37,41 @@ void OptimizerThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle&
   DrainImu();
   DrainLidar();
   Publish();
+}
+
+bool OptimizerThread::RequestReset(std::shared_ptr<PendingCommand> command) {
+  return resets_.Push(std::move(command));
+}
+
+void OptimizerThread::ServeResets() {
+  std::shared_ptr<PendingCommand> command;
+  while (resets_.Pop(&command)) {
+    if (command->cancelled()) continue;
+    if (!runner_.Reset()) {
+      command->Finish({control::ReplyStatus::kRefused,
+                       "reset re-initializes the tightly coupled window; estimator.mode is "
+                       "lidar-only",
+                       ""});
+      continue;
+    }
+    // The propagator drops the state it extrapolates, as after a divergence.
+    SweepEstimate e;
+    e.reset = true;
+    e.status = estimator::OdometryStatus::kInitializing;
+    e.tracking = TrackingState::kInitializing;
+    q_.states_out->Push(e);
+    tracking_ = TrackingState::kInitializing;
+    recovering_ = false;
+    failed_in_a_row_ = 0;
+    Publish();
+    spdlog::warn(
+        "estimator: reset by the operator: re-initializing (static or moving start) at the last "
+        "good pose, with a new local map");
+    command->Finish({control::ReplyStatus::kOk,
+                     "the estimator re-initializes at the last good pose (state initializing "
+                     "until a static or moving start succeeds)",
+                     ""});
+  }
 }
 
 void OptimizerThread::DrainImu() {

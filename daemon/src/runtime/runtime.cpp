@@ -139,19 +139,30 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
         LoopClosureQueues{&q.keyframes, &q.corrections, gnss ? &q.gnss : nullptr});
   }
   if (localize && !rt->LoadLocalization(error)) return nullptr;
-  const FrameIds frames;
-  rt->MakeMapPublisher(frames.world);
+  OutputFrames frames;
+  frames.names = config.ipc.frames;
+  frames.T_imu_base = config.window.wheel.T_imu_base.ToIsometry();  // identity unless configured
+  frames.T_imu_lidar = T_imu_lidar;
+  rt->MakeMapPublisher(frames.names.map);
   Runtime* self = rt.get();
   rt->publisher_thread_ = std::make_unique<PublisherThread>(
       rt->publisher_.get(), frames,
       PublisherQueues{&q.poses, &q.odometry, &q.publisher_wake,
                       keyframes ? &q.corrections : nullptr},
-      time, [self](int64_t) { return self->published_health_.Diagnostics(self->Snapshot()); },
+      time,
+      [self](int64_t) {
+        ipc::DiagnosticArray health = self->published_health_.Diagnostics(self->Snapshot());
+        std::lock_guard<std::mutex> lock(self->health_mutex_);
+        self->last_health_ = health;
+        return health;
+      },
       1'000'000'000, static_cast<size_t>(config.ipc.path_max_poses),
       estimator::CorrectionSlewConfig{config.loop_closure.output_max_rate_mps,
                                       config.loop_closure.output_max_rate_radps});
   rt->publisher_thread_->StampWith(rt->stamp_clock_.get());
+  rt->publisher_thread_->SetMapOdomPeriod(SecToNs(config.ipc.map_odom_period_s));
   if (localize) rt->publisher_thread_->HoldUntilLocalized();
+  rt->OpenControl();
   return rt;
 }
 
@@ -215,6 +226,10 @@ void Runtime::Spawn(std::vector<std::thread>* group,
 }
 
 void Runtime::Start() {
+  if (control_) {
+    Spawn(&control_threads_, "control",
+          [this](const Watchdog::Handle& b) { control_->Run(stop_control_, b); });
+  }
   auto* rx = &rx_threads_;
   auto* out = &out_threads_;
   Spawn(rx, "lidar_rx", [this](const Watchdog::Handle& b) { lidar_rx_->Run(stop_rx_, b); });
@@ -243,7 +258,8 @@ void Runtime::Start() {
 
 void Runtime::Stop() {
   for (auto [flag, group] :
-       {std::pair{&stop_rx_, &rx_threads_}, std::pair{&stop_propagator_, &propagator_threads_},
+       {std::pair{&stop_control_, &control_threads_}, std::pair{&stop_rx_, &rx_threads_},
+        std::pair{&stop_propagator_, &propagator_threads_},
         std::pair{&stop_optimizer_, &optimizer_threads_}, std::pair{&stop_loop_, &loop_threads_},
         std::pair{&stop_out_, &out_threads_}}) {
     flag->store(true);
@@ -251,7 +267,8 @@ void Runtime::Stop() {
       if (t.joinable()) t.join();
     }
     group->clear();
-    if (group == &loop_threads_) SaveMap();  // the graph is complete and nobody writes it
+    if (group == &control_threads_) control_.reset();  // closes and removes the socket
+    if (group == &loop_threads_) SaveMap();            // the graph is complete and nobody writes it
   }
 }
 

@@ -64,6 +64,15 @@ void WindowEstimator::Reinitialize() {
   }
 }
 
+void WindowEstimator::Reset() {
+  // Not a divergence: the newest good state is believable (Reinitialize takes the oldest of
+  // the last second, as a divergence may have begun before a check tripped).
+  const std::optional<State> newest =
+      good_.empty() ? std::nullopt : std::optional<State>(good_.back());
+  Reinitialize();
+  if (newest) anchor_ = newest;
+}
+
 Eigen::Isometry3d WindowEstimator::AnchorFor(const Eigen::Isometry3d& T_new_imu,
                                              int64_t t_ns,
                                              bool extrapolate) const {

@@ -202,6 +202,30 @@ TEST(ConfigLoader, StampClockIsRealtimeOrMonotonic) {
   EXPECT_THAT(e.reason, HasSubstr("realtime or monotonic"));
 }
 
+// ipc.frames: REP 105's names by default; tf2 frame ids only (no leading '/'), all different.
+TEST(ConfigLoader, FrameNamesAreTf2FrameIdsAndDistinct) {
+  const LoadedConfig defaults = Load("config_version: 1\n");
+  ASSERT_TRUE(defaults.ok()) << defaults.ErrorReport();
+  EXPECT_EQ(defaults.config.ipc.frames.map, "map");
+  EXPECT_EQ(defaults.config.ipc.frames.odom, "odom");
+  EXPECT_EQ(defaults.config.ipc.frames.base_link, "base_link");
+  EXPECT_EQ(defaults.config.ipc.frames.imu, "imu_link");
+  EXPECT_EQ(defaults.config.ipc.frames.lidar, "lidar_link");
+  const LoadedConfig renamed =
+      Load("config_version: 1\nipc:\n  frames:\n    base_link: robot1/base_footprint\n");
+  ASSERT_TRUE(renamed.ok()) << renamed.ErrorReport();
+  EXPECT_EQ(renamed.config.ipc.frames.base_link, "robot1/base_footprint");
+  const ConfigError slash =
+      OnlyError(Load("config_version: 1\nipc:\n  frames:\n    odom: /odom\n"));
+  EXPECT_EQ(slash.key, "ipc.frames.odom");
+  EXPECT_THAT(slash.reason, HasSubstr("no leading '/'"));
+  const ConfigError same = OnlyError(Load("config_version: 1\nipc:\n  frames:\n    odom: map\n"));
+  EXPECT_EQ(same.key, "ipc.frames.odom");
+  EXPECT_THAT(same.reason, HasSubstr("must differ from map"));
+  const ConfigError period = OnlyError(Load("config_version: 1\nipc:\n  map_odom_period_s: 2\n"));
+  EXPECT_EQ(period.key, "ipc.map_odom_period_s");
+}
+
 TEST(ConfigLoader, CrossFieldRulesAndEveryErrorAreReported) {
   const LoadedConfig loaded = Load(R"(config_version: 1
 lidar:

@@ -17,7 +17,7 @@ TEST(PublisherThread, KeyframePathKeepsTheNewestKeyframesOnly) {
   SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 16);
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 64);
   Doorbell bell;
-  PublisherThread publisher(nullptr, FrameIds{}, PublisherQueues{&poses, &odometry, &bell}, {},
+  PublisherThread publisher(nullptr, OutputFrames{}, PublisherQueues{&poses, &odometry, &bell}, {},
                             nullptr, 1'000'000'000, 10);
   for (int i = 0; i < 30; ++i) {
     SweepEstimate e;
@@ -40,7 +40,7 @@ TEST(PublisherThread, NonFiniteStatesAreNeverPublishedButCounted) {
   SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 16);
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 16);
   Doorbell bell;
-  PublisherThread publisher(nullptr, FrameIds{}, PublisherQueues{&poses, &odometry, &bell}, {},
+  PublisherThread publisher(nullptr, OutputFrames{}, PublisherQueues{&poses, &odometry, &bell}, {},
                             nullptr);
   ImuRatePose good;
   good.state.t_ns = 1'000'000;
@@ -67,7 +67,7 @@ TEST(PublisherThread, AMapCorrectionIsFollowedAtTheConfiguredRate) {
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 128);
   SpscQueue<MapCorrection> corrections("corrections", "test", "publisher", 4);
   Doorbell bell;
-  PublisherThread publisher(nullptr, FrameIds{},
+  PublisherThread publisher(nullptr, OutputFrames{},
                             PublisherQueues{&poses, &odometry, &bell, &corrections}, {}, nullptr,
                             1'000'000'000, 100, {.max_rate_mps = 0.2, .max_rate_radps = 0.05});
   MapCorrection c;
@@ -98,7 +98,7 @@ TEST(PublisherThread, ALoopReplacesTheKeyframePathByTheCorrectedNodes) {
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 16);
   SpscQueue<MapCorrection> corrections("corrections", "test", "publisher", 4);
   Doorbell bell;
-  PublisherThread publisher(nullptr, FrameIds{},
+  PublisherThread publisher(nullptr, OutputFrames{},
                             PublisherQueues{&poses, &odometry, &bell, &corrections}, {}, nullptr,
                             1'000'000'000, 4);
   auto nodes = std::make_shared<std::vector<estimator::MapNode>>();
@@ -134,7 +134,7 @@ TEST(PublisherThread, WithoutCorrectionsPosesAreUntouched) {
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 4);
   SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 4);
   Doorbell bell;
-  PublisherThread publisher(nullptr, FrameIds{}, PublisherQueues{&poses, &odometry, &bell}, {},
+  PublisherThread publisher(nullptr, OutputFrames{}, PublisherQueues{&poses, &odometry, &bell}, {},
                             nullptr, 1'000'000'000, 10);
   SweepEstimate e;
   e.status = estimator::OdometryStatus::kTracking;
@@ -154,8 +154,8 @@ int64_t PublishedStamp(int64_t t_ns, StampClock* stamps, const TimeScale& time =
   SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 4);
   SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 4);
   Doorbell bell;
-  PublisherThread publisher(nullptr, FrameIds{}, PublisherQueues{&poses, &odometry, &bell}, time,
-                            nullptr, 1'000'000'000, 10);
+  PublisherThread publisher(nullptr, OutputFrames{}, PublisherQueues{&poses, &odometry, &bell},
+                            time, nullptr, 1'000'000'000, 10);
   if (stamps != nullptr) publisher.StampWith(stamps);
   SweepEstimate e;
   e.status = estimator::OdometryStatus::kTracking;
@@ -181,6 +181,53 @@ TEST(PublisherThread, StampsAreTheStampClocksConversionOfHostTime) {
   EXPECT_EQ(PublishedStamp(123'456'789'012, nullptr), 123'456'789'012);
   const TimeScale twice{100'000'000'000, 2.0};  // a simulator at 2x: daemon time runs 2x
   EXPECT_EQ(PublishedStamp(104'000'000'000, &realtime, twice), 102'000'000'000 + kOffsetNs);
+}
+
+// Localizing in a saved map: before the relocalization only the odom frame is published
+// (odom → base_link with every pose, the odom-frame odometry; REP 105's odom needs no map);
+// the map-frame pose, odometry and map → odom start with the first (jumping) correction.
+TEST(PublisherThread, BeforeTheFirstLocalizationOnlyTheOdomFrameIsPublished) {
+  SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 16);
+  SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 16);
+  SpscQueue<MapCorrection> corrections("corrections", "test", "publisher", 4);
+  Doorbell bell;
+  PublisherThread publisher(nullptr, OutputFrames{},
+                            PublisherQueues{&poses, &odometry, &bell, &corrections}, {}, nullptr);
+  publisher.HoldUntilLocalized();
+  auto feed = [&](int64_t t0_ns) {
+    for (int i = 0; i < 4; ++i) {
+      ImuRatePose p;
+      p.state.t_ns = t0_ns + i * 10'000'000;
+      ASSERT_TRUE(poses.Push(p));
+    }
+    SweepEstimate e;
+    e.status = estimator::OdometryStatus::kTracking;
+    e.state.t_ns = t0_ns;
+    ASSERT_TRUE(odometry.Push(e));
+  };
+  feed(1'000'000'000);
+  const std::atomic<bool> stop{true};
+  publisher.Run(stop, Watchdog::Handle{});
+  PublisherCounters c = publisher.counters();
+  EXPECT_EQ(c.poses, 0u);
+  EXPECT_EQ(c.odometry, 0u);
+  EXPECT_EQ(c.held, 5u);
+  EXPECT_EQ(c.odom_odometry, 1u);
+  EXPECT_EQ(c.transforms, 1u + 4u) << "/tf_static, then odom → base_link per pose";
+
+  MapCorrection relocalized;
+  relocalized.jump = true;
+  relocalized.T_map_odom.translation() = Eigen::Vector3d(5.0, 0.0, 0.0);
+  ASSERT_TRUE(corrections.Push(relocalized));
+  feed(2'000'000'000);
+  publisher.Run(stop, Watchdog::Handle{});
+  c = publisher.counters();
+  EXPECT_EQ(c.poses, 4u);
+  EXPECT_EQ(c.odometry, 1u);
+  EXPECT_EQ(c.held, 5u);
+  EXPECT_EQ(c.odom_odometry, 2u);
+  // A second /tf_static (this Run), a /tf per pose (map → odom riding with the first).
+  EXPECT_EQ(c.transforms, 5u + 1u + 4u);
 }
 
 }  // namespace

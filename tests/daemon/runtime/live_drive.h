@@ -48,7 +48,8 @@ struct LiveDrive {
   /// Every test its own DDS domain, or one test's subscriber takes another's samples (the ipc
   /// tests publish edge values such as NaN and DBL_MAX: a CI-like run of ctest -j2 saw them
   /// arrive here). tests/ipc uses 101..133; the daemon tests 140..159: Runtime.* 140,
-  /// RuntimeFaults.* 141..153 and 156, SwliodCommand 154, Runtime.AWallClockStep… 157.
+  /// RuntimeFaults.* 141..153 and 156, SwliodCommand 154, Runtime.AWallClockStep… 157,
+  /// RuntimeControl.* 159; not live drives: MapPublisher 155, PublisherThreadTf 158.
   uint32_t dds_domain = 140;
 };
 
@@ -146,6 +147,9 @@ inline DaemonConfig LiveDriveConfig(const std::filesystem::path& dir, uint32_t d
   config.ipc.stamp_clock = "monotonic";
   config.ipc.dds_config_file =
       (::swlio::test::SourceDir() / "config" / "cyclonedds-loopback.xml").string();
+  // No control socket unless a test asks (RuntimeControl.*): the default /run/swlio is the
+  // installed daemon's.
+  config.control.socket = "";
   return config;
 }
 

@@ -10,6 +10,20 @@
 
 namespace swlio::ipc {
 
+/// The frame ids of the published messages (REP 105, "Coordinate Frames for Mobile
+/// Platforms"): `map` (the loop-closed, world-fixed frame), `odom` (continuous, drifting),
+/// `base_link` (the robot base, rigidly attached), and the sensors' frames. tf2 frame ids: no
+/// leading '/', all distinct.
+struct FrameNames {
+  std::string map = "map";
+  std::string odom = "odom";
+  std::string base_link = "base_link";
+  std::string imu = "imu_link";
+  std::string lidar = "lidar_link";
+
+  ConfigIssues Validate() const;
+};
+
 struct IpcConfig {
   int64_t domain_id = 0;  ///< DDS domain (ROS_DOMAIN_ID)
   /// Cyclone DDS XML used to create the domain. A relative path is taken from the directory of
@@ -22,6 +36,16 @@ struct IpcConfig {
   std::string health_topic = "diagnostics";       ///< 1 Hz health (ROS 2 /diagnostics)
   std::string path_topic = "swlio/path";          ///< keyframe path
   std::string map_topic = "swlio/map";            ///< map cloud (sensor_msgs/PointCloud2)
+  /// Scan-rate odometry of base_link in the odom frame: the estimator's own, continuous pose
+  /// without loop-closure corrections (REP 105 odom), beside the map-frame odometry_topic.
+  std::string odom_odometry_topic = "swlio/odometry/odom";
+  std::string tf_topic = "tf";                ///< tf2's /tf: odom → base_link, map → odom
+  std::string tf_static_topic = "tf_static";  ///< tf2's /tf_static: base_link → imu, lidar
+  FrameNames frames;
+  /// map → odom is published whenever the correction changes and otherwise at least once per
+  /// this period (s; 0: with every pose). tf2 resolves map → base_link only up to the newest
+  /// map → odom stamp, so this bounds how old a "latest" map-frame lookup can be.
+  double map_odom_period_s = 0.1;
   /// The keyframe path holds the newest this many keyframes: bounded memory and message size
   /// on a robot that patrols for days (a soak saw the whole path grow with every lap).
   int64_t path_max_poses = 5000;

@@ -10,6 +10,8 @@
 /// - kHealth: diagnostic_msgs/msg/DiagnosticArray, diagnostic_msgs::msg::dds_::DiagnosticArray_
 /// - kPath: nav_msgs/msg/Path, nav_msgs::msg::dds_::Path_
 /// - kMap: sensor_msgs/msg/PointCloud2, sensor_msgs::msg::dds_::PointCloud2_
+/// - kOdomOdometry: nav_msgs/msg/Odometry in the odom frame (REP 105: continuous)
+/// - kTf, kTfStatic: tf2_msgs/msg/TFMessage, tf2_msgs::msg::dds_::TFMessage_ (/tf, /tf_static)
 ///
 /// Stamps: `t_ns` is carried as builtin_interfaces/Time (sec = floor(t_ns / 1e9), nanosec =
 /// the remainder), so every t_ns whose seconds fit an int32 round-trips exactly. Which clock
@@ -23,8 +25,17 @@
 namespace swlio::ipc {
 
 /// The topics of IpcConfig.
-enum class Topic : uint8_t { kPose = 0, kOdometry = 1, kHealth = 2, kPath = 3, kMap = 4 };
-inline constexpr int kTopicCount = 5;
+enum class Topic : uint8_t {
+  kPose = 0,
+  kOdometry = 1,
+  kHealth = 2,
+  kPath = 3,
+  kMap = 4,
+  kOdomOdometry = 5,
+  kTf = 6,
+  kTfStatic = 7
+};
+inline constexpr int kTopicCount = 8;
 
 /// Row-major 6x6 covariance over (x, y, z, rotation about X, Y, Z), as in
 /// geometry_msgs/PoseWithCovariance and TwistWithCovariance.
@@ -66,6 +77,26 @@ struct Odometry {
   Covariance6 pose_covariance{};
   Twist twist;
   Covariance6 twist_covariance{};
+};
+
+/// geometry_msgs/Transform: translation (Vector3) and rotation (Quaternion, x, y, z, w).
+struct Transform {
+  std::array<double, 3> translation_m{};
+  std::array<double, 4> rotation_xyzw{0.0, 0.0, 0.0, 1.0};
+};
+
+/// geometry_msgs/TransformStamped: the pose of `child_frame_id` in `frame_id` at `t_ns`
+/// (T_frame_child: maps points from the child frame into the parent frame).
+struct TransformStamped {
+  int64_t t_ns = 0;
+  std::string frame_id;
+  std::string child_frame_id;
+  Transform transform;
+};
+
+/// tf2_msgs/TFMessage: the transforms of one /tf or /tf_static sample.
+struct TFMessage {
+  std::vector<TransformStamped> transforms;
 };
 
 /// diagnostic_msgs/DiagnosticStatus level (a ROS `byte`; other values pass through).
@@ -145,7 +176,7 @@ struct Received {
   int64_t source_realtime_ns = 0;   ///< writer's CLOCK_REALTIME at dds_write (DDS source time)
 };
 
-/// "pose", "odometry", "health", "path" or "map".
+/// "pose", "odometry", "health", "path", "map", "odom_odometry", "tf" or "tf_static".
 const char* TopicLabel(Topic topic);
 
 }  // namespace swlio::ipc

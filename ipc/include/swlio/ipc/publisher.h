@@ -5,8 +5,8 @@
 /// Topic names are IpcConfig's ROS 2 names with the "rt/" prefix ROS 2 uses for topics
 /// ("swlio/pose" → DDS "rt/swlio/pose"). QoS follows ROS 2 conventions (see qos_profile.h and
 /// ipc/README.md): every writer is RELIABLE and KEEP_LAST, so it never blocks the caller and
-/// matches both reliable and best-effort readers; the path and the map are TRANSIENT_LOCAL
-/// (latched).
+/// matches both reliable and best-effort readers; the path, the map and /tf_static are
+/// TRANSIENT_LOCAL (latched).
 /// Writers pin XCDR1, the encoding Fast DDS 2.9 (ROS 2's default middleware) reads.
 ///
 /// Thread safety: each Publish* may be called from any one thread at a time per topic; the
@@ -36,9 +36,16 @@ class Publisher {
   Publisher& operator=(const Publisher&) = delete;
 
   /// Each returns false (and counts a failure) when the stamp does not fit
-  /// builtin_interfaces/Time or DDS refuses the write. Pose and odometry allocate nothing.
+  /// builtin_interfaces/Time or DDS refuses the write. Pose, odometry and a TFMessage of up to
+  /// four transforms allocate nothing.
   bool PublishPose(const PoseWithCovarianceStamped& pose);
   bool PublishOdometry(const Odometry& odometry);
+  /// The odom-frame odometry (odom_odometry_topic).
+  bool PublishOdomOdometry(const Odometry& odometry);
+  /// /tf (KEEP_LAST 100, volatile) and /tf_static (KEEP_LAST 1, latched: send every static
+  /// transform in one message, as tf2_ros's StaticTransformBroadcaster does).
+  bool PublishTf(const TFMessage& tf);
+  bool PublishTfStatic(const TFMessage& tf);
   bool PublishHealth(const DiagnosticArray& health);
   bool PublishPath(const Path& path);
   /// A map cloud of several MB: Cyclone serializes it in this call (one copy of `map.data`) and
@@ -59,6 +66,7 @@ class Publisher {
   Publisher() = default;
   static size_t Index(Topic topic) { return static_cast<size_t>(topic); }
   bool Count(bool ok);
+  bool WriteTf(Topic topic, const TFMessage& tf);
 
   std::array<int32_t, kTopicCount> topics_{};   // dds_entity_t
   std::array<int32_t, kTopicCount> writers_{};  // dds_entity_t

@@ -11,6 +11,11 @@
 ///   last path (like /map).
 /// - map (PointCloud2, MBs): RELIABLE, TRANSIENT_LOCAL, KEEP_LAST 1. Latched: rviz2 started
 ///   later gets the newest map; the writer keeps one map, never a backlog.
+/// - odom_odometry: as odometry.
+/// - tf: RELIABLE, VOLATILE, KEEP_LAST 100, tf2_ros's DynamicBroadcasterQoS (tf2_ros/qos.hpp:
+///   rclcpp::QoS(100)).
+/// - tf_static: RELIABLE, TRANSIENT_LOCAL, KEEP_LAST 1, tf2_ros's StaticBroadcasterQoS
+///   (rclcpp::QoS(1).transient_local()): one sample holding every static transform, latched.
 ///
 /// Every writer also pins data representation XCDR1 (Fast DDS 2.9 reads only XCDR1). Deadline,
 /// lifespan, liveliness (AUTOMATIC) and ownership (SHARED) stay at the DDS defaults, as in ROS 2.
@@ -32,9 +37,10 @@ struct QosProfile {
 
 /// The writer QoS of `topic` (table above).
 constexpr QosProfile WriterQos(Topic topic) {
-  if (topic == Topic::kPath || topic == Topic::kMap) {
+  if (topic == Topic::kPath || topic == Topic::kMap || topic == Topic::kTfStatic) {
     return {Reliability::kReliable, Durability::kTransientLocal, 1};
   }
+  if (topic == Topic::kTf) return {Reliability::kReliable, Durability::kVolatile, 100};
   return {Reliability::kReliable, Durability::kVolatile, 10};
 }
 

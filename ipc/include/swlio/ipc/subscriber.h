@@ -2,8 +2,9 @@
 /// @file
 /// Reads swlio's topics (for swlio-echo and tests): decoded samples with their receive times.
 /// Cyclone DDS stays behind this header. Reader QoS requests what the writers offer (see
-/// qos_profile.h): RELIABLE, KEEP_LAST `history_depth`, VOLATILE except the path and the map,
-/// which are TRANSIENT_LOCAL so a late subscriber still gets the last keyframe path and map.
+/// qos_profile.h): RELIABLE, KEEP_LAST `history_depth`, VOLATILE except the path, the map and
+/// /tf_static, which are TRANSIENT_LOCAL so a late subscriber still gets the last keyframe path,
+/// map and static transforms.
 
 #include <array>
 #include <cstdint>
@@ -24,7 +25,7 @@ struct SubscriberOptions {
   /// that falls behind keeps only the newest.
   int map_history_depth = 1;
   /// Which topics to read (indexed by Topic).
-  std::array<bool, kTopicCount> topics{true, true, true, true, true};
+  std::array<bool, kTopicCount> topics{true, true, true, true, true, true, true, true};
 };
 
 class Subscriber {
@@ -48,6 +49,9 @@ class Subscriber {
   std::vector<Received<DiagnosticArray>> TakeHealth();
   std::vector<Received<Path>> TakePaths();
   std::vector<Received<PointCloud2>> TakeMaps();
+  std::vector<Received<Odometry>> TakeOdomOdometry();
+  std::vector<Received<TFMessage>> TakeTf();
+  std::vector<Received<TFMessage>> TakeTfStatic();
 
   /// Writers currently matched to the topic's reader (0 when not subscribed).
   int MatchedPublications(Topic topic) const;

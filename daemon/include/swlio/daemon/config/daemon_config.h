@@ -87,6 +87,27 @@ struct MapFilesConfig {
   ConfigIssues Validate() const;
 };
 
+/// The control socket swlioctl talks to (YAML `control`; docs/control.md).
+struct ControlConfig {
+  /// UNIX stream socket path; relative paths are taken from the config file's directory.
+  /// Empty: no control socket. The default lies in /run/swlio (swlio.tmpfiles.conf);
+  /// where it cannot be created (swliod run by hand), the daemon logs why and runs on without.
+  std::string socket = "/run/swlio/swliod.sock";
+  /// The socket's group (mode 0660): the operators who may use swlioctl besides the daemon's
+  /// user. Empty: the daemon's own group. swlio.sysusers.conf creates swlio-operators.
+  std::string group = "swlio-operators";
+  /// A client must send its whole request line within this time, and read the reply within
+  /// it, or it is dropped (s).
+  double request_timeout_s = 2.0;
+  /// save-map and reset run on the thread that owns the graph or the estimator; the reply
+  /// waits this long for them (s), then says "timeout" (the command may still complete).
+  double command_timeout_s = 60.0;
+  /// Connections served at once; one more is answered "busy" and closed.
+  int64_t max_clients = 8;
+
+  ConfigIssues Validate() const;
+};
+
 /// Version of the configuration schema this build reads (`config_version` in the file).
 inline constexpr int64_t kConfigVersion = 1;
 
@@ -109,6 +130,7 @@ struct DaemonConfig {
   ipc::IpcConfig ipc;
   LoggingConfig logging;
   RealtimeConfig realtime;
+  ControlConfig control;
 
   /// Every violated rule, keys prefixed by section ("lidar.max_range_m").
   ConfigIssues Validate() const;

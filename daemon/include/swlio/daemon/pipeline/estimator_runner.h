@@ -58,6 +58,10 @@ class EstimatorRunner {
   /// Takes the sweep (moved from); processed now or once the IMU covers its end.
   void AddScan(Scan&& scan);
 
+  /// Re-initializes the tightly coupled window (WindowEstimator::Reset); false in LiDAR-only
+  /// mode, which has no such seam.
+  bool Reset();
+
   /// Sweeps waiting for IMU coverage.
   size_t waiting() const { return waiting_.size(); }
   /// Sweeps dropped because more than `kMaxWaiting` waited (the IMU stopped or is late).

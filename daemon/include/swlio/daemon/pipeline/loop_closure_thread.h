@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <string>
 
+#include "swlio/daemon/control/pending_command.h"
 #include "swlio/daemon/output/map_publisher.h"
 #include "swlio/daemon/pipeline/live_types.h"
 #include "swlio/daemon/pipeline/spsc_queue.h"
@@ -60,8 +61,16 @@ class LoopClosureThread {
   /// Relaxed copies (any thread).
   LoopClosureCounters counters() const;
   /// The graph as a saved map at `path`, its merged cloud at `pcd_path` (saved_map.h,
-  /// map_pcd.h); call only after Run returned. Returns the node count; *error set on failure.
-  size_t SaveMap(const std::string& path, const std::string& pcd_path, std::string* error) const;
+  /// map_pcd.h), beating `beat` between the stages; call on this thread (RequestSave) or after
+  /// Run returned. Returns the node count; *error set on failure.
+  size_t SaveMap(const std::string& path,
+                 const std::string& pcd_path,
+                 std::string* error,
+                 const Watchdog::Handle& beat = {}) const;
+  /// An operator's save-map (swlioctl save-map PATH; control thread only): saved on this thread,
+  /// which owns the graph, at its next loop (≤ 100 ms), to PATH and PATH.pcd. False when
+  /// requests are already queued.
+  bool RequestSave(std::shared_ptr<PendingCommand> command);
 
  private:
   void Handle(const estimator::KeyframeCloud& keyframe);
@@ -72,8 +81,12 @@ class LoopClosureThread {
   void PublishGnssCounters();
   /// Publishes the corrected map when a correction is pending and the period is over.
   void PublishMapIfDue(const Watchdog::Handle& beat);
+  /// Executes the queued save-map requests.
+  void ServeSaves(const Watchdog::Handle& beat);
 
   estimator::LoopClosure closure_;
+  /// control → loop_closure: save-map requests (a few; one more is refused as busy).
+  SpscQueue<std::shared_ptr<PendingCommand>> saves_{"save_requests", "control", "loop_closure", 4};
   LoopClosureQueues q_;
   MapPublisher* map_ = nullptr;
   std::atomic<uint64_t> keyframes_{0}, nodes_{0}, attempts_{0}, accepted_{0}, rejected_{0},

@@ -16,6 +16,7 @@
 #include <mutex>
 #include <utility>
 
+#include "swlio/daemon/control/pending_command.h"
 #include "swlio/daemon/pipeline/estimator_runner.h"
 #include "swlio/daemon/pipeline/live_types.h"
 #include "swlio/daemon/pipeline/spsc_queue.h"
@@ -77,6 +78,10 @@ class OptimizerThread {
                   int64_t max_sweep_lag_ns = 0);
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   OptimizerCounters counters() const;
+  /// An operator's reset (swlioctl reset; control thread only): the estimator re-initializes
+  /// at its next loop (≤ 20 ms), as after a divergence (EstimatorRunner::Reset), and the
+  /// propagator drops its state. False when requests are already queued.
+  bool RequestReset(std::shared_ptr<PendingCommand> command);
 
  private:
   void OnResult(const Scan& scan, const estimator::WindowResult& result);
@@ -86,8 +91,12 @@ class OptimizerThread {
   void DrainLidar();
   int64_t LastRxOf(int64_t t_end_ns) const;
   void Publish();
+  /// Executes the queued reset requests.
+  void ServeResets();
 
   OptimizerQueues q_;
+  /// control → optimizer: reset requests (a few; one more is refused as busy).
+  SpscQueue<std::shared_ptr<PendingCommand>> resets_{"reset_requests", "control", "optimizer", 4};
   TimeScale time_;
   LidarStage lidar_;
   EstimatorRunner runner_;

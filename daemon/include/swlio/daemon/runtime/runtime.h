@@ -8,22 +8,24 @@
 ///
 /// With --record, a recorder thread takes copies from both rx threads.
 /// Each thread registers with the Watchdog and beats every loop (≤ 100 ms apart when idle).
-/// Stop() stops and joins in stages, upstream first: the rx threads; the propagator; the
-/// optimizer; the publisher and the recorder. Each finishes what is queued for it, so the
-/// estimator, the outputs and the recording see everything that was received.
-/// No allocation on the rx threads after Create().
+/// Stop() stops and joins in stages: the control thread (no new commands); then upstream first:
+/// the rx threads; the propagator; the optimizer; the publisher and the recorder. Each finishes
+/// what is queued for it, so the estimator, the outputs and the recording see everything that was
+/// received. No allocation on the rx threads after Create().
 
 #include <Eigen/Geometry>
 #include <atomic>
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "swlio/daemon/config/daemon_config.h"
+#include "swlio/daemon/control/control_server.h"
 #include "swlio/daemon/output/map_publisher.h"
 #include "swlio/daemon/output/stamp_clock.h"
 #include "swlio/daemon/pipeline/estimator_runner.h"
@@ -57,14 +59,16 @@ struct RuntimeOptions {
   ClockSources stamp_clocks;
 };
 
-class Runtime {
+/// With control.socket, a control thread serves swlioctl (control_server.h); Runtime is its
+/// ControlTarget (runtime_control.cpp).
+class Runtime : public ControlTarget {
  public:
   /// Opens the UDP sockets and the DDS participant; the serial device is opened (and
   /// re-opened) by the imu_rx thread. Nullptr with `error` filled on failure.
   static std::unique_ptr<Runtime> Create(const DaemonConfig& config,
                                          const RuntimeOptions& options,
                                          std::string* error);
-  ~Runtime();
+  ~Runtime() override;
   Runtime(const Runtime&) = delete;
   Runtime& operator=(const Runtime&) = delete;
 
@@ -79,6 +83,16 @@ class Runtime {
   uint16_t msop_port() const;
   uint16_t difop_port() const;
   uint64_t sched_failures() const { return sched_failures_.load(); }
+  /// The control socket's path; empty when there is none (off, or it could not be created).
+  std::string control_socket() const { return control_ ? control_->path() : std::string(); }
+  ControlCounters control_counters() const {
+    return control_ ? control_->counters() : ControlCounters{};
+  }
+
+  // ControlTarget (called on the control thread).
+  std::string Status() override;
+  std::shared_ptr<PendingCommand> Submit(const control::Request& request,
+                                         control::Reply* refusal) override;
 
  private:
   struct Queues;
@@ -90,6 +104,10 @@ class Runtime {
   void MakeMapPublisher(const std::string& frame_id);
   /// With loop closure and map.save_path: the graph as a saved map (once, at stop).
   void SaveMap();
+  /// The control socket (control.socket): a failure is logged and the daemon runs without.
+  void OpenControl();
+  /// The health message the publisher built last (what `status` reports).
+  std::optional<ipc::DiagnosticArray> LastHealth() const;
   void Spawn(std::vector<std::thread>* group,
              const char* name,
              std::function<void(const Watchdog::Handle&)> body);
@@ -115,14 +133,19 @@ class Runtime {
   std::unique_ptr<MapPublisher> map_publisher_;
   std::unique_ptr<PublisherThread> publisher_thread_;
   std::unique_ptr<Recorder> recorder_;
-  HealthReporter published_health_;          ///< used by the publisher thread only
-  std::atomic<uint64_t> sched_failures_{0};  ///< realtime settings a thread could not apply
+  HealthReporter published_health_;                  ///< used by the publisher thread only
+  mutable std::mutex health_mutex_;                  ///< guards last_health_
+  std::optional<ipc::DiagnosticArray> last_health_;  ///< publisher → control thread
+  std::unique_ptr<ControlServer> control_;           ///< null without a control socket
+  std::atomic<uint64_t> sched_failures_{0};          ///< realtime settings a thread could not apply
+  std::atomic<bool> stop_control_{false};
   std::atomic<bool> stop_rx_{false};
   std::atomic<bool> stop_propagator_{false};
   std::atomic<bool> stop_optimizer_{false};
   std::atomic<bool> stop_loop_{false};
   bool map_saved_ = false;
   std::atomic<bool> stop_out_{false};  ///< publisher, recorder
+  std::vector<std::thread> control_threads_;
   std::vector<std::thread> rx_threads_;
   std::vector<std::thread> propagator_threads_;
   std::vector<std::thread> optimizer_threads_;

@@ -103,6 +103,12 @@ class WindowEstimator {
   void AddWheel(const WheelOdometry& sample);
   WindowResult AddScan(const Scan& scan);
 
+  /// Back to uninitialized with an empty map, as after a divergence (an operator's `swlioctl
+  /// reset`): the next initialization (static or moving) is placed at the newest state that
+  /// passed the divergence checks (position and yaw), so the world frame carries on. Counted in
+  /// `reinitializations`.
+  void Reset();
+
   bool initialized() const { return initialized_; }
   size_t window_frames() const { return frames_.size(); }
   /// Points in the local maps (planes and edges): bounded by their radius and voxel capacity.

@@ -1,0 +1,213 @@
+// swlioctl's commands against a Runtime (control_server.h, runtime_control.cpp): on a live
+// simulated drive with loop closure, `status` says the state and the published health,
+// `save-map` writes a map that loads back while mapping, a second client is answered while
+// the save runs, and `reset` re-initializes the estimator, which tracks again; without a drive,
+// save-map is refused when loop closure is off or when localizing in a saved map.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <thread>
+
+#include "box_yard_map.h"
+#include "live_drive.h"
+#include "swlio/control/client.h"
+#include "swlio/estimator/map/saved_map.h"
+
+namespace swlio::daemon {
+namespace {
+
+using ::testing::HasSubstr;
+using Clock = std::chrono::steady_clock;
+
+control::CallResult Ask(const std::string& socket,
+                        control::Command command,
+                        std::string argument = "",
+                        int timeout_ms = 5000) {
+  return control::Call(socket, {command, std::move(argument)}, timeout_ms);
+}
+
+/// The value of "  key: value" under the published status `name` in a status body (-1: none).
+long StatusValue(const std::string& body, const std::string& name, const std::string& key) {
+  const size_t at = body.find(" " + name + ": ");
+  if (at == std::string::npos) return -1;
+  const size_t k = body.find("\n  " + key + ": ", at);
+  if (k == std::string::npos) return -1;
+  return std::atol(body.c_str() + k + key.size() + 5);
+}
+
+/// Polls `status` until `pred` holds for its body, up to `timeout`; the last body.
+std::string StatusWhen(const std::string& socket,
+                       const std::function<bool(const std::string&)>& pred,
+                       std::chrono::seconds timeout) {
+  const auto deadline = Clock::now() + timeout;
+  std::string body;
+  while (Clock::now() < deadline) {
+    const control::CallResult r = Ask(socket, control::Command::kStatus);
+    if (r.error == control::CallError::kNone) {
+      body = r.reply.body;
+      if (pred(body)) return body;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  return body;
+}
+
+bool Has(const std::string& body, const std::string& text) {
+  return body.find(text) != std::string::npos;
+}
+
+struct ClientOutcome {
+  std::string tracking_status;  ///< the first status body that said tracking with 3+ nodes
+  control::CallResult save;
+  control::CallResult status_during_save;
+  std::string map_path;
+  control::CallResult reset;
+  std::string after_reset;  ///< status right after the reset
+  std::string tracking_again;
+};
+
+TEST(RuntimeControl, StatusSaveMapAndResetOnALiveDrive) {
+  const auto dir = ::swlio::test::MakeTempDir("runtime-control");
+  const std::string socket = (dir / "swliod.sock").string();
+  test::LiveDrive drive;
+  drive.duration_s = 16.0;
+  drive.dds_domain = 159;
+  drive.adjust_config = [&](DaemonConfig* c) {
+    c->loop_closure.enabled = true;
+    c->control.socket = socket;
+    c->control.group = "";
+  };
+  ClientOutcome out;
+  out.map_path = (dir / "live.map").string();
+  std::thread client([&] {
+    out.tracking_status = StatusWhen(
+        socket,
+        [](const std::string& b) {
+          return Has(b, "state: tracking") && StatusValue(b, "swlio: loop closure", "nodes") >= 3;
+        },
+        std::chrono::seconds(40));
+    // Two clients at once: save-map, and status while it runs.
+    std::thread second([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      out.status_during_save = Ask(socket, control::Command::kStatus);
+    });
+    out.save = Ask(socket, control::Command::kSaveMap, out.map_path, 30000);
+    second.join();
+    out.reset = Ask(socket, control::Command::kReset);
+    out.after_reset = Ask(socket, control::Command::kStatus).reply.body;
+    out.tracking_again = StatusWhen(
+        socket, [](const std::string& b) { return Has(b, "state: tracking"); },
+        std::chrono::seconds(20));
+  });
+  const test::LiveDriveResult r = test::RunLiveDrive(drive);
+  client.join();
+  ASSERT_TRUE(r.sim_ok) << r.error;
+
+  // status: the state, the mode, and the health topic's statuses with their values.
+  std::cout << "[ status ]\n" << out.tracking_status;
+  EXPECT_THAT(out.tracking_status, HasSubstr("state: tracking\nmode: mapping\nready: true\n"));
+  EXPECT_THAT(out.tracking_status, HasSubstr("ok swlio: lidar: streaming\n  packets_hz: "));
+  EXPECT_THAT(out.tracking_status, HasSubstr(" swlio: estimator: "));
+  EXPECT_THAT(out.tracking_status, HasSubstr(" swlio: loop closure: "));
+  // 400 Hz of sensor time; rates are per host second (sanitized builds drive at 0.5x).
+  EXPECT_GT(static_cast<double>(StatusValue(out.tracking_status, "swlio: imu", "rate_hz")),
+            300.0 * r.speed);
+
+  // save-map while mapping: the file loads back with the map loader, as many nodes as said.
+  ASSERT_EQ(out.save.error, control::CallError::kNone) << out.save.detail;
+  ASSERT_EQ(out.save.reply.status, control::ReplyStatus::kOk) << out.save.reply.message;
+  std::cout << "[ save-map ] " << out.save.reply.message << "\n" << out.save.reply.body;
+  std::string error;
+  const std::optional<estimator::SavedMap> map = estimator::LoadMapFile(out.map_path, &error);
+  ASSERT_TRUE(map.has_value()) << error;
+  EXPECT_GE(map->nodes.size(), 3u);
+  EXPECT_THAT(out.save.reply.body,
+              HasSubstr(std::string("nodes: ").append(std::to_string(map->nodes.size()))));
+  EXPECT_GT(std::filesystem::file_size(out.map_path + ".pcd"), 1000u);
+  // The second client, at the same time, got its status.
+  ASSERT_EQ(out.status_during_save.error, control::CallError::kNone)
+      << out.status_during_save.detail;
+  EXPECT_THAT(out.status_during_save.reply.body, HasSubstr("mode: mapping"));
+
+  // reset: answered ok, the estimator starts again, and tracks again later in the drive.
+  ASSERT_EQ(out.reset.error, control::CallError::kNone) << out.reset.detail;
+  EXPECT_EQ(out.reset.reply.status, control::ReplyStatus::kOk) << out.reset.reply.message;
+  EXPECT_THAT(out.after_reset, HasSubstr("state: initializing"));
+  EXPECT_THAT(out.tracking_again, HasSubstr("state: tracking"));
+  EXPECT_GE(r.final.optimizer.reinitializations, 1u);
+}
+
+/// A Runtime without a drive and without DDS: enough to ask it.
+std::unique_ptr<Runtime> IdleRuntime(DaemonConfig config, std::string* error) {
+  config.lidar.bind_address = "127.0.0.1";
+  config.lidar.msop_port = ::swlio::test::QuietUdpPort();
+  config.lidar.difop_port = ::swlio::test::QuietUdpPort();
+  config.imu.device = "/nonexistent/imu";
+  RuntimeOptions options;
+  options.dds = false;
+  return Runtime::Create(config, options, error);
+}
+
+TEST(RuntimeControlIdle, SaveMapIsRefusedWithoutLoopClosureOrWhileLocalizing) {
+  const auto dir = ::swlio::test::MakeTempDir("runtime-control-idle");
+  DaemonConfig config;
+  config.loop_closure.enabled = false;  // on by default
+  config.control.socket = (dir / "a.sock").string();
+  config.control.group = "";
+  std::string error;
+  auto rt = IdleRuntime(config, &error);
+  ASSERT_NE(rt, nullptr) << error;
+  EXPECT_EQ(rt->control_socket(), config.control.socket);
+  rt->Start();
+  control::CallResult save = Ask(config.control.socket, control::Command::kSaveMap, "/tmp/x.map");
+  ASSERT_EQ(save.error, control::CallError::kNone) << save.detail;
+  EXPECT_EQ(save.reply.status, control::ReplyStatus::kRefused);
+  EXPECT_THAT(save.reply.message, HasSubstr("loop closure is off"));
+  const control::CallResult status = Ask(config.control.socket, control::Command::kStatus);
+  EXPECT_THAT(status.reply.body, HasSubstr("state: initializing\nmode: odometry\nready: false\n"));
+  rt->Stop();
+  EXPECT_EQ(rt->control_socket(), "");
+  EXPECT_FALSE(std::filesystem::exists(config.control.socket)) << "removed at stop";
+
+  // Localizing in a saved map.
+  const auto map_path = dir / "yard.map";
+  ASSERT_TRUE(estimator::SaveMapFile(map_path.string(),
+                                     ::swlio::test::BoxYardMap(::swlio::test::BoxYard(7)), &error))
+      << error;
+  config.map.localize = true;
+  config.map.load_path = map_path.string();
+  config.loop_closure.enabled = true;  // off while localizing
+  config.control.socket = (dir / "b.sock").string();
+  rt = IdleRuntime(config, &error);
+  ASSERT_NE(rt, nullptr) << error;
+  rt->Start();
+  save = Ask(config.control.socket, control::Command::kSaveMap, "/tmp/x.map");
+  ASSERT_EQ(save.error, control::CallError::kNone) << save.detail;
+  EXPECT_EQ(save.reply.status, control::ReplyStatus::kRefused);
+  EXPECT_THAT(save.reply.message, HasSubstr("localizing in the fixed map " + map_path.string()));
+  EXPECT_FALSE(std::filesystem::exists("/tmp/x.map"));
+}
+
+TEST(RuntimeControlIdle, AnUnusableSocketPathLeavesTheDaemonRunningWithoutControl) {
+  DaemonConfig config;
+  config.control.socket = "/nonexistent-swlio-dir/swliod.sock";
+  std::string error;
+  auto rt = IdleRuntime(config, &error);
+  ASSERT_NE(rt, nullptr) << error;
+  EXPECT_EQ(rt->control_socket(), "");
+  rt->Start();
+  rt->Stop();
+  config.control.socket = "";  // off
+  rt = IdleRuntime(config, &error);
+  ASSERT_NE(rt, nullptr) << error;
+  EXPECT_EQ(rt->control_socket(), "");
+}
+
+}  // namespace
+}  // namespace swlio::daemon
