@@ -29,7 +29,14 @@ struct PublisherOptions {
   /// false and counts a failure. Under DDS Security a participant may create only the writers
   /// its permissions grant (an operator that publishes /initialpose: pose_topic "initialpose"
   /// and only kPose).
-  std::array<bool, kTopicCount> topics{true, true, true, true, true, true, true, true};
+  std::array<bool, kTopicCount> topics = All();
+
+  /// Every topic (the default: a new Topic gets a writer without an edit here).
+  static std::array<bool, kTopicCount> All() {
+    std::array<bool, kTopicCount> all{};
+    all.fill(true);
+    return all;
+  }
 };
 
 class Publisher {
