@@ -11,7 +11,7 @@
 //   later) to the odometry's take. An upper bound of "last packet sent → odometry received".
 //
 // Usage: swlio_daemon_latency [--scenario S] [--seed N] [--duration S] [--dds-config XML]
-//                             [--domain N]   (default 160)
+//                             [--domain N]   (default 200)
 //                             [--realtime]   (config/swlio.yaml's thread priorities, SCHED_FIFO)
 //                             [--plain]      (without config/swlio.yaml's nice values)
 //                             [--echo-dds-config XML]
@@ -245,9 +245,9 @@ int main(int argc, char** argv) {
       "swlio_daemon_latency: end-to-end latencies of the daemon on a live simulated drive"};
   std::string scenario = "short", xml = SWLIO_SOURCE_DIR "/config/cyclonedds-loopback.xml";
   int seed = 1;
-  // 160: apart from every test's (tests/daemon/runtime/live_drive.h). Two benchmarks on one
-  // domain read each other's samples: give a second one another id.
-  int64_t domain = 160;
+  // 200: apart from every test's (101..199; tests/daemon/runtime/live_drive.h). Two benchmarks
+  // on one domain read each other's samples: give a second one another id.
+  int64_t domain = 200;
   double duration_s = 30.0;
   app.add_option("--scenario", scenario)->capture_default_str();
   app.add_option("--seed", seed)->capture_default_str();
