@@ -11,15 +11,28 @@
 //   later) to the odometry's take. An upper bound of "last packet sent → odometry received".
 //
 // Usage: swlio_daemon_latency [--scenario S] [--seed N] [--duration S] [--dds-config XML]
+//                             [--domain N]   (default 200)
 //                             [--realtime]   (config/swlio.yaml's thread priorities, SCHED_FIFO)
 //                             [--plain]      (without config/swlio.yaml's nice values)
+//                             [--echo-dds-config XML]
+// --echo-dds-config: the subscriber is a swlio-echo process with that XML instead of this
+// process (samples then cross loopback UDP; with DDS Security they are encrypted, which an
+// in-process reader would skip). Take times come from its --latency CSV (CLOCK_MONOTONIC is
+// common to both processes). docs/dds-security.md compares --dds-config daemon.xml
+// --echo-dds-config consumer.xml with the loopback XML for both.
 // Prints the percentiles and the daemon's drop counters; run on an otherwise idle machine.
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -30,6 +43,8 @@
 #include "swlio/daemon/runtime/runtime.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/subscriber.h"
+
+extern char** environ;
 
 namespace {
 
@@ -69,6 +84,54 @@ std::vector<double> PoseLatencies(const std::vector<Taken>& poses,
   return ms;
 }
 
+/// swlio-echo reading pose and odometry into `csv` (its --latency rows), in its own process.
+class EchoProcess {
+ public:
+  EchoProcess(const std::string& xml, int64_t domain, const std::string& csv) {
+    const std::vector<std::string> argv = {
+        SWLIO_ECHO_PATH, "--dds-config",  xml,       "--domain",  std::to_string(domain),
+        "--topics",      "pose,odometry", "--quiet", "--latency", csv};
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    if (posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), environ) != 0) pid_ = -1;
+  }
+  ~EchoProcess() { Stop(); }
+  bool running() const { return pid_ > 0; }
+  /// SIGTERM: swlio-echo stops, closes its CSV and exits 0.
+  bool Stop() {
+    if (pid_ <= 0) return false;
+    kill(pid_, SIGTERM);
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  }
+
+ private:
+  pid_t pid_ = -1;
+};
+
+/// The pose and odometry rows of a swlio-echo --latency CSV as (stamp, receive_steady_ns).
+void ReadEchoCsv(const std::string& csv, std::vector<Taken>* poses, std::vector<Taken>* odometry) {
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(
+      in, line);  // topic,stamp_ns,source_realtime_ns,receive_realtime_ns,receive_steady_ns,...
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::string topic, stamp, source, receive_realtime, receive_steady;
+    std::getline(row, topic, ',');
+    std::getline(row, stamp, ',');
+    std::getline(row, source, ',');
+    std::getline(row, receive_realtime, ',');
+    std::getline(row, receive_steady, ',');
+    const Taken t{std::stoll(stamp), std::stoll(receive_steady)};
+    if (topic == "pose") poses->push_back(t);
+    if (topic == "odometry") odometry->push_back(t);
+  }
+}
+
 /// config/swlio.yaml's thread scheduling (`realtime`): its nice values, and with `realtime`
 /// its SCHED_FIFO priorities too; `plain`: none of it (every thread at nice 0).
 swlio::daemon::RealtimeConfig ShippedScheduling(bool realtime, bool plain) {
@@ -86,8 +149,10 @@ swlio::daemon::RealtimeConfig ShippedScheduling(bool realtime, bool plain) {
 
 int Run(const std::string& scenario,
         int seed,
+        int64_t domain,
         double duration_s,
         const std::string& xml,
+        const std::string& echo_xml,
         bool realtime,
         bool plain) {
   const auto setup = swlio::sim::MakeSimSetup(scenario, static_cast<uint64_t>(seed), duration_s);
@@ -98,7 +163,7 @@ int Run(const std::string& scenario,
   config.lidar.difop_port = 0;
   config.imu.device = "/tmp/swlio_daemon_latency.pty";
   config.imu.configure_on_start = false;
-  config.ipc.domain_id = 160;  // apart from every test's (tests/daemon/runtime/live_drive.h)
+  config.ipc.domain_id = domain;
   config.ipc.dds_config_file = xml;
   config.ipc.stamp_clock = "monotonic";  // stamps against the simulator's CLOCK_MONOTONIC
   config.realtime = ShippedScheduling(realtime, plain);
@@ -106,16 +171,27 @@ int Run(const std::string& scenario,
   options.T_imu_lidar = setup->lidar.T_imu_lidar;
   std::string error;
   auto rt = swlio::daemon::Runtime::Create(config, options, &error);
-  auto participant = swlio::ipc::Participant::Create(config.ipc, &error);
-  if (!rt || !participant) return std::fprintf(stderr, "%s\n", error.c_str()), 1;
-  auto subscriber = swlio::ipc::Subscriber::Create(*participant, config.ipc, {}, &error);
-  if (!subscriber) return std::fprintf(stderr, "%s\n", error.c_str()), 1;
+  if (!rt) return std::fprintf(stderr, "%s\n", error.c_str()), 1;
+  std::unique_ptr<swlio::ipc::Participant> participant;
+  std::unique_ptr<swlio::ipc::Subscriber> subscriber;
+  std::unique_ptr<EchoProcess> echo;
+  const std::string echo_csv = "/tmp/swlio_daemon_latency_echo.csv";
+  if (echo_xml.empty()) {
+    participant = swlio::ipc::Participant::Create(config.ipc, &error);
+    if (participant)
+      subscriber = swlio::ipc::Subscriber::Create(*participant, config.ipc, {}, &error);
+    if (!subscriber) return std::fprintf(stderr, "%s\n", error.c_str()), 1;
+  } else {
+    echo = std::make_unique<EchoProcess>(echo_xml, config.ipc.domain_id, echo_csv);
+    if (!echo->running()) return std::fprintf(stderr, "cannot start %s\n", SWLIO_ECHO_PATH), 1;
+  }
   rt->Start();
   swlio::sim::LiveOptions live;
   live.msop_port = rt->msop_port();
   live.difop_port = rt->difop_port();
   live.pty_link = config.imu.device;
-  live.start_delay_s = 1.0;
+  // A separate reader first needs discovery (and with DDS Security, the handshakes).
+  live.start_delay_s = echo ? 3.0 : 1.0;
   std::vector<int64_t> written_ns;
   live.imu_write_ns = &written_ns;
   volatile bool stop = false;
@@ -128,6 +204,10 @@ int Run(const std::string& scenario,
   });
   std::vector<Taken> poses, odometry;
   while (!done) {
+    if (!subscriber) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      continue;
+    }
     subscriber->Wait(100'000'000);
     for (const auto& r : subscriber->TakePoses())
       poses.push_back({r.msg.t_ns, r.receive_steady_ns});
@@ -135,6 +215,11 @@ int Run(const std::string& scenario,
       odometry.push_back({r.msg.t_ns, r.receive_steady_ns});
   }
   sim.join();
+  if (echo) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the last samples in flight
+    if (!echo->Stop()) return std::fprintf(stderr, "swlio-echo failed\n"), 1;
+    ReadEchoCsv(echo_csv, &poses, &odometry);
+  }
   const swlio::daemon::HealthSnapshot s = rt->Snapshot();
   rt->Stop();
   const auto imu = swlio::sim::SimulateImu(*setup->trajectory, setup->imu, setup->seed);
@@ -160,14 +245,21 @@ int main(int argc, char** argv) {
       "swlio_daemon_latency: end-to-end latencies of the daemon on a live simulated drive"};
   std::string scenario = "short", xml = SWLIO_SOURCE_DIR "/config/cyclonedds-loopback.xml";
   int seed = 1;
+  // 200: apart from every test's (101..199; tests/daemon/runtime/live_drive.h). Two benchmarks
+  // on one domain read each other's samples: give a second one another id.
+  int64_t domain = 200;
   double duration_s = 30.0;
   app.add_option("--scenario", scenario)->capture_default_str();
   app.add_option("--seed", seed)->capture_default_str();
+  app.add_option("--domain", domain, "DDS domain id")->capture_default_str();
   app.add_option("--duration", duration_s, "seconds of the drive")->capture_default_str();
   app.add_option("--dds-config", xml)->capture_default_str();
+  std::string echo_xml;
+  app.add_option("--echo-dds-config", echo_xml,
+                 "read in a swlio-echo process with this XML (default: in this process)");
   bool realtime = false, plain = false;
   app.add_flag("--realtime", realtime, "SCHED_FIFO for the rx, propagator and publisher threads");
   app.add_flag("--plain", plain, "no nice values either: every thread at nice 0");
   CLI11_PARSE(app, argc, argv);
-  return Run(scenario, seed, duration_s, xml, realtime, plain);
+  return Run(scenario, seed, domain, duration_s, xml, echo_xml, realtime, plain);
 }

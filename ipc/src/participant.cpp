@@ -51,6 +51,25 @@ bool AllAttributesLoopback(const std::string& xml,
 
 }  // namespace
 
+// Cyclone 0.10's <Security>: <Authentication> IdentityCA, IdentityCertificate, PrivateKey;
+// <AccessControl> PermissionsCA, Governance, Permissions; each a "file:" path or inline "data:,".
+std::string UnreadableDdsSecurityFile(const std::string& xml) {
+  const std::regex file_re(
+      "<(IdentityCA|IdentityCertificate|PrivateKey|PermissionsCA|Governance|Permissions)>\\s*"
+      "file:([^<]*?)\\s*<");
+  for (std::sregex_iterator it(xml.begin(), xml.end(), file_re), end; it != end; ++it) {
+    if (!std::ifstream((*it)[2].str())) {
+      return "DDS Security: the " + (*it)[1].str() + " file '" + (*it)[2].str() +
+             "' is not readable";
+    }
+  }
+  return "";
+}
+
+bool HasDdsSecurity(const std::string& xml) {
+  return std::regex_search(xml, std::regex("<Security\\b"));
+}
+
 bool IsLoopbackOnlyConfig(const std::string& xml, std::string* why) {
   std::string reason;
   int interfaces = 0;
@@ -96,6 +115,16 @@ std::unique_ptr<Participant> Participant::Create(const IpcConfig& config, std::s
   if (config.require_loopback && !IsLoopbackOnlyConfig(xml.str(), &why)) {
     return fail("refusing to start DDS: '" + config.dds_config_file + "': " + why);
   }
+  const bool secure = HasDdsSecurity(xml.str());
+  if (secure) {
+    const std::string unreadable = UnreadableDdsSecurityFile(xml.str());
+    if (!unreadable.empty()) return fail("'" + config.dds_config_file + "': " + unreadable);
+    if (config.domain_id > kMaxDdsSecurityDomainId) {
+      return fail("DDS Security: domain " + std::to_string(config.domain_id) + " is beyond " +
+                  std::to_string(kMaxDdsSecurityDomainId) +
+                  ", the largest id Cyclone 0.10's access control takes");
+    }
+  }
 
   const auto domain_id = static_cast<uint32_t>(config.domain_id);
   DomainRegistry& registry = Registry();
@@ -116,7 +145,17 @@ std::unique_ptr<Participant> Participant::Create(const IpcConfig& config, std::s
       dds_delete(it->second.first);
       registry.domains.erase(it);
     }
-    return fail(std::string("cannot create DDS participant: ") + dds_strretcode(participant));
+    std::string message =
+        std::string("cannot create DDS participant: ") + dds_strretcode(participant);
+    if (secure) {
+      // Cyclone logs the reason (stderr): a plugin library that does not load, an identity
+      // certificate that has expired or was not issued by the identity CA, a key that is not
+      // the certificate's, a governance or permissions document not signed by the permissions
+      // CA, or a grant whose subject or validity does not fit the certificate.
+      message += ": DDS Security refused the plugins, the identity or its documents named in '" +
+                 config.dds_config_file + "' (Cyclone's log line above says which)";
+    }
+    return fail(message);
   }
   ++it->second.second;
   return std::unique_ptr<Participant>(new Participant(participant, domain_id));

@@ -28,6 +28,7 @@ const char* TopicLabel(Topic topic) {
 
 std::unique_ptr<Publisher> Publisher::Create(const Participant& participant,
                                              const IpcConfig& config,
+                                             const PublisherOptions& options,
                                              std::string* error) {
   auto fail = [&](const std::string& message) {
     if (error != nullptr) *error = message;
@@ -40,6 +41,7 @@ std::unique_ptr<Publisher> Publisher::Create(const Participant& participant,
   std::unique_ptr<Publisher> publisher(new Publisher());
   for (int i = 0; i < kTopicCount; ++i) {
     const auto topic_id = static_cast<Topic>(i);
+    if (!options.topics[Index(topic_id)]) continue;
     const std::string name = wire::DdsTopicName(config, topic_id);
     const dds_entity_t topic = dds_create_topic(participant.handle(), wire::Descriptor(topic_id),
                                                 name.c_str(), nullptr, nullptr);

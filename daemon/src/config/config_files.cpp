@@ -22,6 +22,16 @@ std::vector<std::string> CheckReferencedFiles(const DaemonConfig& config) {
     problems.push_back("ipc.dds_config_file: '" + xml_path + "' is not loopback-only (" + why +
                        ") while ipc.require_loopback is true");
   }
+  if (ipc::HasDdsSecurity(xml.str())) {
+    const std::string unreadable = ipc::UnreadableDdsSecurityFile(xml.str());
+    if (!unreadable.empty()) {
+      problems.push_back("ipc.dds_config_file: '" + xml_path + "': " + unreadable);
+    }
+    if (config.ipc.domain_id > ipc::kMaxDdsSecurityDomainId) {
+      problems.push_back("ipc.domain_id: " + std::to_string(config.ipc.domain_id) +
+                         " is beyond 230, the largest id DDS Security (Cyclone 0.10) takes");
+    }
+  }
   return problems;
 }
 

@@ -16,12 +16,31 @@ namespace swlio::ipc {
 /// 127.0.0.1 / localhost. Returns false with the reason in `why` otherwise.
 bool IsLoopbackOnlyConfig(const std::string& xml, std::string* why);
 
+/// True when a Cyclone DDS XML turns DDS Security on (a `<Security>` section;
+/// docs/dds-security.md).
+bool HasDdsSecurity(const std::string& xml);
+
+/// The first DDS Security file that a Cyclone DDS XML names ("file:" paths of IdentityCA,
+/// IdentityCertificate, PrivateKey, PermissionsCA, Governance, Permissions) and that cannot be
+/// read, as a message naming it; empty when all can. Whether their contents are valid only the
+/// plugins can tell, when the participant is created.
+std::string UnreadableDdsSecurityFile(const std::string& xml);
+
+/// The largest domain id with DDS Security: Cyclone 0.10's access-control plugin refuses any
+/// larger id in governance and permissions documents (access_control_parser.c).
+inline constexpr int64_t kMaxDdsSecurityDomainId = 230;
+
 class Participant {
  public:
   /// Creates the DDS domain `config.domain_id` from `config.dds_config_file` and a participant in
   /// it. Refuses (nullptr, `error` filled) when the file is unreadable, when `require_loopback`
   /// is set and the XML is not loopback-only, or when the domain already exists in this process
   /// with a configuration that was not created here.
+  ///
+  /// DDS Security (a `<Security>` section, docs/dds-security.md): a file it names that cannot be
+  /// read is refused by name; an identity or document the plugins refuse (expired or foreign
+  /// certificate, wrong key, unsigned or mismatching governance/permissions) fails here with
+  /// an error that says so, the plugin's reason being on Cyclone's log (stderr).
   static std::unique_ptr<Participant> Create(const IpcConfig& config, std::string* error);
 
   ~Participant();

@@ -24,12 +24,34 @@
 
 namespace swlio::ipc {
 
+struct PublisherOptions {
+  /// Which topics get a writer (indexed by Topic). Publish* on a topic without one returns
+  /// false and counts a failure. Under DDS Security a participant may create only the writers
+  /// its permissions grant (an operator that publishes /initialpose: pose_topic "initialpose"
+  /// and only kPose).
+  std::array<bool, kTopicCount> topics = All();
+
+  /// Every topic (the default: a new Topic gets a writer without an edit here).
+  static std::array<bool, kTopicCount> All() {
+    std::array<bool, kTopicCount> all{};
+    all.fill(true);
+    return all;
+  }
+};
+
 class Publisher {
  public:
   /// Creates the topics and writers on `participant` (which must outlive the Publisher).
-  /// Returns nullptr with `error` filled when a topic name is invalid or DDS refuses.
+  /// Returns nullptr with `error` filled when a topic name is invalid or DDS refuses (under DDS
+  /// Security: "Not Allowed By Security" when the permissions do not grant the topic).
   static std::unique_ptr<Publisher> Create(const Participant& participant,
                                            const IpcConfig& config,
+                                           std::string* error) {
+    return Create(participant, config, PublisherOptions(), error);
+  }
+  static std::unique_ptr<Publisher> Create(const Participant& participant,
+                                           const IpcConfig& config,
+                                           const PublisherOptions& options,
                                            std::string* error);
   ~Publisher();
   Publisher(const Publisher&) = delete;
