@@ -1,7 +1,7 @@
 // DDS Security (issue 34): identities from scripts/dds-security-setup, Cyclone's builtin
 // plugins. Who may read the pose and who may publish /initialpose, with the other side of each
 // exchange in a swlio-echo child process (one Cyclone domain per id and process, so each
-// identity needs its own process). Domains 138, 161 and 162 (134–136 are taken by the point
+// identity needs its own process). Domains 138, 163 and 164 (134–136 are taken by the point
 // cloud and echo CLI tests).
 //
 // Identities: daemon (publishes the outputs, reads rt/initialpose), consumer (reads the
@@ -39,8 +39,8 @@ namespace fs = std::filesystem;
 using test_util::ChildProcess;
 
 constexpr int kPoseDomain = 138;
-constexpr int kInitialPoseDomain = 161;
-constexpr int kInvalidIdentityDomain = 162;
+constexpr int kInitialPoseDomain = 163;
+constexpr int kInvalidIdentityDomain = 164;
 // swlio-echo's exit codes (tools/echo/main.cpp): 0 the count was reached, 1 an error (here:
 // DDS Security refused its reader), 2 the duration passed first.
 constexpr int kEchoOk = 0;
