@@ -34,6 +34,7 @@
 
 #include "diagnostic_msgsPubSubTypes.h"
 #include "fastdds_print.h"
+#include "fastdds_reader.h"
 #include "geometry_msgsPubSubTypes.h"
 #include "nav_msgsPubSubTypes.h"
 #include "sensor_msgsPubSubTypes.h"
@@ -61,6 +62,9 @@ namespace fdds = eprosima::fastdds::dds;
 using eprosima::fastrtps::rtps::IPLocator;
 using eprosima::fastrtps::rtps::Locator_t;
 using eprosima::fastrtps::rtps::LocatorList_t;
+using swlio::tools::fastdds_echo::AddReader;
+using swlio::tools::fastdds_echo::Reader;
+using swlio::tools::fastdds_echo::ReaderQos;
 
 bool AllLoopback(const LocatorList_t& list, const char* what, std::string* why) {
   for (const Locator_t& locator : list) {
@@ -123,53 +127,21 @@ struct Options {
   double timeout_s = 30.0;
 };
 
-/// A reader and the function that takes and prints one sample from it.
-struct Reader {
-  fdds::DataReader* reader = nullptr;
-  std::function<bool()> take_and_print;  // false when nothing was left to take
-};
-
-/// `latched`: a TRANSIENT_LOCAL reader of depth 1 (what a ROS 2 map subscriber, e.g. RViz's
-/// map display, asks for), which also gets the sample written before it joined.
+/// Prints each sample of the reader in fastdds_print.h's form.
 template <typename PubSubType>
-bool AddReader(fdds::DomainParticipant* participant,
-               fdds::Subscriber* subscriber,
-               const std::string& topic_name,
-               std::vector<Reader>* readers,
-               std::string* ready,
-               bool latched = false) {
-  using Message = typename PubSubType::type;
-  fdds::TypeSupport type(new PubSubType());
-  if (type.register_type(participant) != ReturnCode_t::RETCODE_OK) return false;
-  fdds::Topic* topic =
-      participant->create_topic(topic_name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
-  if (topic == nullptr) return false;
-  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;  // made into ROS 2's default:
-  qos.reliability().kind = fdds::RELIABLE_RELIABILITY_QOS;
-  qos.durability().kind = fdds::VOLATILE_DURABILITY_QOS;
-  qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
-  qos.history().depth = 10;
-  if (latched) {
-    qos.durability().kind = fdds::TRANSIENT_LOCAL_DURABILITY_QOS;
-    qos.history().depth = 1;
-  }
-  fdds::DataReader* reader = subscriber->create_datareader(topic, qos);
-  if (reader == nullptr) return false;
-  auto sample = std::make_shared<Message>();
-  readers->push_back({reader, [reader, sample] {
-                        fdds::SampleInfo info;
-                        if (reader->take_next_sample(sample.get(), &info) !=
-                            ReturnCode_t::RETCODE_OK) {
-                          return false;
-                        }
-                        if (info.valid_data) {
-                          std::printf("%s\n", swlio::tools::fastdds_echo::Line(*sample).c_str());
-                          std::fflush(stdout);
-                        }
-                        return true;
-                      }});
-  ready->append(" ").append(topic_name).append("=").append(type.get_type_name());
-  return true;
+bool AddPrinter(fdds::DomainParticipant* participant,
+                fdds::Subscriber* subscriber,
+                const std::string& topic_name,
+                std::vector<Reader>* readers,
+                std::string* ready,
+                ReaderQos qos = {}) {
+  return AddReader<PubSubType>(
+      participant, subscriber, topic_name, qos,
+      [](const typename PubSubType::type& m) {
+        std::printf("%s\n", swlio::tools::fastdds_echo::Line(m).c_str());
+        std::fflush(stdout);
+      },
+      readers, ready);
 }
 
 /// Receives until `count` samples or the timeout; returns the exit code.
@@ -179,16 +151,16 @@ int Receive(fdds::DomainParticipant* participant, const Options& options) {
   std::string ready = "ready";
   namespace gm = geometry_msgs::msg::dds_;
   if (subscriber == nullptr ||
-      !AddReader<gm::PoseWithCovarianceStamped_PubSubType>(participant, subscriber,
-                                                           options.pose_topic, &readers, &ready) ||
-      !AddReader<nav_msgs::msg::dds_::Odometry_PubSubType>(
+      !AddPrinter<gm::PoseWithCovarianceStamped_PubSubType>(participant, subscriber,
+                                                            options.pose_topic, &readers, &ready) ||
+      !AddPrinter<nav_msgs::msg::dds_::Odometry_PubSubType>(
           participant, subscriber, options.odometry_topic, &readers, &ready) ||
-      !AddReader<diagnostic_msgs::msg::dds_::DiagnosticArray_PubSubType>(
+      !AddPrinter<diagnostic_msgs::msg::dds_::DiagnosticArray_PubSubType>(
           participant, subscriber, options.health_topic, &readers, &ready) ||
-      !AddReader<nav_msgs::msg::dds_::Path_PubSubType>(participant, subscriber, options.path_topic,
-                                                       &readers, &ready) ||
-      !AddReader<sensor_msgs::msg::dds_::PointCloud2_PubSubType>(
-          participant, subscriber, options.map_topic, &readers, &ready, true)) {
+      !AddPrinter<nav_msgs::msg::dds_::Path_PubSubType>(participant, subscriber, options.path_topic,
+                                                        &readers, &ready) ||
+      !AddPrinter<sensor_msgs::msg::dds_::PointCloud2_PubSubType>(
+          participant, subscriber, options.map_topic, &readers, &ready, {true, 1})) {
     return 1;
   }
   std::printf("%s\n", ready.c_str());
@@ -202,7 +174,7 @@ int Receive(fdds::DomainParticipant* participant, const Options& options) {
     if (std::chrono::steady_clock::now() > deadline) return options.count > 0 ? 2 : 0;
     bool any = false;
     for (Reader& r : readers) {
-      while (r.take_and_print()) {
+      while (r.take()) {
         any = true;
         ++received;
       }
