@@ -5,6 +5,8 @@
 // with what the Cyclone DDS publisher wrote.
 //
 // Output: "ready" followed by "<topic>=<type name>" for each reader, then one line per sample.
+// With --tf-check it reads /tf, /tf_static and the pose instead, as a ROS 2 node with a tf2
+// listener does, and prints per pose how far the TF chain is from it (tf_check.h).
 //
 // Loopback only: the participant comes from --profile (set as FASTRTPS_DEFAULT_PROFILES_FILE
 // and loaded before the default QoS is read, otherwise Fast DDS silently keeps its defaults),
@@ -38,6 +40,7 @@
 #include "geometry_msgsPubSubTypes.h"
 #include "nav_msgsPubSubTypes.h"
 #include "sensor_msgsPubSubTypes.h"
+#include "tf_check_mode.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define SWLIO_FASTDDS_ECHO_ASAN 1
@@ -125,6 +128,8 @@ struct Options {
   std::string map_topic = "rt/swlio/map";
   int count = 0;
   double timeout_s = 30.0;
+  bool tf_check = false;
+  swlio::tools::fastdds_echo::TfCheckOptions tf;
 };
 
 /// Prints each sample of the reader in fastdds_print.h's form.
@@ -202,7 +207,17 @@ int Main(int argc, char** argv) {
   app.add_option("--map-topic", options.map_topic, "DDS topic (latched: transient local)");
   app.add_option("--count", options.count, "exit after this many samples (0: until timeout)");
   app.add_option("--timeout", options.timeout_s, "give up after this many seconds");
+  app.add_flag("--tf-check", options.tf_check,
+               "as a tf2 listener: compose /tf and /tf_static at each pose's stamp and print how "
+               "far that is from the pose (tf_check.h); runs until --timeout");
+  app.add_option("--tf-topic", options.tf.tf_topic, "DDS topic (--tf-check)");
+  app.add_option("--tf-static-topic", options.tf.tf_static_topic, "DDS topic (--tf-check)");
+  app.add_option("--map-frame", options.tf.frames.map, "(--tf-check)");
+  app.add_option("--odom-frame", options.tf.frames.odom, "(--tf-check)");
+  app.add_option("--base-frame", options.tf.frames.base, "(--tf-check)");
   CLI11_PARSE(app, argc, argv);
+  options.tf.pose_topic = options.pose_topic;
+  options.tf.duration_s = options.timeout_s;
 
   // The profile must be in place before the factory reads its defaults.
   setenv("FASTRTPS_DEFAULT_PROFILES_FILE", options.profile.c_str(), 1);
@@ -223,7 +238,9 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "swlio-fastdds-echo: cannot create the participant\n");
     return 1;
   }
-  const int code = Receive(participant, options);
+  const int code = options.tf_check
+                       ? swlio::tools::fastdds_echo::RunTfCheck(participant, options.tf)
+                       : Receive(participant, options);
   participant->delete_contained_entities();
   factory->delete_participant(participant);
   if (code == 1) std::fprintf(stderr, "swlio-fastdds-echo: cannot create the reader\n");
