@@ -49,7 +49,8 @@ struct LiveDrive {
   /// tests publish edge values such as NaN and DBL_MAX: a CI-like run of ctest -j2 saw them
   /// arrive here). tests/ipc uses 101..133; the daemon tests 140..159: Runtime.* 140,
   /// RuntimeFaults.* 141..153 and 156, SwliodCommand 154, Runtime.AWallClockStep… 157,
-  /// RuntimeControl.* 159; not live drives: MapPublisher 155, PublisherThreadTf 158.
+  /// RuntimeControl.* 159, RuntimeFastDdsTf.* 161; not live drives: MapPublisher 155,
+  /// PublisherThreadTf 158. 160 is the daemon latency benchmark's (bench/).
   uint32_t dds_domain = 140;
 };
 
