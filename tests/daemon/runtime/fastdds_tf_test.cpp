@@ -204,8 +204,8 @@ TEST(RuntimeFastDdsTf, TheTfChainIsThePublishedPoseAndMapOdomTakesTheLoopCorrect
   // The age of each stamp at the daemon's own (in-process) subscriber, taken microseconds after
   // the write: how late the daemon published it. A pose the daemon itself wrote over 40 ms
   // after its stamp (its threads short of CPU on a loaded 2-core machine) cannot reach any
-  // reader within 50 ms; such poses are counted and shown, and must stay rare (with other
-  // builds running, load 4–6: 0.3 and 1.2 % of the poses, the worst 0.6 and 0.8 s late).
+  // reader within 50 ms; such poses are counted and shown, and must stay rare (a run beside
+  // other builds, load 4–6: 1.2 % of the poses, the worst 0.8 s late; quieter runs: none).
   std::map<int64_t, double> daemon_age_ms;
   for (const auto& p : r.poses)
     daemon_age_ms[p.msg.t_ns] = static_cast<double>(p.receive_realtime_ns - p.msg.t_ns) * 1e-6;
