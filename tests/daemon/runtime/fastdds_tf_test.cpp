@@ -132,6 +132,102 @@ double AngleDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle() * 180.0 / M_PI;
 }
 
+/// What the reader's lines show (the ages as seen where the daemon's own stamps allow, below).
+struct Figures {
+  size_t poses = 0, matched = 0, long_steps = 0, daemon_late = 0;
+  double max_pos_m = 0.0, max_rot_deg = 0.0, max_step_m = 0.0, max_step_deg = 0.0;
+  double settling_step_m = 0.0, max_age_ms = 0.0, max_daemon_age_ms = 0.0;
+  std::map<std::string, size_t> unmatched;
+  size_t map_odom = 0, changes = 0;
+  Line last_map_odom;
+  int64_t first_stamp_ns = 0;  ///< of the first composed pose
+};
+
+// The age of each stamp at the daemon's own (in-process) subscriber, taken microseconds after
+// the write: how late the daemon published it. A pose the daemon itself wrote over 40 ms after
+// its stamp (its threads short of CPU on a loaded 2-core machine) cannot reach any reader within
+// 50 ms; such poses are counted and shown, and must stay rare (a run beside other builds, load
+// 4–6: 1.2 % of the poses, the worst 0.8 s late; quieter runs: none).
+class AgeCheck {
+ public:
+  explicit AgeCheck(const test::LiveDriveResult& r) {
+    for (const auto& p : r.poses)
+      daemon_age_ms_[p.msg.t_ns] = static_cast<double>(p.receive_realtime_ns - p.msg.t_ns) * 1e-6;
+  }
+  /// Adds the reader's age of `stamp_ns`; false when the daemon wrote it late (not counted).
+  bool Add(int64_t stamp_ns, double age_ms, Figures* f) const {
+    constexpr double kDaemonLateMs = 40.0;
+    const auto it = daemon_age_ms_.find(stamp_ns);
+    const double daemon_ms = it == daemon_age_ms_.end() ? 0.0 : it->second;
+    f->max_daemon_age_ms = std::max(f->max_daemon_age_ms, daemon_ms);
+    if (daemon_ms > kDaemonLateMs) return false;
+    f->max_age_ms = std::max(f->max_age_ms, std::abs(age_ms));
+    return true;
+  }
+
+ private:
+  std::map<int64_t, double> daemon_age_ms_;
+};
+
+/// The first 5 s after the first pose: see the step bound in the test.
+constexpr int64_t kSettleNs = 5'000'000'000;
+
+void AddPose(const Line& l, const AgeCheck& ages, double imu_period_s, Figures* f) {
+  ++f->poses;
+  const int64_t stamp_ns = l.Int("stamp_ns");
+  f->daemon_late += ages.Add(stamp_ns, l.Get("pose_age_ns") * 1e-6, f) ? 0 : 1;
+  if (l.Int("matched") != 1) {
+    ++f->unmatched[l.values.at("reason")];
+    return;
+  }
+  ++f->matched;
+  f->max_pos_m = std::max(f->max_pos_m, l.Get("pos_err_m"));
+  f->max_rot_deg = std::max(f->max_rot_deg, l.Get("rot_err_deg"));
+  ages.Add(stamp_ns, l.Get("tf_age_ns") * 1e-6, f);
+  const double dt_s = l.Get("odom_step_dt_ns") * 1e-9;
+  if (dt_s <= 0.0) {  // the first
+    f->first_stamp_ns = stamp_ns;
+    return;
+  }
+  // A pose per IMU sample; a late serial read gives one pose for its samples (several
+  // periods): the bound is per period.
+  const double periods = std::max(1.0, std::round(dt_s / imu_period_s));
+  f->long_steps += periods > 1.0 ? 1 : 0;
+  if (stamp_ns - f->first_stamp_ns < kSettleNs) {
+    f->settling_step_m = std::max(f->settling_step_m, l.Get("odom_step_m") / periods);
+    return;
+  }
+  f->max_step_m = std::max(f->max_step_m, l.Get("odom_step_m") / periods);
+  f->max_step_deg = std::max(f->max_step_deg, l.Get("odom_step_deg") / periods);
+}
+
+/// map → odom: its changes, ages and last value.
+void AddMapOdom(const Line& l, const AgeCheck& ages, Figures* f) {
+  ++f->map_odom;
+  ages.Add(l.Int("stamp_ns"), l.Get("age_ns") * 1e-6, f);
+  if (f->map_odom > 1) {
+    for (const char* key : {"x", "y", "z", "angle_deg"}) {
+      if (l.values.at(key) != f->last_map_odom.values.at(key)) {
+        ++f->changes;
+        break;
+      }
+    }
+  }
+  f->last_map_odom = l;
+}
+
+Figures Summarize(const std::vector<Line>& lines,
+                  const test::LiveDriveResult& r,
+                  double imu_period_s) {
+  const AgeCheck ages(r);
+  Figures f;
+  for (const Line& l : lines) {
+    if (l.kind == "tf_check") AddPose(l, ages, imu_period_s, &f);
+    if (l.kind == "map_odom") AddMapOdom(l, ages, &f);
+  }
+  return f;
+}
+
 TEST(RuntimeFastDdsTf, TheTfChainIsThePublishedPoseAndMapOdomTakesTheLoopCorrections) {
   const auto wall_start = std::chrono::steady_clock::now();
   test::LiveDrive drive;
@@ -143,7 +239,7 @@ TEST(RuntimeFastDdsTf, TheTfChainIsThePublishedPoseAndMapOdomTakesTheLoopCorrect
   drive.adjust_config = [&T_imu_base](DaemonConfig* c) {
     c->ipc.stamp_clock = "realtime";  // ROS time, what the reader compares with
     c->loop_closure.enabled = true;
-    c->loop_closure.min_separation_s = 6.0;  // the corner is the loop (file comment)
+    c->loop_closure.min_separation_s = 6.0;  // loops within the minute (file comment)
     // A base frame apart from the IMU (the simulated chassis'), so that odom → base_link,
     // base_link → imu_link and the pose are not the IMU's own.
     c->window.wheel.T_imu_base = estimator::ExtrinsicConfig::FromIsometry(T_imu_base);
@@ -198,117 +294,48 @@ TEST(RuntimeFastDdsTf, TheTfChainIsThePublishedPoseAndMapOdomTakesTheLoopCorrect
   // off) velocity and biases converge and the re-basing steps reach 1 cm (10.1 mm measured 0.3 s
   // after the first pose): those are shown, not bounded.
   constexpr double kMarginM = 0.005, kMarginDeg = 0.05;
-  constexpr int64_t kSettleNs = 5'000'000'000;
   const double step_bound_m = v_max * imu_period_s + kMarginM;
   const double step_bound_deg = w_max * imu_period_s * 180.0 / M_PI + kMarginDeg;
-  // The age of each stamp at the daemon's own (in-process) subscriber, taken microseconds after
-  // the write: how late the daemon published it. A pose the daemon itself wrote over 40 ms
-  // after its stamp (its threads short of CPU on a loaded 2-core machine) cannot reach any
-  // reader within 50 ms; such poses are counted and shown, and must stay rare (a run beside
-  // other builds, load 4–6: 1.2 % of the poses, the worst 0.8 s late; quieter runs: none).
-  std::map<int64_t, double> daemon_age_ms;
-  for (const auto& p : r.poses)
-    daemon_age_ms[p.msg.t_ns] = static_cast<double>(p.receive_realtime_ns - p.msg.t_ns) * 1e-6;
-  constexpr double kDaemonLateMs = 40.0;
-  size_t daemon_late = 0;
-  double max_age_ms = 0.0, max_daemon_age_ms = 0.0;
-  auto age = [&](int64_t stamp_ns, double age_ms) {
-    const auto it = daemon_age_ms.find(stamp_ns);
-    const double daemon_ms = it == daemon_age_ms.end() ? 0.0 : it->second;
-    max_daemon_age_ms = std::max(max_daemon_age_ms, daemon_ms);
-    if (daemon_ms > kDaemonLateMs) return false;
-    max_age_ms = std::max(max_age_ms, std::abs(age_ms));
-    return true;
-  };
-  size_t poses = 0, matched = 0, long_steps = 0;
-  double max_pos_m = 0.0, max_rot_deg = 0.0, max_step_m = 0.0, max_step_deg = 0.0;
-  double settling_step_m = 0.0;
-  int64_t first_stamp_ns = 0;
-  std::map<std::string, size_t> unmatched;
-  for (const Line& l : lines) {
-    if (l.kind != "tf_check") continue;
-    ++poses;
-    const int64_t stamp_ns = l.Int("stamp_ns");
-    daemon_late += age(stamp_ns, l.Get("pose_age_ns") * 1e-6) ? 0 : 1;
-    if (l.Int("matched") != 1) {
-      ++unmatched[l.values.at("reason")];
-      continue;
-    }
-    ++matched;
-    max_pos_m = std::max(max_pos_m, l.Get("pos_err_m"));
-    max_rot_deg = std::max(max_rot_deg, l.Get("rot_err_deg"));
-    age(stamp_ns, l.Get("tf_age_ns") * 1e-6);
-    const double dt_s = l.Get("odom_step_dt_ns") * 1e-9;
-    if (dt_s <= 0.0) {  // the first
-      first_stamp_ns = stamp_ns;
-      continue;
-    }
-    // A pose per IMU sample; a late serial read gives one pose for its samples (several
-    // periods): the bound is per period.
-    const double periods = std::max(1.0, std::round(dt_s / imu_period_s));
-    long_steps += periods > 1.0 ? 1 : 0;
-    if (stamp_ns - first_stamp_ns < kSettleNs) {
-      settling_step_m = std::max(settling_step_m, l.Get("odom_step_m") / periods);
-      continue;
-    }
-    max_step_m = std::max(max_step_m, l.Get("odom_step_m") / periods);
-    max_step_deg = std::max(max_step_deg, l.Get("odom_step_deg") / periods);
-  }
-  // map → odom: its changes, ages and last value.
-  size_t map_odom = 0, changes = 0;
-  Line last_map_odom;
-  for (const Line& l : lines) {
-    if (l.kind != "map_odom") continue;
-    ++map_odom;
-    age(l.Int("stamp_ns"), l.Get("age_ns") * 1e-6);
-    if (map_odom > 1) {
-      for (const char* key : {"x", "y", "z", "angle_deg"})
-        if (l.values.at(key) != last_map_odom.values.at(key)) {
-          ++changes;
-          break;
-        }
-    }
-    last_map_odom = l;
-  }
+  const Figures f = Summarize(lines, r, imu_period_s);
   const LoopClosureCounters& loops = r.final.loop_closure;
-  std::cout << "[ tf ] poses " << poses << " (daemon's own subscriber: " << r.poses.size()
-            << "), matched " << matched << "; composed − published: max " << max_pos_m * 1e3
-            << " mm, " << max_rot_deg << " deg\n"
-            << "[ tf ] odom → base_link step per IMU period: max " << max_step_m * 1e3 << " mm, "
-            << max_step_deg << " deg (bound " << step_bound_m * 1e3 << " mm, " << step_bound_deg
+  std::cout << "[ tf ] poses " << f.poses << " (daemon's own subscriber: " << r.poses.size()
+            << "), matched " << f.matched << "; composed − published: max " << f.max_pos_m * 1e3
+            << " mm, " << f.max_rot_deg << " deg\n"
+            << "[ tf ] odom → base_link step per IMU period: max " << f.max_step_m * 1e3 << " mm, "
+            << f.max_step_deg << " deg (bound " << step_bound_m * 1e3 << " mm, " << step_bound_deg
             << " deg; v_max " << v_max << " m/s, w_max " << w_max << " rad/s); steps over more "
-            << "than one period: " << long_steps << "; in the first 5 s: max "
-            << settling_step_m * 1e3 << " mm\n"
-            << "[ tf ] stamp age max " << max_age_ms << " ms (/tf_static " << static_age_ms
-            << " ms); poses the daemon wrote over 40 ms late: " << daemon_late << " (its worst "
-            << max_daemon_age_ms << " ms)\n"
-            << "[ tf ] map → odom samples " << map_odom << ", changes " << changes
+            << "than one period: " << f.long_steps << "; in the first 5 s: max "
+            << f.settling_step_m * 1e3 << " mm\n"
+            << "[ tf ] stamp age max " << f.max_age_ms << " ms (/tf_static " << static_age_ms
+            << " ms); poses the daemon wrote over 40 ms late: " << f.daemon_late << " (its worst "
+            << f.max_daemon_age_ms << " ms)\n"
+            << "[ tf ] map → odom samples " << f.map_odom << ", changes " << f.changes
             << "; loops accepted " << loops.accepted << " of " << loops.attempts << ", correction "
             << loops.correction_m * 1e3 << " mm, " << loops.correction_rad * 180.0 / M_PI
             << " deg\n";
-  for (const auto& [reason, n] : unmatched)
+  for (const auto& [reason, n] : f.unmatched)
     std::cout << "[ tf ] unmatched: " << reason << " " << n << "\n";
 
   ASSERT_GT(r.poses.size(), 5000u) << "poses over most of the drive";
   // KEEP_LAST 10 on the pose, as ROS 2's default: a reader short of CPU for 25 ms loses poses
   // (96.4 and 98.5 % reached it on the loaded machine).
-  EXPECT_GE(matched, r.poses.size() * 90 / 100) << "the reader composed most poses";
-  EXPECT_LE(max_pos_m, 1e-3);
-  EXPECT_LE(max_rot_deg, 0.01);
-  EXPECT_LE(max_age_ms, 50.0) << "every stamp within 50 ms of the reader's CLOCK_REALTIME";
-  EXPECT_LE(daemon_late, poses / 20) << "the daemon itself published late";
-  EXPECT_LE(max_step_m, step_bound_m) << "odom → base_link jumped";
-  EXPECT_LE(max_step_deg, step_bound_deg) << "odom → base_link jumped";
+  EXPECT_GE(f.matched, r.poses.size() * 90 / 100) << "the reader composed most poses";
+  EXPECT_LE(f.max_pos_m, 1e-3);
+  EXPECT_LE(f.max_rot_deg, 0.01);
+  EXPECT_LE(f.max_age_ms, 50.0) << "every stamp within 50 ms of the reader's CLOCK_REALTIME";
+  EXPECT_LE(f.daemon_late, f.poses / 20) << "the daemon itself published late";
+  EXPECT_LE(f.max_step_m, step_bound_m) << "odom → base_link jumped";
+  EXPECT_LE(f.max_step_deg, step_bound_deg) << "odom → base_link jumped";
   // The loop corrections: applied (accepted) and absorbed by map → odom, whose last value is
   // the correction the loop-closure thread holds.
   ASSERT_GE(loops.accepted, 1u) << "no loop closed on this drive";
-  EXPECT_GE(changes, 1u) << "map → odom never changed";
-  ASSERT_GT(map_odom, 0u);
+  EXPECT_GE(f.changes, 1u) << "map → odom never changed";
+  ASSERT_GT(f.map_odom, 0u);
   const double last_m =
-      std::hypot(last_map_odom.Get("x"), last_map_odom.Get("y"), last_map_odom.Get("z"));
+      std::hypot(f.last_map_odom.Get("x"), f.last_map_odom.Get("y"), f.last_map_odom.Get("z"));
   EXPECT_GT(loops.correction_m, 0.0);
   EXPECT_NEAR(last_m, loops.correction_m, 1e-3);
-  EXPECT_NEAR(last_map_odom.Get("angle_deg"), loops.correction_rad * 180.0 / M_PI, 0.01);
+  EXPECT_NEAR(f.last_map_odom.Get("angle_deg"), loops.correction_rad * 180.0 / M_PI, 0.01);
   std::cout << "[ tf ] wall time "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count()
             << " s\n";
