@@ -1,7 +1,6 @@
 #include "tf_check.h"
 
 #include <cinttypes>
-#include <cstdarg>
 #include <cstdio>
 
 namespace swlio::tools::fastdds_echo {
@@ -9,14 +8,11 @@ namespace {
 
 constexpr int64_t kGiveUpNs = 1'000'000'000;  // /tf this far past a pose: its transform is lost
 
-std::string Format(const char* format, ...) __attribute__((format(printf, 1, 2)));
-
-std::string Format(const char* format, ...) {
+/// One line of at most 511 characters (the longest, a pose's, is about 330).
+template <typename... Args>
+std::string Format(const char* format, Args... args) {
   char buffer[512];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buffer, sizeof buffer, format, args);
-  va_end(args);
+  std::snprintf(buffer, sizeof buffer, format, args...);
   return buffer;
 }
 
