@@ -23,6 +23,8 @@ set(_swlio_release_only
   # clock steps, silence); the faults with malformed or odd content stay under ASan.
   "\\.RuntimeFaults\\.(BurstyUdpLoss|TwoSecond|ImuGap|SerialUnplug|LidarClockJump|ImuCounterWrap)"
   "\\.RuntimeFaults\\.(MissingDifop|LidarThatNever|ImuThatNever)"
+  # The Fast DDS consumer's TF check: a whole minute of the short drive with loop closure.
+  "\\.RuntimeFastDdsTf\\."
   # Timing checks whose cost under ASan is ray casting a simulated recording (40–60 s each);
   # the clock models, recording writer and reader run under ASan in their own tests.
   "\\.ClockMapping\\.SimulatedClocksAt100Ppm"
@@ -40,6 +42,7 @@ set(_swlio_no_tsan
   # The Fast DDS subscriber (a test tool) trips TSan inside Fast DDS's timed mutexes, which live
   # in the uninstrumented libstdc++; the interop test runs in the other two phases.
   "\\.FastDdsInterop"
+  "\\.RuntimeFastDdsTf\\."
   # The estimator or a simulated recording on one thread: nothing for TSan, minutes under it.
   "\\.RecoveryOnShortDrive\\."
   "\\.ClockMapping\\."

@@ -5,6 +5,8 @@
 // with what the Cyclone DDS publisher wrote.
 //
 // Output: "ready" followed by "<topic>=<type name>" for each reader, then one line per sample.
+// With --tf-check it reads /tf, /tf_static and the pose instead, as a ROS 2 node with a tf2
+// listener does, and prints per pose how far the TF chain is from it (tf_check.h).
 //
 // Loopback only: the participant comes from --profile (set as FASTRTPS_DEFAULT_PROFILES_FILE
 // and loaded before the default QoS is read, otherwise Fast DDS silently keeps its defaults),
@@ -34,9 +36,11 @@
 
 #include "diagnostic_msgsPubSubTypes.h"
 #include "fastdds_print.h"
+#include "fastdds_reader.h"
 #include "geometry_msgsPubSubTypes.h"
 #include "nav_msgsPubSubTypes.h"
 #include "sensor_msgsPubSubTypes.h"
+#include "tf_check_mode.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define SWLIO_FASTDDS_ECHO_ASAN 1
@@ -61,6 +65,9 @@ namespace fdds = eprosima::fastdds::dds;
 using eprosima::fastrtps::rtps::IPLocator;
 using eprosima::fastrtps::rtps::Locator_t;
 using eprosima::fastrtps::rtps::LocatorList_t;
+using swlio::tools::fastdds_echo::AddReader;
+using swlio::tools::fastdds_echo::Reader;
+using swlio::tools::fastdds_echo::ReaderQos;
 
 bool AllLoopback(const LocatorList_t& list, const char* what, std::string* why) {
   for (const Locator_t& locator : list) {
@@ -121,55 +128,25 @@ struct Options {
   std::string map_topic = "rt/swlio/map";
   int count = 0;
   double timeout_s = 30.0;
+  bool tf_check = false;
+  swlio::tools::fastdds_echo::TfCheckOptions tf;
 };
 
-/// A reader and the function that takes and prints one sample from it.
-struct Reader {
-  fdds::DataReader* reader = nullptr;
-  std::function<bool()> take_and_print;  // false when nothing was left to take
-};
-
-/// `latched`: a TRANSIENT_LOCAL reader of depth 1 (what a ROS 2 map subscriber, e.g. RViz's
-/// map display, asks for), which also gets the sample written before it joined.
+/// Prints each sample of the reader in fastdds_print.h's form.
 template <typename PubSubType>
-bool AddReader(fdds::DomainParticipant* participant,
-               fdds::Subscriber* subscriber,
-               const std::string& topic_name,
-               std::vector<Reader>* readers,
-               std::string* ready,
-               bool latched = false) {
-  using Message = typename PubSubType::type;
-  fdds::TypeSupport type(new PubSubType());
-  if (type.register_type(participant) != ReturnCode_t::RETCODE_OK) return false;
-  fdds::Topic* topic =
-      participant->create_topic(topic_name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
-  if (topic == nullptr) return false;
-  fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;  // made into ROS 2's default:
-  qos.reliability().kind = fdds::RELIABLE_RELIABILITY_QOS;
-  qos.durability().kind = fdds::VOLATILE_DURABILITY_QOS;
-  qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
-  qos.history().depth = 10;
-  if (latched) {
-    qos.durability().kind = fdds::TRANSIENT_LOCAL_DURABILITY_QOS;
-    qos.history().depth = 1;
-  }
-  fdds::DataReader* reader = subscriber->create_datareader(topic, qos);
-  if (reader == nullptr) return false;
-  auto sample = std::make_shared<Message>();
-  readers->push_back({reader, [reader, sample] {
-                        fdds::SampleInfo info;
-                        if (reader->take_next_sample(sample.get(), &info) !=
-                            ReturnCode_t::RETCODE_OK) {
-                          return false;
-                        }
-                        if (info.valid_data) {
-                          std::printf("%s\n", swlio::tools::fastdds_echo::Line(*sample).c_str());
-                          std::fflush(stdout);
-                        }
-                        return true;
-                      }});
-  ready->append(" ").append(topic_name).append("=").append(type.get_type_name());
-  return true;
+bool AddPrinter(fdds::DomainParticipant* participant,
+                fdds::Subscriber* subscriber,
+                const std::string& topic_name,
+                std::vector<Reader>* readers,
+                std::string* ready,
+                ReaderQos qos = {}) {
+  return AddReader<PubSubType>(
+      participant, subscriber, topic_name, qos,
+      [](const typename PubSubType::type& m) {
+        std::printf("%s\n", swlio::tools::fastdds_echo::Line(m).c_str());
+        std::fflush(stdout);
+      },
+      readers, ready);
 }
 
 /// Receives until `count` samples or the timeout; returns the exit code.
@@ -179,16 +156,16 @@ int Receive(fdds::DomainParticipant* participant, const Options& options) {
   std::string ready = "ready";
   namespace gm = geometry_msgs::msg::dds_;
   if (subscriber == nullptr ||
-      !AddReader<gm::PoseWithCovarianceStamped_PubSubType>(participant, subscriber,
-                                                           options.pose_topic, &readers, &ready) ||
-      !AddReader<nav_msgs::msg::dds_::Odometry_PubSubType>(
+      !AddPrinter<gm::PoseWithCovarianceStamped_PubSubType>(participant, subscriber,
+                                                            options.pose_topic, &readers, &ready) ||
+      !AddPrinter<nav_msgs::msg::dds_::Odometry_PubSubType>(
           participant, subscriber, options.odometry_topic, &readers, &ready) ||
-      !AddReader<diagnostic_msgs::msg::dds_::DiagnosticArray_PubSubType>(
+      !AddPrinter<diagnostic_msgs::msg::dds_::DiagnosticArray_PubSubType>(
           participant, subscriber, options.health_topic, &readers, &ready) ||
-      !AddReader<nav_msgs::msg::dds_::Path_PubSubType>(participant, subscriber, options.path_topic,
-                                                       &readers, &ready) ||
-      !AddReader<sensor_msgs::msg::dds_::PointCloud2_PubSubType>(
-          participant, subscriber, options.map_topic, &readers, &ready, true)) {
+      !AddPrinter<nav_msgs::msg::dds_::Path_PubSubType>(participant, subscriber, options.path_topic,
+                                                        &readers, &ready) ||
+      !AddPrinter<sensor_msgs::msg::dds_::PointCloud2_PubSubType>(
+          participant, subscriber, options.map_topic, &readers, &ready, {true, 1})) {
     return 1;
   }
   std::printf("%s\n", ready.c_str());
@@ -202,7 +179,7 @@ int Receive(fdds::DomainParticipant* participant, const Options& options) {
     if (std::chrono::steady_clock::now() > deadline) return options.count > 0 ? 2 : 0;
     bool any = false;
     for (Reader& r : readers) {
-      while (r.take_and_print()) {
+      while (r.take()) {
         any = true;
         ++received;
       }
@@ -230,7 +207,17 @@ int Main(int argc, char** argv) {
   app.add_option("--map-topic", options.map_topic, "DDS topic (latched: transient local)");
   app.add_option("--count", options.count, "exit after this many samples (0: until timeout)");
   app.add_option("--timeout", options.timeout_s, "give up after this many seconds");
+  app.add_flag("--tf-check", options.tf_check,
+               "as a tf2 listener: compose /tf and /tf_static at each pose's stamp and print how "
+               "far that is from the pose (tf_check.h); runs until --timeout");
+  app.add_option("--tf-topic", options.tf.tf_topic, "DDS topic (--tf-check)");
+  app.add_option("--tf-static-topic", options.tf.tf_static_topic, "DDS topic (--tf-check)");
+  app.add_option("--map-frame", options.tf.frames.map, "(--tf-check)");
+  app.add_option("--odom-frame", options.tf.frames.odom, "(--tf-check)");
+  app.add_option("--base-frame", options.tf.frames.base, "(--tf-check)");
   CLI11_PARSE(app, argc, argv);
+  options.tf.pose_topic = options.pose_topic;
+  options.tf.duration_s = options.timeout_s;
 
   // The profile must be in place before the factory reads its defaults.
   setenv("FASTRTPS_DEFAULT_PROFILES_FILE", options.profile.c_str(), 1);
@@ -251,7 +238,9 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "swlio-fastdds-echo: cannot create the participant\n");
     return 1;
   }
-  const int code = Receive(participant, options);
+  const int code = options.tf_check
+                       ? swlio::tools::fastdds_echo::RunTfCheck(participant, options.tf)
+                       : Receive(participant, options);
   participant->delete_contained_entities();
   factory->delete_participant(participant);
   if (code == 1) std::fprintf(stderr, "swlio-fastdds-echo: cannot create the reader\n");
