@@ -39,7 +39,7 @@ namespace {
 #ifdef SWLIO_FASTDDS_ECHO_PATH
 using ipc::test_util::ChildProcess;
 
-constexpr uint32_t kDomain = 161;  // 160: the daemon latency benchmark (bench/)
+constexpr uint32_t kDomain = 161;
 
 /// The `key=value` tokens of one --tf-check line (tools/fastdds-echo/tf_check.h), after its
 /// first word.
