@@ -5,8 +5,11 @@
 namespace swlio::control {
 namespace {
 
-constexpr std::array<std::pair<std::string_view, Command>, 3> kCommands = {
-    {{"status", Command::kStatus}, {"save-map", Command::kSaveMap}, {"reset", Command::kReset}}};
+constexpr std::array<std::pair<std::string_view, Command>, 4> kCommands = {
+    {{"status", Command::kStatus},
+     {"save-map", Command::kSaveMap},
+     {"reset", Command::kReset},
+     {"relocalize", Command::kRelocalize}}};
 
 constexpr std::array<std::pair<std::string_view, ReplyStatus>, 5> kErrorCodes = {
     {{"bad-request", ReplyStatus::kBadRequest},
@@ -38,6 +41,10 @@ bool Fail(std::string* error, std::string message) {
 }
 
 bool CheckArgument(Command command, std::string_view argument, std::string* error) {
+  if (command == Command::kRelocalize) {
+    // The numbers are the daemon's to read (pose_hint.h); here only that there are some.
+    return !argument.empty() || Fail(error, "relocalize needs x y yaw_deg [sigma_m]");
+  }
   if (command != Command::kSaveMap) {
     return argument.empty() || Fail(error, std::string(ToString(command)) + " takes no argument");
   }

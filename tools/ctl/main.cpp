@@ -4,6 +4,7 @@
 //   swlioctl [--socket PATH] [--timeout S] status
 //   swlioctl [--socket PATH] [--timeout S] save-map PATH     (PATH and PATH.pcd, as swliod's user)
 //   swlioctl [--socket PATH] [--timeout S] reset
+//   swlioctl [--socket PATH] [--timeout S] relocalize X Y YAW_DEG [SIGMA_M]
 //
 // The reply's first line goes to stdout on success ("ok ..." without "ok"), to stderr on an
 // error; the body (status) to stdout. Exit codes (sysexits.h), for scripts:
@@ -17,7 +18,9 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "swlio/control/client.h"
 
@@ -112,6 +115,13 @@ int main(int argc, char** argv) {
   app.add_subcommand("reset", "re-initialize the estimator at its last good pose")->callback([&] {
     request.command = Command::kReset;
   });
+  std::vector<double> pose;
+  CLI::App* relocalize = app.add_subcommand(
+      "relocalize",
+      "tell the daemon where the robot is in the saved map: base_link at X Y (m) heading YAW "
+      "(degrees, counter-clockwise from the map's x axis), within SIGMA (m, default 0.5)");
+  relocalize->add_option("X Y YAW [SIGMA]", pose, "numbers")->required()->expected(3, 4);
+  relocalize->callback([&] { request.command = Command::kRelocalize; });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -121,6 +131,12 @@ int main(int argc, char** argv) {
   if (request.command == Command::kSaveMap) {
     // The daemon's working directory is not ours: send an absolute path.
     request.argument = std::filesystem::absolute(map_path).lexically_normal().string();
+  }
+  if (request.command == Command::kRelocalize) {
+    std::ostringstream numbers;
+    numbers.precision(17);
+    for (size_t i = 0; i < pose.size(); ++i) numbers << (i > 0 ? " " : "") << pose[i];
+    request.argument = numbers.str();
   }
   return Send(socket, request, timeout_s);
 }

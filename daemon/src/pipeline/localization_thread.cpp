@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "swlio/core/time.h"
+#include "swlio/ipc/subscriber.h"
 
 namespace swlio::daemon {
 
@@ -25,9 +26,75 @@ void LocalizationThread::Run(const std::atomic<bool>& stop, const Watchdog::Hand
   KeyframePtr keyframe;
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
+    ServeHints();
     if (!q_.keyframes_in->WaitPop(&keyframe, 100'000)) continue;
     Handle(*keyframe);
-    keyframe.reset();
+    newest_ = std::move(keyframe);
+  }
+  PoseHint hint;  // a daemon that stops answers what is still queued
+  while (hint_requests_.Pop(&hint)) {
+    if (hint.command) hint.command->Finish({control::ReplyStatus::kFailed, "the daemon stopped", {}});
+  }
+}
+
+bool LocalizationThread::RequestHint(PoseHint hint) {
+  return hint_requests_.Push(std::move(hint));
+}
+
+void LocalizationThread::ServeHints() {
+  PoseHint hint;
+  while (hint_requests_.Pop(&hint)) {
+    if (hint.command && hint.command->cancelled()) continue;
+    ApplyHint(hint);
+  }
+  if (hint_reader_ == nullptr) return;
+  for (const auto& received : hint_reader_->TakePoses()) {
+    std::string error;
+    const std::optional<PoseHint> h = HintFromInitialPose(received.msg, map_frame_, &error);
+    if (h) {
+      ApplyHint(*h);
+      continue;
+    }
+    std::lock_guard<std::mutex> lock(hint_mutex_);
+    ++hint_.hints_unreadable;
+    spdlog::warn("localization: /initialpose ignored: {}", error);
+  }
+}
+
+void LocalizationThread::ApplyHint(const PoseHint& hint) {
+  const int64_t t0 = MonotonicNowNs();
+  estimator::HintOutcome outcome;  // kNoKeyframe until the estimator has made one
+  if (newest_) outcome = localizer_.ApplyHint(*newest_, ImuHint(hint, T_base_imu_));
+  const bool refused = outcome.verdict != estimator::HintVerdict::kTracking &&
+                       outcome.verdict != estimator::HintVerdict::kConfirming;
+  const std::string text = DescribeHint(hint, outcome);
+  const double ms = static_cast<double>(MonotonicNowNs() - t0) * 1e-6;
+  {
+    std::lock_guard<std::mutex> lock(hint_mutex_);
+    ++hint_.hints;
+    hint_.hints_refused += refused ? 1 : 0;
+    hint_.last_hint = text;
+    hint_.last_hint_refused = refused;
+    hint_.last_hint_t_ns = t0;
+  }
+  if (refused) {
+    spdlog::warn("localization: hint from {}: {} ({} registrations, {:.0f} ms)", hint.source, text,
+                 outcome.registrations, ms);
+  } else {
+    spdlog::info("localization: hint from {}: {} ({} registrations, {:.0f} ms)", hint.source, text,
+                 outcome.registrations, ms);
+  }
+  if (hint.command) {
+    hint.command->Finish(refused ? control::Reply{control::ReplyStatus::kRefused, text, {}}
+                                 : control::Reply{control::ReplyStatus::kOk, text, {}});
+  }
+  state_.store(static_cast<int>(localizer_.state()), std::memory_order_relaxed);
+  if (refused) return;
+  jump_next_ = true;
+  if (outcome.verdict == estimator::HintVerdict::kTracking) {
+    if (localized_t_ns_.load(std::memory_order_relaxed) < 0)
+      localized_t_ns_.store(newest_->t_ns, std::memory_order_relaxed);
+    jump_next_ = !Publish(*newest_, true);
   }
 }
 
@@ -54,24 +121,26 @@ void LocalizationThread::Handle(const estimator::KeyframeCloud& keyframe) {
                  st.track_failures);
   }
   if (u.state != LocalizationState::kTracking || !u.accepted) return;
-  const bool jump = !published_in_map_;
+  const bool jump = !published_in_map_ || jump_next_;
   if (jump) {
     localized_t_ns_.store(keyframe.t_ns, kRelaxed);
     const Eigen::Vector3d p = (localizer_.T_map_odom() * keyframe.T_world_imu).translation();
     spdlog::info("localization: localized in the map at ({:.2f}, {:.2f}, {:.2f}) m", p.x(), p.y(),
                  p.z());
   }
-  Publish(keyframe, jump);
+  if (Publish(keyframe, jump)) jump_next_ = false;
 }
 
-void LocalizationThread::Publish(const estimator::KeyframeCloud& keyframe, bool jump) {
+bool LocalizationThread::Publish(const estimator::KeyframeCloud& keyframe, bool jump) {
   MapCorrection c;
   c.t_ns = keyframe.t_ns;
   c.T_map_odom = localizer_.T_map_odom();
   c.jump = jump;
   // A full queue means the publisher is stalled; the next correction supersedes this one, but
   // the jump must not be lost: retried with the next accepted keyframe.
-  published_in_map_ = q_.corrections_out->Push(std::move(c)) || published_in_map_;
+  const bool pushed = q_.corrections_out->Push(std::move(c));
+  published_in_map_ = pushed || published_in_map_;
+  return pushed;
 }
 
 LocalizationCounters LocalizationThread::counters() const {
@@ -89,6 +158,13 @@ LocalizationCounters LocalizationThread::counters() const {
   c.localized_t_ns = localized_t_ns_.load(kRelaxed);
   c.last_ms = last_ms_.load(kRelaxed);
   c.max_ms = max_ms_.load(kRelaxed);
+  std::lock_guard<std::mutex> lock(hint_mutex_);
+  c.hints = hint_.hints;
+  c.hints_refused = hint_.hints_refused;
+  c.hints_unreadable = hint_.hints_unreadable;
+  c.last_hint = hint_.last_hint;
+  c.last_hint_refused = hint_.last_hint_refused;
+  c.last_hint_t_ns = hint_.last_hint_t_ns;
   return c;
 }
 

@@ -128,8 +128,12 @@ ipc::DiagnosticStatus LoopClosureStatus(const HealthSnapshot& s) {
   return d;
 }
 
-/// Warn until the pose is localized in the saved map (nothing is published before), and while
-/// a localization is being confirmed or was lost.
+/// A refused pose hint is news for this long: the status warns with its reason.
+constexpr int64_t kHintNewsNs = 30'000'000'000;
+
+/// Warn until the pose is localized in the saved map (nothing is published before), while a
+/// localization is being confirmed or was lost, and for 30 s after an operator's hint was
+/// refused (with the reason).
 ipc::DiagnosticStatus LocalizationStatus(const HealthSnapshot& s) {
   const LocalizationCounters& c = s.localization;
   ipc::DiagnosticStatus d;
@@ -150,7 +154,15 @@ ipc::DiagnosticStatus LocalizationStatus(const HealthSnapshot& s) {
               {"lost", Count(c.lost)},
               {"registration_ms", Num(c.last_ms, "%.1f")},
               {"registration_ms_max", Num(c.max_ms, "%.1f")},
-              {"held_poses", Count(s.publisher.held)}};
+              {"held_poses", Count(s.publisher.held)},
+              {"hints", Count(c.hints)},
+              {"hints_refused", Count(c.hints_refused)},
+              {"hints_unreadable", Count(c.hints_unreadable)},
+              {"last_hint", c.last_hint.empty() ? "none" : c.last_hint}};
+  if (c.last_hint_refused && s.t_ns - c.last_hint_t_ns < kHintNewsNs) {
+    d.level = ipc::DiagnosticLevel::kWarn;
+    d.message = "pose hint " + c.last_hint + (tracking ? "; still localized as before" : "");
+  }
   return d;
 }
 

@@ -11,6 +11,7 @@
 #include "swlio/estimator/map/saved_map.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
+#include "swlio/ipc/subscriber.h"
 
 namespace swlio::daemon {
 
@@ -144,6 +145,7 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   frames.T_imu_base = config.window.wheel.T_imu_base.ToIsometry();  // identity unless configured
   frames.T_imu_lidar = T_imu_lidar;
   rt->MakeMapPublisher(frames.names.map);
+  if (!rt->ReadPoseHints(frames, error)) return nullptr;
   Runtime* self = rt.get();
   rt->publisher_thread_ = std::make_unique<PublisherThread>(
       rt->publisher_.get(), frames,
@@ -185,6 +187,32 @@ bool Runtime::LoadLocalization(std::string* error) {
   c.registration = config_.loop_closure;
   localization_ = std::make_unique<LocalizationThread>(
       std::move(*map), c, LoopClosureQueues{&queues_->keyframes, &queues_->corrections});
+  return true;
+}
+
+bool Runtime::ReadPoseHints(const OutputFrames& frames, std::string* error) {
+  if (localization_) localization_->SetBaseFrame(frames.T_imu_base.inverse());
+  const std::string& topic = config_.ipc.initialpose_topic;
+  if (topic.empty() || !participant_) return true;
+  if (!localization_) {
+    spdlog::warn("ipc.initialpose_topic: pose hints are read only while localizing in a saved "
+                 "map (map.localize); /{} is not read",
+                 topic);
+    return true;
+  }
+  ipc::IpcConfig c = config_.ipc;
+  c.pose_topic = topic;
+  ipc::SubscriberOptions options;
+  options.topics.fill(false);
+  options.topics[static_cast<size_t>(ipc::Topic::kPose)] = true;
+  options.history_depth = 10;
+  hint_reader_ = ipc::Subscriber::Create(*participant_, c, options, error);
+  if (!hint_reader_) {
+    *error = "ipc.initialpose_topic: " + *error;
+    return false;
+  }
+  localization_->ReadHintsFrom(hint_reader_.get(), frames.names.map);
+  spdlog::info("localization: pose hints from /{} (frame {})", topic, frames.names.map);
   return true;
 }
 

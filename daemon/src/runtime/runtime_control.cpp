@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "swlio/daemon/control/status_report.h"
+#include "swlio/daemon/pipeline/pose_hint.h"
 #include "swlio/daemon/runtime/runtime.h"
 
 namespace swlio::daemon {
@@ -73,6 +74,20 @@ std::shared_ptr<PendingCommand> Runtime::Submit(const control::Request& request,
       if (!optimizer_->RequestReset(command))
         return refuse(ReplyStatus::kBusy, "earlier reset requests are still queued");
       return command;
+    case control::Command::kRelocalize: {
+      if (!localization_) {
+        return refuse(ReplyStatus::kRefused,
+                      "relocalize needs a saved map to localize in (map.localize); while "
+                      "mapping, the map frame is the one this drive started");
+      }
+      std::string error;
+      std::optional<PoseHint> hint = HintFromArgument(request.argument, &error);
+      if (!hint) return refuse(ReplyStatus::kBadRequest, error);
+      hint->command = command;
+      if (!localization_->RequestHint(std::move(*hint)))
+        return refuse(ReplyStatus::kBusy, "earlier relocalize requests are still queued");
+      return command;
+    }
     case control::Command::kStatus:
       break;
   }

@@ -41,6 +41,10 @@ struct IpcConfig {
   std::string odom_odometry_topic = "swlio/odometry/odom";
   std::string tf_topic = "tf";                ///< tf2's /tf: odom → base_link, map → odom
   std::string tf_static_topic = "tf_static";  ///< tf2's /tf_static: base_link → imu, lidar
+  /// Input: operators' pose hints (rviz2's "2D Pose Estimate" publishes /initialpose,
+  /// geometry_msgs/PoseWithCovarianceStamped of base_link in the map frame), read while
+  /// localizing in a saved map (map.localize). Empty (the default): no input is read.
+  std::string initialpose_topic;
   FrameNames frames;
   /// map → odom is published whenever the correction changes and otherwise at least once per
   /// this period (s; 0: with every pose). tf2 resolves map → base_link only up to the newest

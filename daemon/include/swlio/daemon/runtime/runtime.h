@@ -27,6 +27,7 @@
 #include "swlio/daemon/config/daemon_config.h"
 #include "swlio/daemon/control/control_server.h"
 #include "swlio/daemon/output/map_publisher.h"
+#include "swlio/daemon/output/message_conversion.h"
 #include "swlio/daemon/output/stamp_clock.h"
 #include "swlio/daemon/pipeline/estimator_runner.h"
 #include "swlio/daemon/pipeline/time_scale.h"
@@ -38,6 +39,7 @@
 namespace swlio::ipc {
 class Participant;
 class Publisher;
+class Subscriber;
 }  // namespace swlio::ipc
 
 namespace swlio::daemon {
@@ -102,6 +104,9 @@ class Runtime : public ControlTarget {
   /// The map cloud's publisher, handed to the loop-closure or localization thread (when DDS
   /// runs and ipc.map_publish_period_s > 0).
   void MakeMapPublisher(const std::string& frame_id);
+  /// With ipc.initialpose_topic while localizing: the DDS reader of operators' pose hints,
+  /// handed to the localization thread. False with *error when DDS refuses the reader.
+  bool ReadPoseHints(const OutputFrames& frames, std::string* error);
   /// With loop closure and map.save_path: the graph as a saved map (once, at stop).
   void SaveMap();
   /// The control socket (control.socket): a failure is logged and the daemon runs without.
@@ -121,6 +126,7 @@ class Runtime : public ControlTarget {
   std::unique_ptr<StampClock> stamp_clock_;
   std::unique_ptr<ipc::Participant> participant_;
   std::unique_ptr<ipc::Publisher> publisher_;
+  std::unique_ptr<ipc::Subscriber> hint_reader_;  ///< ipc.initialpose_topic; localization only
   std::unique_ptr<LidarRx> lidar_rx_;
   std::unique_ptr<ImuRx> imu_rx_;
   std::unique_ptr<CanRx> can_rx_;  ///< only with can.enabled

@@ -16,6 +16,12 @@
 ///   its predicted pose and T_map_odom is updated to it; failures leave T_map_odom as it was
 ///   (the odometry carries the pose through a changed or unmapped stretch), and after
 ///   `lost_after_failures` in a row the pose is lost and relocalization starts again.
+/// - A hint (an operator's "the robot is here": rviz2's /initialpose, `swlioctl relocalize`):
+///   ApplyHint registers the newest keyframe from the hinted pose, and from descriptor matches
+///   within the hint's uncertainty, and takes the best fit there. It is refused when no map lies
+///   near the hint, when nothing there fits, or when the scan fits a place outside the hint's
+///   uncertainty clearly better (ApplyHint runs the global search too); a fit about as good
+///   elsewhere (a look-alike bay) leaves the hypothesis to be confirmed as a descriptor one is.
 /// The map itself is never changed. Pure library: the daemon runs it in its own thread.
 
 #include <Eigen/Geometry>
@@ -43,6 +49,44 @@ struct LocalizationUpdate {
   LocalizationState state = LocalizationState::kRelocalizing;  ///< after this keyframe
 };
 
+/// Where an operator says the robot's IMU is (the daemon turns a base_link pose into this).
+/// The height and the tilt are not given: the height is the nearest map node's, the tilt the
+/// odometry's (both frames are gravity-aligned).
+struct LocalizationHint {
+  double x_m = 0.0;  ///< IMU position in the map
+  double y_m = 0.0;
+  double yaw_rad = 0.0;  ///< azimuth of the IMU's x axis in the map
+  /// 1σ of the hint (rviz2's "2D Pose Estimate" sends 0.5 m and 0.26 rad): fits are sought
+  /// within 3σ of it.
+  double sigma_xy_m = 0.5;
+  double sigma_yaw_rad = 0.26;
+};
+
+enum class HintVerdict {
+  kTracking,    ///< fitted where hinted, nowhere else as well: localized
+  kConfirming,  ///< fitted where hinted, about as well as elsewhere: the next keyframes decide
+  kNoMap,       ///< no map node within the search radius of the hint
+  kNoFit,       ///< the scan does not register near the hint
+  kElsewhere,   ///< the scan fits a place outside the hint's uncertainty clearly better
+  kNoKeyframe,  ///< no keyframe yet to register (the estimator has not started)
+};
+const char* ToString(HintVerdict verdict);
+
+struct HintOutcome {
+  HintVerdict verdict = HintVerdict::kNoKeyframe;
+  int registrations = 0;
+  size_t map_node = 0;  ///< the node whose submap the best fit registered against
+  /// The best fit within the hint's uncertainty (any verdict but kNoMap/kNoKeyframe): its check
+  /// and the IMU position it implies.
+  LoopCheck check;
+  Eigen::Vector3d p_map = Eigen::Vector3d::Zero();
+  double yaw_map_rad = 0.0;
+  /// kElsewhere: the better place and its fitness; kNoMap: the nearest node's distance.
+  Eigen::Vector3d p_elsewhere = Eigen::Vector3d::Zero();
+  double fitness_elsewhere = 0.0;
+  double nearest_node_m = 0.0;
+};
+
 struct LocalizationStats {
   size_t keyframes = 0;
   size_t relocalization_tries = 0;     ///< keyframes whose descriptor was searched
@@ -55,6 +99,8 @@ struct LocalizationStats {
   size_t track_failures = 0;
   size_t lost = 0;  ///< times tracking gave up
   int64_t first_localized_t_ns = -1;
+  size_t hints = 0;
+  size_t hints_refused = 0;
 };
 
 class MapLocalizer {
@@ -64,6 +110,11 @@ class MapLocalizer {
 
   /// Offers an odometry keyframe (time order).
   LocalizationUpdate AddKeyframe(const KeyframeCloud& keyframe);
+
+  /// An operator's hint, applied to `keyframe` (the newest one the caller has; the hint is taken
+  /// as its pose). Replaces the current hypothesis or track unless refused; a refusal leaves
+  /// the state as it was.
+  HintOutcome ApplyHint(const KeyframeCloud& keyframe, const LocalizationHint& hint);
 
   bool localized() const { return state_ == LocalizationState::kTracking; }
   LocalizationState state() const { return state_; }
@@ -78,6 +129,16 @@ class MapLocalizer {
   /// The best matches, one per place, at most relocalize_candidates.
   std::vector<std::pair<size_t, ScanContextMatch>> DistinctPlaces(
       const std::vector<std::pair<size_t, ScanContextMatch>>& matches) const;
+  /// The best accepted registration of `keyframe` within the hint's 3σ: from the hinted pose,
+  /// then from descriptor matches of nodes near it.
+  HintOutcome FitNearHint(const KeyframeCloud& keyframe, const LocalizationHint& hint);
+  /// Registers `keyframe` against node `node`'s submap from the map pose `T_map_imu_guess`,
+  /// allowing a correction of `max_m` / `max_rad`.
+  LoopCheck RegisterFrom(const KeyframeCloud& keyframe,
+                         size_t node,
+                         const Eigen::Isometry3d& T_map_imu_guess,
+                         double max_m,
+                         double max_rad) const;
   bool DueForTracking(const KeyframeCloud& keyframe) const;
   bool DueForRelocalization(const KeyframeCloud& keyframe) const;
   /// Back to global relocalization; the next keyframe tries at once.
