@@ -25,6 +25,9 @@ set(_swlio_release_only
   "\\.RuntimeFaults\\.(MissingDifop|LidarThatNever|ImuThatNever)"
   # The Fast DDS consumer's TF check: a whole minute of the short drive with loop closure.
   "\\.RuntimeFastDdsTf\\."
+  # Two live drives (a map, then pose hints in it); the localization thread's hints run under
+  # the sanitizers in LocalizationThread.*.
+  "\\.RuntimeInitialPose\\."
   # Timing checks whose cost under ASan is ray casting a simulated recording (40–60 s each);
   # the clock models, recording writer and reader run under ASan in their own tests.
   "\\.ClockMapping\\.SimulatedClocksAt100Ppm"
@@ -47,6 +50,7 @@ set(_swlio_no_tsan
   # security plugins and OpenSSL (libcrypto's locks are invisible to TSan); our side of it is the
   # XML and the participant, which Runtime.* and IpcRoundTrip.* run under TSan.
   "\\.DdsSecurity\\."
+  "\\.RuntimeInitialPose\\."
   # The estimator or a simulated recording on one thread: nothing for TSan, minutes under it.
   "\\.RecoveryOnShortDrive\\."
   "\\.ClockMapping\\."

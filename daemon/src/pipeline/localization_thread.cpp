@@ -89,6 +89,7 @@ void LocalizationThread::ApplyHint(const PoseHint& hint) {
                                  : control::Reply{control::ReplyStatus::kOk, text, {}});
   }
   state_.store(static_cast<int>(localizer_.state()), std::memory_order_relaxed);
+  hypotheses_.store(localizer_.stats().hypotheses, std::memory_order_relaxed);
   if (refused) return;
   jump_next_ = true;
   if (outcome.verdict == estimator::HintVerdict::kTracking) {

@@ -36,6 +36,7 @@ struct LiveDrive {
   std::string scenario = "short";
   uint64_t seed = 11;
   double duration_s = 12.0;
+  std::optional<double> stand_start_s;  ///< standing before driving off (the scenario's: 2 s)
   double speed = 1.0;  ///< N× real time (the daemon is told); sanitized builds always 0.5
   sim::LiveFaults faults;
   std::function<void(sim::SimSetup*)> adjust_setup;  ///< e.g. the sensors' clocks
@@ -49,7 +50,7 @@ struct LiveDrive {
   /// tests publish edge values such as NaN and DBL_MAX: a CI-like run of ctest -j2 saw them
   /// arrive here). tests/ipc uses 101..138 and 163..164 (DdsSecurity); the daemon tests 140..161:
   /// Runtime.* 140, RuntimeFaults.* 141..153 and 156, SwliodCommand 154, Runtime.AWallClockStep…
-  /// 157, RuntimeControl.* 159, RuntimeFastDdsTf.* 161; not live drives: MapPublisher 155,
+  /// 157, RuntimeControl.* 159, RuntimeFastDdsTf.* 161, RuntimeInitialPose.* 162; not live drives: MapPublisher 155,
   /// PublisherThreadTf 158. Benchmarks use 200 and up (bench/daemon_latency.cpp).
   uint32_t dds_domain = 140;
 };
@@ -157,7 +158,8 @@ inline DaemonConfig LiveDriveConfig(const std::filesystem::path& dir, uint32_t d
 /// Runs the drive to its end (sanitized builds at half speed) and stops the Runtime.
 inline LiveDriveResult RunLiveDrive(const LiveDrive& drive) {
   LiveDriveResult out;
-  out.setup = sim::MakeSimSetup(drive.scenario, drive.seed, drive.duration_s);
+  out.setup = sim::MakeSimSetup(drive.scenario, drive.seed, drive.duration_s, std::nullopt,
+                                drive.stand_start_s);
   if (!out.setup) {
     out.error = "unknown scenario " + drive.scenario;
     return out;

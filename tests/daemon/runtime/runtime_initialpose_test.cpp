@@ -1,0 +1,161 @@
+// Operators' pose hints on a live daemon (issue 34): rviz2's /initialpose over DDS and
+// `swlioctl relocalize` over the control socket. DDS domain 162.
+//
+// First a live `short` drive builds a map (loop closure, saved at stop). Then the same drive
+// again, localizing in that map with global relocalization switched off
+// (relocalize_max_descriptor_distance 0: no place descriptor is near enough), so that only a
+// hint can localize it: while the robot stands at the start, a hint 30 m off is refused with a
+// reason, the right one localizes within 2 s (the first map-frame pose arrives), and a wrong
+// swlioctl relocalize is refused without moving the pose.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <thread>
+
+#include "live_drive.h"
+#include "swlio/control/client.h"
+#include "swlio/ipc/publisher.h"
+
+namespace swlio::daemon {
+namespace {
+
+using ::testing::HasSubstr;
+using Clock = std::chrono::steady_clock;
+
+constexpr uint32_t kDomain = 162;
+constexpr double kStandS = 9.0;  // standing at the start: the hints arrive while it stands
+
+struct BasePose {
+  double x = 0.0, y = 0.0, yaw = 0.0;
+};
+
+BasePose PoseOf(const ipc::PoseWithCovarianceStamped& m) {
+  const auto& q = m.pose.orientation_xyzw;
+  const Eigen::Matrix3d R = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).toRotationMatrix();
+  return {m.pose.position_m[0], m.pose.position_m[1], std::atan2(R(1, 0), R(0, 0))};
+}
+
+/// rviz2's "2D Pose Estimate" as it sends it: base_link in map, x/y variance 0.25, yaw 0.0685.
+ipc::PoseWithCovarianceStamped InitialPose(const BasePose& p) {
+  ipc::PoseWithCovarianceStamped m;
+  m.frame_id = "map";
+  m.pose.position_m = {p.x, p.y, 0.0};
+  m.pose.orientation_xyzw = {0.0, 0.0, std::sin(p.yaw / 2.0), std::cos(p.yaw / 2.0)};
+  m.covariance[0] = 0.25;
+  m.covariance[7] = 0.25;
+  m.covariance[35] = 0.06853891945200942;
+  return m;
+}
+
+/// Waits until simulation time `t_s` of a drive that started at `start_ns` (host time).
+void SleepUntilSim(const std::atomic<int64_t>& start_ns, double speed, double t_s) {
+  while (start_ns.load() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const int64_t at = start_ns.load() + static_cast<int64_t>(t_s / speed * 1e9);
+  while (MonotonicNowNs() < at) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
+TEST(RuntimeInitialPose, AHintLocalizesWithinTwoSecondsAndAWrongOneIsRefused) {
+  const auto dir = ::swlio::test::MakeTempDir("runtime-initialpose");
+  const std::string map_path = (dir / "short.map").string();
+
+  // The map: the first 15 s of the drive (6 m driven), saved at stop.
+  test::LiveDrive mapping;
+  mapping.duration_s = 15.0;
+  mapping.stand_start_s = kStandS;
+  mapping.dds_domain = kDomain;
+  mapping.adjust_config = [&](DaemonConfig* c) {
+    c->loop_closure.enabled = true;
+    c->map.save_path = map_path;
+  };
+  const test::LiveDriveResult m = test::RunLiveDrive(mapping);
+  ASSERT_TRUE(m.sim_ok) << m.error;
+  ASSERT_TRUE(std::filesystem::exists(map_path));
+  ASSERT_FALSE(m.poses.empty());
+  // Where the robot stands, in the map's frame: its first published pose.
+  const BasePose start = PoseOf(m.poses.front().msg);
+  std::printf("[ hint ] start in the map: (%.3f, %.3f) yaw %.2f deg\n", start.x, start.y,
+              start.yaw * 180.0 / M_PI);
+
+  // Localizing: hints from a DDS publisher (the operator's rviz2) and from swlioctl.
+  const std::string socket = (dir / "swliod.sock").string();
+  test::LiveDrive drive;
+  drive.duration_s = 14.0;
+  drive.stand_start_s = kStandS;
+  drive.dds_domain = kDomain;
+  drive.adjust_config = [&](DaemonConfig* c) {
+    c->map.localize = true;
+    c->map.load_path = map_path;
+    c->localization.relocalize_max_descriptor_distance = 0.0;
+    c->ipc.initialpose_topic = "initialpose";
+    c->control.socket = socket;
+    c->control.group = "";
+  };
+  std::atomic<int64_t> start_ns{0};
+  drive.on_sim_start = [&](int64_t t0, double) { start_ns = t0; };
+  const double speed = test::kSanitized ? 0.5 : 1.0;
+  int64_t right_hint_ns = 0;
+  control::CallResult wrong_ctl;
+  std::string error;
+  std::thread operator_thread([&] {
+    ipc::IpcConfig config = test::LiveDriveConfig(dir, kDomain).ipc;
+    config.pose_topic = "initialpose";
+    auto participant = ipc::Participant::Create(config, &error);
+    if (!participant) return;
+    ipc::PublisherOptions only_pose;
+    only_pose.topics.fill(false);
+    only_pose.topics[static_cast<size_t>(ipc::Topic::kPose)] = true;
+    auto writer = ipc::Publisher::Create(*participant, config, only_pose, &error);
+    if (!writer) return;
+    SleepUntilSim(start_ns, speed, 4.5);  // initialized and standing
+    writer->PublishPose(InitialPose({start.x - 30.0, start.y, start.yaw}));
+    SleepUntilSim(start_ns, speed, 5.5);
+    right_hint_ns = MonotonicNowNs();
+    writer->PublishPose(InitialPose({start.x + 0.4, start.y - 0.3, start.yaw + 0.1}));
+    SleepUntilSim(start_ns, speed, 7.5);
+    const std::string wrong = std::to_string(start.x) + " " + std::to_string(start.y + 30.0) +
+                              " " + std::to_string(start.yaw * 180.0 / M_PI + 90.0);
+    wrong_ctl = control::Call(socket, {control::Command::kRelocalize, wrong}, 20000);
+  });
+  const test::LiveDriveResult r = test::RunLiveDrive(drive);
+  operator_thread.join();
+  ASSERT_TRUE(r.sim_ok) << r.error;
+  ASSERT_TRUE(error.empty()) << error;
+  r.ShowPublished("swlio: localization");
+
+  const LocalizationCounters& loc = r.final.localization;
+  EXPECT_EQ(loc.hints, 3u);
+  EXPECT_EQ(loc.hints_refused, 2u);
+  // The 30 m hint was refused, with the reason in the health message of that moment.
+  bool refusal_published = false;
+  for (const auto& a : r.published_health) {
+    for (const auto& s : a.msg.status) {
+      if (s.name == "swlio: localization" && s.message.find("pose hint refused: ") == 0)
+        refusal_published = true;
+    }
+  }
+  EXPECT_TRUE(refusal_published);
+  // The right hint: the first map-frame pose within 2 s, where the robot stands.
+  ASSERT_FALSE(r.poses.empty()) << "never localized";
+  const double after_s = static_cast<double>(r.poses.front().receive_steady_ns - right_hint_ns) *
+                         1e-9;
+  const BasePose first = PoseOf(r.poses.front().msg);
+  std::printf("[ hint ] first map pose %.2f s after the hint, at (%.3f, %.3f)\n", after_s,
+              first.x, first.y);
+  EXPECT_GT(after_s, 0.0);
+  EXPECT_LT(after_s, 2.0);
+  EXPECT_LT(std::hypot(first.x - start.x, first.y - start.y), 0.1);
+  // swlioctl relocalize 30 m off and turned: refused, with the reason; still localized.
+  ASSERT_EQ(wrong_ctl.error, control::CallError::kNone) << wrong_ctl.detail;
+  EXPECT_EQ(wrong_ctl.reply.status, control::ReplyStatus::kRefused);
+  EXPECT_THAT(wrong_ctl.reply.message, HasSubstr("refused: "));
+  std::printf("[ hint ] swlioctl: %s\n", wrong_ctl.reply.message.c_str());
+  EXPECT_EQ(loc.state, estimator::LocalizationState::kTracking);
+  // It drove off after the stand and stayed localized (poses to the end of the drive).
+  EXPECT_GT(r.PosesBetween(kStandS + 2.0, 14.0), 300u);
+}
+
+}  // namespace
+}  // namespace swlio::daemon
