@@ -24,7 +24,8 @@ std::string Refusal(std::string_view line) {
 
 TEST(ControlProtocol, RequestsRoundTrip) {
   for (const Request& r : {Request{Command::kStatus, ""}, Request{Command::kReset, ""},
-                           Request{Command::kSaveMap, "/var/lib/swlio/site A.map"}}) {
+                           Request{Command::kSaveMap, "/var/lib/swlio/site A.map"},
+                           Request{Command::kRelocalize, "-12.5 3 90 0.8"}}) {
     std::string line = FormatRequest(r);
     ASSERT_EQ(line.back(), '\n');
     line.pop_back();
@@ -52,6 +53,7 @@ TEST(ControlProtocol, MalformedRequestsAreRefusedWithAReason) {
   EXPECT_THAT(Refusal("status now"), HasSubstr("takes no argument"));
   EXPECT_THAT(Refusal("reset 1"), HasSubstr("takes no argument"));
   EXPECT_THAT(Refusal("save-map"), HasSubstr("needs a path"));
+  EXPECT_THAT(Refusal("relocalize"), HasSubstr("needs x y yaw_deg"));
   EXPECT_THAT(Refusal("save-map "), HasSubstr("trailing space"));
   EXPECT_THAT(Refusal("save-map map.bin"), HasSubstr("absolute path"));
   EXPECT_THAT(Refusal("save-map  /two/spaces"), HasSubstr("absolute path"));

@@ -103,12 +103,13 @@ estimator::LocalizationHint ImuHint(const PoseHint& hint, const Eigen::Isometry3
 std::string DescribeHint(const PoseHint& hint, const estimator::HintOutcome& o) {
   using estimator::HintVerdict;
   const std::string at = Fmt("(%.2f, %.2f)", hint.x_m, hint.y_m);
-  const std::string within = Fmt("within %.1f m / %.0f deg", 3.0 * hint.sigma_xy_m,
-                                 3.0 * hint.sigma_yaw_rad / kDeg);
+  const std::string within =
+      Fmt("within %.1f m / %.0f deg", 3.0 * hint.sigma_xy_m, 3.0 * hint.sigma_yaw_rad / kDeg);
   switch (o.verdict) {
     case HintVerdict::kTracking:
-      return "localized at " + Fmt("(%.2f, %.2f)", o.p_map.x(), o.p_map.y()) + Fmt(
-          " yaw %.1f deg (fitness %.2f)", o.yaw_map_rad / kDeg, o.check.fitness) + " from the hint at " + at;
+      return "localized at " + Fmt("(%.2f, %.2f)", o.p_map.x(), o.p_map.y()) +
+             Fmt(" yaw %.1f deg (fitness %.2f)", o.yaw_map_rad / kDeg, o.check.fitness) +
+             " from the hint at " + at;
     case HintVerdict::kConfirming:
       return "fits at " + Fmt("(%.2f, %.2f)", o.p_map.x(), o.p_map.y()) +
              " near the hint, and about as well at a look-alike place: confirming over the next "
@@ -117,11 +118,11 @@ std::string DescribeHint(const PoseHint& hint, const estimator::HintOutcome& o) 
       return "refused: the map's nearest node is " + Fmt("%.1f m", o.nearest_node_m) +
              " from the hint at " + at + ": outside the map";
     case HintVerdict::kNoFit:
-      return "refused: the scan does not fit the map " + within + " of " + at + " (best: " +
-             estimator::ToString(o.check.verdict) + Fmt(", fitness %.2f, moved %.1f m)", o.check.fitness, o.check.correction_m);
+      return "refused: the scan does not fit the map " + within + " of " + at +
+             " (best: " + estimator::ToString(o.check.verdict) +
+             Fmt(", fitness %.2f, moved %.1f m)", o.check.fitness, o.check.correction_m);
     case HintVerdict::kElsewhere:
-      return "refused: the scan fits " +
-             Fmt("(%.2f, %.2f)", o.p_elsewhere.x(), o.p_elsewhere.y()) +
+      return "refused: the scan fits " + Fmt("(%.2f, %.2f)", o.p_elsewhere.x(), o.p_elsewhere.y()) +
              Fmt(" better (fitness %.2f against %.2f)", o.fitness_elsewhere, o.check.fitness) +
              " than anywhere " + within + " of " + at;
     case HintVerdict::kNoKeyframe:

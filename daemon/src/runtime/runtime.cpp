@@ -195,9 +195,10 @@ bool Runtime::ReadPoseHints(const OutputFrames& frames, std::string* error) {
   const std::string& topic = config_.ipc.initialpose_topic;
   if (topic.empty() || !participant_) return true;
   if (!localization_) {
-    spdlog::warn("ipc.initialpose_topic: pose hints are read only while localizing in a saved "
-                 "map (map.localize); /{} is not read",
-                 topic);
+    spdlog::warn(
+        "ipc.initialpose_topic: pose hints are read only while localizing in a saved "
+        "map (map.localize); /{} is not read",
+        topic);
     return true;
   }
   ipc::IpcConfig c = config_.ipc;

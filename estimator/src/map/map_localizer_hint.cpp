@@ -125,7 +125,8 @@ HintOutcome MapLocalizer::FitNearHint(const KeyframeCloud& keyframe, const Local
   std::vector<Start> starts{{nearest, T_map_imu_hint}};
   const ScanContext query = KeyframeDescriptor(descriptor_config_, keyframe);
   const Eigen::Isometry3d T_Gq_imu = T_gravity_imu(keyframe.T_world_imu, keyframe.T_imu_lidar);
-  for (const auto& [node, match] : DistinctPlaces(descriptors_.Query(query, map_.nodes.size(), {}))) {
+  for (const auto& [node, match] :
+       DistinctPlaces(descriptors_.Query(query, map_.nodes.size(), {}))) {
     const SavedMapNode& n = map_.nodes[node];
     if ((n.T_map_imu.translation().head<2>() - xy).norm() > search_m + config_.distinct_m) continue;
     const Eigen::Isometry3d T_node_lidar = T_candidate_lidar_from_descriptor(
@@ -136,8 +137,8 @@ HintOutcome MapLocalizer::FitNearHint(const KeyframeCloud& keyframe, const Local
   for (const Start& s : starts) {
     const LoopCheck check = RegisterFrom(keyframe, s.node, s.T_map_imu, search_m, search_rad);
     ++out.registrations;
-    const Eigen::Isometry3d T_map_imu = map_.nodes[s.node].T_map_imu * check.T_candidate_lidar *
-                                        keyframe.T_imu_lidar.inverse();
+    const Eigen::Isometry3d T_map_imu =
+        map_.nodes[s.node].T_map_imu * check.T_candidate_lidar * keyframe.T_imu_lidar.inverse();
     const bool fits = check.verdict == LoopVerdict::kAccepted &&
                       (T_map_imu.translation().head<2>() - xy).norm() <= search_m &&
                       std::abs(WrapPi(Azimuth(T_map_imu.linear()) - hint.yaw_rad)) <= search_rad;

@@ -115,8 +115,8 @@ TEST(RuntimeInitialPose, AHintLocalizesWithinTwoSecondsAndAWrongOneIsRefused) {
     right_hint_ns = MonotonicNowNs();
     writer->PublishPose(InitialPose({start.x + 0.4, start.y - 0.3, start.yaw + 0.1}));
     SleepUntilSim(start_ns, speed, 7.5);
-    const std::string wrong = std::to_string(start.x) + " " + std::to_string(start.y + 30.0) +
-                              " " + std::to_string(start.yaw * 180.0 / M_PI + 90.0);
+    const std::string wrong = std::to_string(start.x) + " " + std::to_string(start.y + 30.0) + " " +
+                              std::to_string(start.yaw * 180.0 / M_PI + 90.0);
     wrong_ctl = control::Call(socket, {control::Command::kRelocalize, wrong}, 20000);
   });
   const test::LiveDriveResult r = test::RunLiveDrive(drive);
@@ -139,11 +139,11 @@ TEST(RuntimeInitialPose, AHintLocalizesWithinTwoSecondsAndAWrongOneIsRefused) {
   EXPECT_TRUE(refusal_published);
   // The right hint: the first map-frame pose within 2 s, where the robot stands.
   ASSERT_FALSE(r.poses.empty()) << "never localized";
-  const double after_s = static_cast<double>(r.poses.front().receive_steady_ns - right_hint_ns) *
-                         1e-9;
+  const double after_s =
+      static_cast<double>(r.poses.front().receive_steady_ns - right_hint_ns) * 1e-9;
   const BasePose first = PoseOf(r.poses.front().msg);
-  std::printf("[ hint ] first map pose %.2f s after the hint, at (%.3f, %.3f)\n", after_s,
-              first.x, first.y);
+  std::printf("[ hint ] first map pose %.2f s after the hint, at (%.3f, %.3f)\n", after_s, first.x,
+              first.y);
   EXPECT_GT(after_s, 0.0);
   EXPECT_LT(after_s, 2.0);
   EXPECT_LT(std::hypot(first.x - start.x, first.y - start.y), 0.1);
