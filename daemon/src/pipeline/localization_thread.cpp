@@ -33,13 +33,12 @@ void LocalizationThread::Run(const std::atomic<bool>& stop, const Watchdog::Hand
   }
   PoseHint hint;  // a daemon that stops answers what is still queued
   while (hint_requests_.Pop(&hint)) {
-    if (hint.command) hint.command->Finish({control::ReplyStatus::kFailed, "the daemon stopped", {}});
+    if (hint.command)
+      hint.command->Finish({control::ReplyStatus::kFailed, "the daemon stopped", {}});
   }
 }
 
-bool LocalizationThread::RequestHint(PoseHint hint) {
-  return hint_requests_.Push(std::move(hint));
-}
+bool LocalizationThread::RequestHint(PoseHint hint) { return hint_requests_.Push(std::move(hint)); }
 
 void LocalizationThread::ServeHints() {
   PoseHint hint;

@@ -50,7 +50,7 @@ struct LocalizationCounters {
   uint64_t hints_unreadable = 0;  ///< /initialpose messages in another frame or not a pose
   std::string last_hint;          ///< the last hint's outcome (DescribeHint); empty: none yet
   bool last_hint_refused = false;
-  int64_t last_hint_t_ns = -1;    ///< daemon time it was applied
+  int64_t last_hint_t_ns = -1;  ///< daemon time it was applied
 };
 
 class LocalizationThread {
