@@ -38,6 +38,7 @@
 #include "fastdds_print.h"
 #include "fastdds_reader.h"
 #include "geometry_msgsPubSubTypes.h"
+#include "initialpose_writer.h"
 #include "nav_msgsPubSubTypes.h"
 #include "sensor_msgsPubSubTypes.h"
 #include "tf_check_mode.h"
@@ -130,6 +131,8 @@ struct Options {
   double timeout_s = 30.0;
   bool tf_check = false;
   swlio::tools::fastdds_echo::TfCheckOptions tf;
+  std::vector<std::string> initialposes;  ///< --initialpose X,Y,YAW_DEG@AFTER_S
+  std::string initialpose_topic = "rt/initialpose";
 };
 
 /// Prints each sample of the reader in fastdds_print.h's form.
@@ -215,7 +218,21 @@ int Main(int argc, char** argv) {
   app.add_option("--map-frame", options.tf.frames.map, "(--tf-check)");
   app.add_option("--odom-frame", options.tf.frames.odom, "(--tf-check)");
   app.add_option("--base-frame", options.tf.frames.base, "(--tf-check)");
+  app.add_option("--initialpose", options.initialposes,
+                 "X,Y,YAW_DEG@AFTER_S: publish /initialpose as rviz2's 2D Pose Estimate does, "
+                 "AFTER_S seconds after start (repeatable; initialpose_writer.h)");
+  app.add_option("--initialpose-topic", options.initialpose_topic, "DDS topic (--initialpose)");
   CLI11_PARSE(app, argc, argv);
+  std::vector<swlio::tools::fastdds_echo::InitialPoseSend> sends;
+  for (const std::string& text : options.initialposes) {
+    const auto s = swlio::tools::fastdds_echo::ParseInitialPose(text);
+    if (!s) {
+      std::fprintf(stderr, "swlio-fastdds-echo: --initialpose %s: expected X,Y,YAW_DEG@AFTER_S\n",
+                   text.c_str());
+      return 64;
+    }
+    sends.push_back(*s);
+  }
   options.tf.pose_topic = options.pose_topic;
   options.tf.duration_s = options.timeout_s;
 
@@ -238,9 +255,19 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "swlio-fastdds-echo: cannot create the participant\n");
     return 1;
   }
+  std::unique_ptr<swlio::tools::fastdds_echo::InitialPoseWriter> writer;
+  if (!sends.empty()) {
+    writer = swlio::tools::fastdds_echo::InitialPoseWriter::Create(
+        participant, options.initialpose_topic, std::move(sends));
+    if (!writer) {
+      std::fprintf(stderr, "swlio-fastdds-echo: cannot create the /initialpose writer\n");
+      return 1;
+    }
+  }
   const int code = options.tf_check
                        ? swlio::tools::fastdds_echo::RunTfCheck(participant, options.tf)
                        : Receive(participant, options);
+  writer.reset();  // its sends are done before the entities go
   participant->delete_contained_entities();
   factory->delete_participant(participant);
   if (code == 1) std::fprintf(stderr, "swlio-fastdds-echo: cannot create the reader\n");

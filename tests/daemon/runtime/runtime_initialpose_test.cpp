@@ -6,7 +6,10 @@
 // (relocalize_max_descriptor_distance 0: no place descriptor is near enough), so that only a
 // hint can localize it: while the robot stands at the start, a hint 30 m off is refused with a
 // reason, the right one localizes within 2 s (the first map-frame pose arrives), and a wrong
-// swlioctl relocalize is refused without moving the pose.
+// swlioctl relocalize is refused without moving the pose. The right hint comes from Fast DDS
+// (swlio-fastdds-echo --initialpose, as rviz2 on the default ROS 2 middleware sends it), which
+// as a tf2 listener then sees the daemon relocalize: the TF chain map → odom → base_link at
+// each pose's stamp is the published pose. Without Fast DDS a Cyclone DDS writer sends it.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -15,6 +18,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "line_collector.h"
 #include "live_drive.h"
 #include "swlio/control/client.h"
 #include "swlio/ipc/publisher.h"
@@ -96,7 +100,29 @@ TEST(RuntimeInitialPose, AHintLocalizesWithinTwoSecondsAndAWrongOneIsRefused) {
   std::atomic<int64_t> start_ns{0};
   drive.on_sim_start = [&](int64_t t0, double) { start_ns = t0; };
   const double speed = test::kSanitized ? 0.5 : 1.0;
-  int64_t right_hint_ns = 0;
+  std::atomic<int64_t> right_hint_ns{0};
+  const BasePose right{start.x + 0.4, start.y - 0.3, start.yaw + 0.1};
+  const auto kept = dir / "fastdds.txt";
+  std::unique_ptr<test::ChildProcess> fastdds;
+  std::unique_ptr<test::LineCollector> fastdds_lines;
+#ifdef SWLIO_FASTDDS_ECHO_PATH
+  // Started with the drive; it sends the right hint 5 s later (sim time ≈ 5.5 s at 1×).
+  drive.on_sim_start = [&](int64_t t0, double s) {
+    start_ns = t0;
+    char hint[128];
+    std::snprintf(hint, sizeof hint, "%.6f,%.6f,%.6f@%.3f", right.x, right.y,
+                  right.yaw * 180.0 / M_PI, 5.5 / s);
+    fastdds = std::make_unique<test::ChildProcess>(std::vector<std::string>{
+        SWLIO_FASTDDS_ECHO_PATH, "--profile",
+        (::swlio::test::SourceDir() / "config" / "fastdds-loopback.xml").string(), "--domain",
+        std::to_string(kDomain), "--tf-check", "--timeout", std::to_string(16.0 / s),
+        "--initialpose", hint});
+    fastdds_lines = std::make_unique<test::LineCollector>(fastdds.get(), kept);
+  };
+  const bool fastdds_sends = true;
+#else
+  const bool fastdds_sends = false;
+#endif
   control::CallResult wrong_ctl;
   std::string error;
   std::thread operator_thread([&] {
@@ -112,8 +138,10 @@ TEST(RuntimeInitialPose, AHintLocalizesWithinTwoSecondsAndAWrongOneIsRefused) {
     SleepUntilSim(start_ns, speed, 4.5);  // initialized and standing
     writer->PublishPose(InitialPose({start.x - 30.0, start.y, start.yaw}));
     SleepUntilSim(start_ns, speed, 5.5);
-    right_hint_ns = MonotonicNowNs();
-    writer->PublishPose(InitialPose({start.x + 0.4, start.y - 0.3, start.yaw + 0.1}));
+    if (!fastdds_sends) {
+      right_hint_ns = MonotonicNowNs();
+      writer->PublishPose(InitialPose(right));
+    }
     SleepUntilSim(start_ns, speed, 7.5);
     const std::string wrong = std::to_string(start.x) + " " + std::to_string(start.y + 30.0) + " " +
                               std::to_string(start.yaw * 180.0 / M_PI + 90.0);
@@ -121,6 +149,30 @@ TEST(RuntimeInitialPose, AHintLocalizesWithinTwoSecondsAndAWrongOneIsRefused) {
   });
   const test::LiveDriveResult r = test::RunLiveDrive(drive);
   operator_thread.join();
+  std::vector<test::Line> lines;
+  if (fastdds_lines) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    lines = fastdds_lines->Stop();
+  }
+  size_t tf_matched = 0;
+  double tf_max_err_m = 0.0;
+  for (const test::Line& l : lines) {
+    if (l.kind == "initialpose") {
+      EXPECT_EQ(l.Int("written"), 1);
+      right_hint_ns = l.Int("sent_mono_ns");
+    }
+    if (l.kind == "tf_check" && l.Int("matched") == 1) {
+      ++tf_matched;
+      tf_max_err_m = std::max(tf_max_err_m, l.Get("pos_err_m"));
+    }
+  }
+  if (fastdds_sends) {
+    std::printf("[ hint ] Fast DDS: %zu poses matched by the TF chain, max error %.2e m\n",
+                tf_matched, tf_max_err_m);
+    EXPECT_GT(tf_matched, 100u) << "the Fast DDS listener never saw the relocalized pose: "
+                                << kept.string();
+    EXPECT_LT(tf_max_err_m, 1e-3);
+  }
   ASSERT_TRUE(r.sim_ok) << r.error;
   ASSERT_TRUE(error.empty()) << error;
   r.ShowPublished("swlio: localization");
@@ -139,8 +191,9 @@ TEST(RuntimeInitialPose, AHintLocalizesWithinTwoSecondsAndAWrongOneIsRefused) {
   EXPECT_TRUE(refusal_published);
   // The right hint: the first map-frame pose within 2 s, where the robot stands.
   ASSERT_FALSE(r.poses.empty()) << "never localized";
+  ASSERT_GT(right_hint_ns.load(), 0) << "the right hint was not sent";
   const double after_s =
-      static_cast<double>(r.poses.front().receive_steady_ns - right_hint_ns) * 1e-9;
+      static_cast<double>(r.poses.front().receive_steady_ns - right_hint_ns.load()) * 1e-9;
   const BasePose first = PoseOf(r.poses.front().msg);
   std::printf("[ hint ] first map pose %.2f s after the hint, at (%.3f, %.3f)\n", after_s, first.x,
               first.y);
