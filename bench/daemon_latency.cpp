@@ -178,8 +178,13 @@ int Run(const std::string& scenario,
   const std::string echo_csv = "/tmp/swlio_daemon_latency_echo.csv";
   if (echo_xml.empty()) {
     participant = swlio::ipc::Participant::Create(config.ipc, &error);
-    if (participant)
-      subscriber = swlio::ipc::Subscriber::Create(*participant, config.ipc, {}, &error);
+    if (participant) {
+      swlio::ipc::SubscriberOptions only;  // what is measured; an untaken topic spins Wait
+      only.topics.fill(false);
+      only.topics[static_cast<size_t>(swlio::ipc::Topic::kPose)] = true;
+      only.topics[static_cast<size_t>(swlio::ipc::Topic::kOdometry)] = true;
+      subscriber = swlio::ipc::Subscriber::Create(*participant, config.ipc, only, &error);
+    }
     if (!subscriber) return std::fprintf(stderr, "%s\n", error.c_str()), 1;
   } else {
     echo = std::make_unique<EchoProcess>(echo_xml, config.ipc.domain_id, echo_csv);

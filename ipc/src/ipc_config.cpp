@@ -76,6 +76,7 @@ ConfigIssues IpcConfig::Validate() const {
   CheckTopic(issues, "tf_topic", tf_topic);
   CheckTopic(issues, "tf_static_topic", tf_static_topic);
   if (!initialpose_topic.empty()) CheckTopic(issues, "initialpose_topic", initialpose_topic);
+  if (!sweep_topic.empty()) CheckTopic(issues, "sweep_topic", sweep_topic);
   // At least 1 Hz (REP 105 consumers look map → odom up continuously).
   CheckInRange(issues, "map_odom_period_s", map_odom_period_s, 0.0, 1.0);
   AppendWithPrefix(issues, "frames", frames.Validate());

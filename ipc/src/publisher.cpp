@@ -22,6 +22,8 @@ const char* TopicLabel(Topic topic) {
       return "tf";
     case Topic::kTfStatic:
       return "tf_static";
+    case Topic::kSweep:
+      return "sweep";
   }
   return "?";
 }
@@ -43,6 +45,7 @@ std::unique_ptr<Publisher> Publisher::Create(const Participant& participant,
     const auto topic_id = static_cast<Topic>(i);
     if (!options.topics[Index(topic_id)]) continue;
     const std::string name = wire::DdsTopicName(config, topic_id);
+    if (name.empty()) continue;  // an optional topic switched off
     const dds_entity_t topic = dds_create_topic(participant.handle(), wire::Descriptor(topic_id),
                                                 name.c_str(), nullptr, nullptr);
     if (topic < 0) {
@@ -121,6 +124,14 @@ bool Publisher::PublishMap(const PointCloud2& map) {
   wire::PointCloud2Msg msg{};
   if (!wire::ToWire(map, &storage, &msg)) return Count(false);
   return Count(dds_write(writers_[Index(Topic::kMap)], &msg) == DDS_RETCODE_OK);
+}
+
+bool Publisher::PublishSweep(const PointCloud2& sweep) {
+  if (writers_[Index(Topic::kSweep)] <= 0) return Count(false);
+  wire::PointCloudStorage storage;
+  wire::PointCloud2Msg msg{};
+  if (!wire::ToWire(sweep, &storage, &msg)) return Count(false);
+  return Count(dds_write(writers_[Index(Topic::kSweep)], &msg) == DDS_RETCODE_OK);
 }
 
 int Publisher::MatchedSubscriptions(Topic topic) const {

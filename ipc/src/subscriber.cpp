@@ -41,13 +41,15 @@ std::unique_ptr<Subscriber> Subscriber::Create(const Participant& participant,
     if (!options.topics[static_cast<size_t>(i)]) continue;
     const auto topic_id = static_cast<Topic>(i);
     const std::string name = wire::DdsTopicName(config, topic_id);
+    if (name.empty()) continue;  // an optional topic switched off
     const dds_entity_t topic = dds_create_topic(participant.handle(), wire::Descriptor(topic_id),
                                                 name.c_str(), nullptr, nullptr);
     if (topic < 0) {
       return fail("cannot create DDS topic '" + name + "': " + dds_strretcode(topic));
     }
     subscriber->topics_[static_cast<size_t>(i)] = topic;
-    const int depth = topic_id == Topic::kMap ? options.map_history_depth : options.history_depth;
+    const bool large = topic_id == Topic::kMap || topic_id == Topic::kSweep;  // MBs, 100s of kB
+    const int depth = large ? options.map_history_depth : options.history_depth;
     dds_qos_t* qos = wire::MakeQos(topic_id, /*writer=*/false, depth);
     const dds_entity_t reader = dds_create_reader(participant.handle(), topic, qos, nullptr);
     dds_delete_qos(qos);
@@ -125,6 +127,10 @@ std::vector<Received<Path>> Subscriber::TakePaths() {
 
 std::vector<Received<PointCloud2>> Subscriber::TakeMaps() {
   return Take<PointCloud2, wire::PointCloud2Msg>(Topic::kMap);
+}
+
+std::vector<Received<PointCloud2>> Subscriber::TakeSweeps() {
+  return Take<PointCloud2, wire::PointCloud2Msg>(Topic::kSweep);
 }
 
 std::vector<Received<Odometry>> Subscriber::TakeOdomOdometry() {

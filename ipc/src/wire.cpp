@@ -272,6 +272,7 @@ const dds_topic_descriptor_t* Descriptor(Topic topic) {
     case Topic::kPath:
       return &nav_msgs_msg_dds__Path__desc;
     case Topic::kMap:
+    case Topic::kSweep:
       return &sensor_msgs_msg_dds__PointCloud2__desc;
     case Topic::kOdomOdometry:
       return &nav_msgs_msg_dds__Odometry__desc;
@@ -300,6 +301,8 @@ std::string DdsTopicName(const IpcConfig& config, Topic topic) {
       return "rt/" + config.tf_topic;
     case Topic::kTfStatic:
       return "rt/" + config.tf_static_topic;
+    case Topic::kSweep:
+      return config.sweep_topic.empty() ? std::string() : "rt/" + config.sweep_topic;
   }
   return {};
 }

@@ -177,6 +177,42 @@ TEST(PointCloud, EveryFieldCrossesDdsExactly) {
   EXPECT_EQ(publisher->failures(), 0u);
 }
 
+// The current sweep (sweep_topic): BEST_EFFORT, VOLATILE, so a best-effort reader gets it
+// bit for bit; an empty sweep_topic creates no writer, and publishing then fails (counted).
+TEST(PointCloud, SweepTopicIsBestEffortAndOffWhenUnnamed) {
+  IpcConfig config = LoopbackConfig(128);
+  std::string error;
+  auto participant = Participant::Create(config, &error);
+  ASSERT_NE(participant, nullptr) << error;
+  auto publisher = Publisher::Create(*participant, config, &error);
+  ASSERT_NE(publisher, nullptr) << error;
+  EXPECT_TRUE(publisher->PublishesSweeps());
+  EXPECT_EQ(publisher->DdsTopicName(Topic::kSweep), "rt/swlio/cloud_registered");
+  SubscriberOptions options;
+  options.topics.fill(false);
+  options.topics[static_cast<size_t>(Topic::kSweep)] = true;
+  auto subscriber = Subscriber::Create(*participant, config, options, &error);
+  ASSERT_NE(subscriber, nullptr) << error;
+  ASSERT_TRUE(WaitFor([&] { return publisher->MatchedSubscriptions(Topic::kSweep) > 0; }));
+  const PointCloud2 sent = Spiral(16'000, true);
+  ASSERT_TRUE(publisher->PublishSweep(sent));
+  std::vector<Received<PointCloud2>> got;
+  WaitFor([&] {
+    subscriber->Wait(10'000'000);
+    for (auto& r : subscriber->TakeSweeps()) got.push_back(std::move(r));
+    return !got.empty();
+  });
+  ASSERT_EQ(got.size(), 1u);
+  ExpectSameCloud(got[0].msg, sent);
+
+  config.sweep_topic = "";
+  auto off = Publisher::Create(*participant, config, &error);
+  ASSERT_NE(off, nullptr) << error;
+  EXPECT_FALSE(off->PublishesSweeps());
+  EXPECT_FALSE(off->PublishSweep(sent));
+  EXPECT_EQ(off->failures(), 1u);
+}
+
 TEST(PointCloud, LateSubscriberGetsTheNewestMapOfTwoHundredThousandPoints) {
   // Latched (TRANSIENT_LOCAL, KEEP_LAST 1): a reader created after the publication gets the
   // newest map only; 200,000 points with intensity are 3.2 MB.

@@ -158,8 +158,8 @@ void AddOptions(CLI::App& app, EchoOptions& o) {
       ->capture_default_str();
   app.add_option("--topics", o.topics, "which topics to read")
       ->delimiter(',')
-      ->check(CLI::IsMember(
-          {"pose", "odometry", "health", "path", "map", "odom_odometry", "tf", "tf_static"}))
+      ->check(CLI::IsMember({"pose", "odometry", "health", "path", "map", "odom_odometry", "tf",
+                             "tf_static", "sweep"}))
       ->capture_default_str();
   app.add_option("--pose-topic", o.ipc.pose_topic, "ROS 2 name (DDS adds rt/)")
       ->capture_default_str();
@@ -238,6 +238,7 @@ int Run(EchoOptions& options) {
     sink.Handle(Topic::kOdomOdometry, subscriber->TakeOdomOdometry());
     sink.Handle(Topic::kTf, subscriber->TakeTf());
     sink.Handle(Topic::kTfStatic, subscriber->TakeTfStatic());
+    sink.Handle(Topic::kSweep, subscriber->TakeSweeps());
   }
   sink.Summary();
   if (!sink.WritePath(&error)) {

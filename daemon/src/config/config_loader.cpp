@@ -576,6 +576,7 @@ void Bind(Section s, ipc::IpcConfig& c) {
   s.Get("stamp_clock", c.stamp_clock);
   s.Get("odom_odometry_topic", c.odom_odometry_topic);
   s.Get("initialpose_topic", c.initialpose_topic);
+  s.Get("sweep_topic", c.sweep_topic);
   s.Get("tf_topic", c.tf_topic);
   s.Get("tf_static_topic", c.tf_static_topic);
   s.Get("map_odom_period_s", c.map_odom_period_s);

@@ -405,6 +405,7 @@ void Emit(ConfigWriter& w, const ipc::IpcConfig& c) {
   w.Put("stamp_clock", c.stamp_clock);
   w.Put("odom_odometry_topic", c.odom_odometry_topic);
   w.Put("initialpose_topic", c.initialpose_topic);
+  w.Put("sweep_topic", c.sweep_topic);
   w.Put("tf_topic", c.tf_topic);
   w.Put("tf_static_topic", c.tf_static_topic);
   w.Put("map_odom_period_s", c.map_odom_period_s);

@@ -84,7 +84,12 @@ void LocalizationThread::ApplyHint(const PoseHint& hint) {
                  outcome.registrations, ms);
   }
   if (hint.command) {
-    hint.command->Finish(refused ? control::Reply{control::ReplyStatus::kRefused, text, {}}
+    // The reply's status says "refused" already (swlioctl prints "refused: <message>").
+    const std::string_view prefix = "refused: ";
+    const bool prefixed = text.compare(0, prefix.size(), prefix) == 0;
+    hint.command->Finish(refused ? control::Reply{control::ReplyStatus::kRefused,
+                                                  prefixed ? text.substr(prefix.size()) : text,
+                                                  {}}
                                  : control::Reply{control::ReplyStatus::kOk, text, {}});
   }
   state_.store(static_cast<int>(localizer_.state()), std::memory_order_relaxed);

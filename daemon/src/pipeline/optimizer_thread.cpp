@@ -164,6 +164,12 @@ void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& 
   if (q_.keyframes_out != nullptr && result.keyframe != nullptr) {
     q_.keyframes_out->Push(KeyframePtr(result.keyframe));
   }
+  const bool tracked = r.status == estimator::OdometryStatus::kTracking;
+  const estimator::WindowEstimator* window = runner_.window();
+  if (sweeps_ != nullptr && tracked && window != nullptr) {  // after the pose went out
+    sweeps_->Publish(window->deskewed(), r.state.T_world_imu * window->T_imu_lidar(),
+                     time_.ToHost(scan.t_end_ns));
+  }
   Publish();  // per sweep: a backlog drained in one go still shows each state in the health
 }
 

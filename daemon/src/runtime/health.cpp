@@ -166,6 +166,20 @@ ipc::DiagnosticStatus LocalizationStatus(const HealthSnapshot& s) {
   return d;
 }
 
+/// The current sweep on DDS (sweep_publisher.h): how many, what the last one cost the optimizer.
+ipc::DiagnosticStatus SweepStatus(const HealthSnapshot& s) {
+  const SweepPublishCounters& c = s.sweeps;
+  ipc::DiagnosticStatus d;
+  d.name = "swlio: sweep cloud";
+  d.hardware_id = "swlio";
+  d.level = ipc::DiagnosticLevel::kOk;
+  d.message = Count(c.published) + " sweeps published";
+  d.values = {{"published", Count(c.published)},
+              {"failures", Count(c.failures)},
+              {"last_ms", Num(c.last_ms, "%.2f")}};
+  return d;
+}
+
 /// The map cloud on DDS: how many, how large, what they cost (map_publisher.h). Warns while
 /// the newest map could not be built or written.
 ipc::DiagnosticStatus MapStatus(const HealthSnapshot& s) {
@@ -329,6 +343,7 @@ ipc::DiagnosticArray HealthReporter::Diagnostics(const HealthSnapshot& now) {
   if (now.loop_closure.enabled) a.status.push_back(LoopClosureStatus(now));
   if (now.localization.enabled) a.status.push_back(LocalizationStatus(now));
   if (now.map.enabled) a.status.push_back(MapStatus(now));
+  if (now.sweeps.enabled) a.status.push_back(SweepStatus(now));
   return a;
 }
 

@@ -146,6 +146,12 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   frames.T_imu_lidar = T_imu_lidar;
   rt->MakeMapPublisher(frames.names.map);
   if (!rt->ReadPoseHints(frames, error)) return nullptr;
+  if (rt->publisher_ && rt->publisher_->PublishesSweeps() && tight) {
+    rt->sweep_publisher_ =
+        std::make_unique<SweepPublisher>(rt->publisher_.get(), frames.names.odom);
+    rt->sweep_publisher_->StampWith(rt->stamp_clock_.get());
+    rt->optimizer_->PublishSweepsTo(rt->sweep_publisher_.get());
+  }
   Runtime* self = rt.get();
   rt->publisher_thread_ = std::make_unique<PublisherThread>(
       rt->publisher_.get(), frames,
@@ -320,6 +326,7 @@ HealthSnapshot Runtime::Snapshot() const {
   if (loop_closure_) s.loop_closure = loop_closure_->counters();
   if (localization_) s.localization = localization_->counters();
   if (map_publisher_) s.map = map_publisher_->counters();
+  if (sweep_publisher_) s.sweeps = sweep_publisher_->counters();
   s.stamp_clock = stamp_clock_->counters();
   s.queues = queues_->Counters();
   if (recorder_) {

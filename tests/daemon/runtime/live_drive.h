@@ -72,6 +72,7 @@ struct LiveDriveResult {
   HealthSnapshot final;              ///< after Stop
   std::vector<ipc::Received<ipc::PoseWithCovarianceStamped>> poses;
   size_t odometry = 0;
+  std::vector<ipc::Received<ipc::PointCloud2>> sweeps;  ///< ipc.sweep_topic (the reader keeps 1)
   std::vector<ipc::Received<ipc::DiagnosticArray>> published_health;
 
   /// Simulation time of a host (CLOCK_MONOTONIC) time.
@@ -216,6 +217,11 @@ inline LiveDriveResult RunLiveDrive(const LiveDrive& drive) {
     // Every topic must be taken: a sample left unread keeps the wait set triggered, and this
     // loop then spun, taking a snapshot every few microseconds on a core the daemon needs.
     subscriber->TakePaths();
+    for (auto& s : subscriber->TakeSweeps()) out.sweeps.push_back(std::move(s));
+    subscriber->TakeMaps();
+    subscriber->TakeOdomOdometry();
+    subscriber->TakeTf();
+    subscriber->TakeTfStatic();
   };
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration<double>(drive.duration_s / out.speed + 60.0);

@@ -203,7 +203,7 @@ TEST(RuntimeInitialPose, AHintLocalizesWithinTwoSecondsAndAWrongOneIsRefused) {
   // swlioctl relocalize 30 m off and turned: refused, with the reason; still localized.
   ASSERT_EQ(wrong_ctl.error, control::CallError::kNone) << wrong_ctl.detail;
   EXPECT_EQ(wrong_ctl.reply.status, control::ReplyStatus::kRefused);
-  EXPECT_THAT(wrong_ctl.reply.message, HasSubstr("refused: "));
+  EXPECT_THAT(wrong_ctl.reply.message, HasSubstr("does not fit the map"));
   std::printf("[ hint ] swlioctl: %s\n", wrong_ctl.reply.message.c_str());
   EXPECT_EQ(loc.state, estimator::LocalizationState::kTracking);
   // It drove off after the stand and stayed localized (poses to the end of the drive).

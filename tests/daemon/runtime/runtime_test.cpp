@@ -19,6 +19,7 @@
 
 #include "live_drive.h"
 #include "swlio/daemon/recording/recording_reader.h"
+#include "swlio/ipc/point_cloud.h"
 #include "test_data.h"
 
 namespace swlio::daemon {
@@ -81,6 +82,22 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   EXPECT_GE(r.odometry + (kSanitized ? s.optimizer.skipped_behind : 0u), 70u);
   EXPECT_GE(r.published_health.size(), 5u);
   EXPECT_EQ(s.optimizer.lidar.bad_packets, 0u);
+  // The current sweep for viewers (best effort, every tracked sweep): in odom, every point of
+  // a RoboSense sweep (~16,000 of 28,800), placed around the robot's odom pose of its stamp.
+  EXPECT_TRUE(s.sweeps.enabled);
+  EXPECT_GE(s.sweeps.published, 60u);
+  EXPECT_EQ(s.sweeps.failures, 0u);
+  ASSERT_GE(r.sweeps.size(), 10u) << "sweeps received over DDS (best effort, reader depth 1)";
+  const ipc::PointCloud2& sweep = r.sweeps.back().msg;
+  EXPECT_EQ(sweep.frame_id, "odom");
+  EXPECT_GT(sweep.width, 5000u);
+  ASSERT_TRUE(ipc::HasXyzLayout(sweep));
+  double max_range_m = 0.0;
+  for (size_t i = 0; i < sweep.width; i += 97) {
+    const auto p = ipc::XyzAt(sweep, i);
+    max_range_m = std::max(max_range_m, std::hypot(double(p[0]), double(p[1])));
+  }
+  EXPECT_GT(max_range_m, 5.0) << "the points are spread around the sensor, not collapsed";
   // The recording holds every datagram and serial byte the rx threads received, and reads
   // back through the replay path.
   std::string read_error;

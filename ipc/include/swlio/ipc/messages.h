@@ -12,6 +12,7 @@
 /// - kMap: sensor_msgs/msg/PointCloud2, sensor_msgs::msg::dds_::PointCloud2_
 /// - kOdomOdometry: nav_msgs/msg/Odometry in the odom frame (REP 105: continuous)
 /// - kTf, kTfStatic: tf2_msgs/msg/TFMessage, tf2_msgs::msg::dds_::TFMessage_ (/tf, /tf_static)
+/// - kSweep: sensor_msgs/msg/PointCloud2, the current de-skewed, registered sweep (for viewers)
 ///
 /// Stamps: `t_ns` is carried as builtin_interfaces/Time (sec = floor(t_ns / 1e9), nanosec =
 /// the remainder), so every t_ns whose seconds fit an int32 round-trips exactly. Which clock
@@ -33,9 +34,10 @@ enum class Topic : uint8_t {
   kMap = 4,
   kOdomOdometry = 5,
   kTf = 6,
-  kTfStatic = 7
+  kTfStatic = 7,
+  kSweep = 8
 };
-inline constexpr int kTopicCount = 8;
+inline constexpr int kTopicCount = 9;
 
 /// Row-major 6x6 covariance over (x, y, z, rotation about X, Y, Z), as in
 /// geometry_msgs/PoseWithCovariance and TwistWithCovariance.

@@ -74,6 +74,9 @@ class Publisher {
   /// sends it in fragments; readers that miss fragments get them repaired by the reliable
   /// protocol. The writer keeps the newest map for late joiners (TRANSIENT_LOCAL, KEEP_LAST 1).
   bool PublishMap(const PointCloud2& map);
+  /// The current sweep (sweep_topic; false and a failure when it is off).
+  bool PublishSweep(const PointCloud2& sweep);
+  bool PublishesSweeps() const { return writers_[static_cast<size_t>(Topic::kSweep)] > 0; }
 
   /// Readers currently matched to the topic's writer, as Cyclone counts them (the count to
   /// trust: Fast DDS may report "matched" for a writer whose data it then refuses).

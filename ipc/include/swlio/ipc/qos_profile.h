@@ -16,6 +16,9 @@
 ///   rclcpp::QoS(100)).
 /// - tf_static: RELIABLE, TRANSIENT_LOCAL, KEEP_LAST 1, tf2_ros's StaticBroadcasterQoS
 ///   (rclcpp::QoS(1).transient_local()): one sample holding every static transform, latched.
+/// - sweep (PointCloud2, ~270 kB at scan rate): BEST_EFFORT, VOLATILE, KEEP_LAST 1, as a sensor
+///   stream (rclcpp::SensorDataQoS is best effort): a viewer that falls behind misses sweeps,
+///   the writer never resends a stale one. A ROS 2 reader must ask for best effort.
 ///
 /// Every writer also pins data representation XCDR1 (Fast DDS 2.9 reads only XCDR1). Deadline,
 /// lifespan, liveliness (AUTOMATIC) and ownership (SHARED) stay at the DDS defaults, as in ROS 2.
@@ -41,6 +44,7 @@ constexpr QosProfile WriterQos(Topic topic) {
     return {Reliability::kReliable, Durability::kTransientLocal, 1};
   }
   if (topic == Topic::kTf) return {Reliability::kReliable, Durability::kVolatile, 100};
+  if (topic == Topic::kSweep) return {Reliability::kBestEffort, Durability::kVolatile, 1};
   return {Reliability::kReliable, Durability::kVolatile, 10};
 }
 

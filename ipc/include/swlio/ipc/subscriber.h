@@ -21,11 +21,17 @@ namespace swlio::ipc {
 struct SubscriberOptions {
   /// Reader history per topic: samples not yet taken beyond this many are overwritten.
   int history_depth = 100;
-  /// The map reader's history: maps are MBs each and each supersedes the last, so a reader
-  /// that falls behind keeps only the newest.
+  /// The map and sweep readers' history: maps are MBs each, sweeps hundreds of kB, and each
+  /// supersedes the last, so a reader that falls behind keeps only the newest.
   int map_history_depth = 1;
   /// Which topics to read (indexed by Topic).
-  std::array<bool, kTopicCount> topics{true, true, true, true, true, true, true, true};
+  std::array<bool, kTopicCount> topics = All();
+
+  static std::array<bool, kTopicCount> All() {
+    std::array<bool, kTopicCount> all{};
+    all.fill(true);
+    return all;
+  }
 };
 
 class Subscriber {
@@ -49,6 +55,7 @@ class Subscriber {
   std::vector<Received<DiagnosticArray>> TakeHealth();
   std::vector<Received<Path>> TakePaths();
   std::vector<Received<PointCloud2>> TakeMaps();
+  std::vector<Received<PointCloud2>> TakeSweeps();
   std::vector<Received<Odometry>> TakeOdomOdometry();
   std::vector<Received<TFMessage>> TakeTf();
   std::vector<Received<TFMessage>> TakeTfStatic();

@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "swlio/daemon/control/pending_command.h"
+#include "swlio/daemon/output/sweep_publisher.h"
 #include "swlio/daemon/pipeline/estimator_runner.h"
 #include "swlio/daemon/pipeline/live_types.h"
 #include "swlio/daemon/pipeline/spsc_queue.h"
@@ -82,6 +83,8 @@ class OptimizerThread {
   /// at its next loop (≤ 20 ms), as after a divergence (EstimatorRunner::Reset), and the
   /// propagator drops its state. False when requests are already queued.
   bool RequestReset(std::shared_ptr<PendingCommand> command);
+  /// Publish each tracked sweep through `sweeps` (not owned; null: none). Call before Run.
+  void PublishSweepsTo(SweepPublisher* sweeps) { sweeps_ = sweeps; }
 
  private:
   void OnResult(const Scan& scan, const estimator::WindowResult& result);
@@ -95,6 +98,7 @@ class OptimizerThread {
   void ServeResets();
 
   OptimizerQueues q_;
+  SweepPublisher* sweeps_ = nullptr;
   /// control → optimizer: reset requests (a few; one more is refused as busy).
   SpscQueue<std::shared_ptr<PendingCommand>> resets_{"reset_requests", "control", "optimizer", 4};
   TimeScale time_;

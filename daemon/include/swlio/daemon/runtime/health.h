@@ -11,6 +11,7 @@
 #include "swlio/daemon/output/map_publisher.h"
 #include "swlio/daemon/output/publisher_thread.h"
 #include "swlio/daemon/output/stamp_clock.h"
+#include "swlio/daemon/output/sweep_publisher.h"
 #include "swlio/daemon/pipeline/localization_thread.h"
 #include "swlio/daemon/pipeline/loop_closure_thread.h"
 #include "swlio/daemon/pipeline/optimizer_thread.h"
@@ -35,6 +36,7 @@ struct HealthSnapshot {
   LoopClosureCounters loop_closure;   ///< `enabled` false when loop closure is off
   LocalizationCounters localization;  ///< `enabled` false unless localizing in a saved map
   MapPublishCounters map;             ///< `enabled` false unless the map cloud is published
+  SweepPublishCounters sweeps;        ///< `enabled` false unless ipc.sweep_topic is published
   StampClockCounters stamp_clock;     ///< the published stamps' clock and its offset
   std::vector<QueueCounters> queues;
 };

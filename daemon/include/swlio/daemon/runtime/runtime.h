@@ -137,6 +137,7 @@ class Runtime : public ControlTarget {
   std::unique_ptr<LocalizationThread> localization_;  ///< only with map.localize
   /// With DDS, either of the two above and ipc.map_publish_period_s > 0; used by that thread.
   std::unique_ptr<MapPublisher> map_publisher_;
+  std::unique_ptr<SweepPublisher> sweep_publisher_;  ///< ipc.sweep_topic; used by the optimizer
   std::unique_ptr<PublisherThread> publisher_thread_;
   std::unique_ptr<Recorder> recorder_;
   HealthReporter published_health_;                  ///< used by the publisher thread only

@@ -115,6 +115,9 @@ class WindowEstimator {
   size_t map_points() const { return plane_map_.size() + edge_map_.size(); }
   /// The extrinsic in use: the configured one, or its online estimate (`estimate_extrinsic`).
   Eigen::Isometry3d T_imu_lidar() const { return PoseFromParameters(extrinsic_.data()); }
+  /// The last sweep's points de-skewed into the LiDAR frame at its end (what the front end
+  /// read); valid until the next AddScan.
+  const Scan& deskewed() const { return deskewed_; }
   /// The online extrinsic calibration (calibrate_extrinsic_s): its result once applied, and
   /// while it runs, its attempts and the last reason it was refused (null when off or done).
   const ExtrinsicCalibration* calibration() const { return calibrated_.get(); }

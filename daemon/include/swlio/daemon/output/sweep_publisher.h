@@ -1,0 +1,51 @@
+#pragma once
+/// @file
+/// The current sweep for viewers (ipc.sweep_topic; issue 34): after each tracked sweep the
+/// optimizer thread hands over the estimator's de-skewed sweep (every point in the LiDAR frame
+/// at the sweep's end) and the pose it registered; this writes it as sensor_msgs/PointCloud2
+/// (x, y, z, intensity) in the odom frame, stamped at the sweep's end in the published stamps'
+/// clock. rviz2 or Foxglove with the fixed frame `map` place it through /tf's map → odom at
+/// that stamp, the same correction the map-frame pose of that instant carries. The message
+/// buffer is reused: no allocation once it has held the largest sweep.
+
+#include <Eigen/Geometry>
+#include <atomic>
+#include <cstdint>
+#include <string>
+
+#include "swlio/core/types.h"
+#include "swlio/daemon/output/stamp_clock.h"
+#include "swlio/ipc/messages.h"
+
+namespace swlio::ipc {
+class Publisher;
+}
+
+namespace swlio::daemon {
+
+struct SweepPublishCounters {
+  bool enabled = false;
+  uint64_t published = 0;
+  uint64_t failures = 0;
+  double last_ms = 0.0;  ///< conversion and write of the last sweep (thread time of the caller)
+};
+
+class SweepPublisher {
+ public:
+  /// `publisher` must outlive this (null: counts, writes nothing).
+  SweepPublisher(ipc::Publisher* publisher, std::string frame_id);
+  /// The published stamps' clock (null: host time).
+  void StampWith(const StampClock* stamps) { stamps_ = stamps; }
+  /// `deskewed` in the LiDAR frame at host time `t_host_ns`, where the LiDAR is at T_odom_lidar.
+  bool Publish(const Scan& deskewed, const Eigen::Isometry3d& T_odom_lidar, int64_t t_host_ns);
+  SweepPublishCounters counters() const;
+
+ private:
+  ipc::Publisher* publisher_;
+  const StampClock* stamps_ = nullptr;
+  ipc::PointCloud2 msg_;
+  std::atomic<uint64_t> published_{0}, failures_{0};
+  std::atomic<double> last_ms_{0.0};
+};
+
+}  // namespace swlio::daemon
