@@ -26,38 +26,12 @@ void LocalizationThread::Run(const std::atomic<bool>& stop, const Watchdog::Hand
   KeyframePtr keyframe;
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
-    ServeHints();
+    hints_.Drain([this](const PoseHint& h) { ApplyHint(h); });
     if (!q_.keyframes_in->WaitPop(&keyframe, 100'000)) continue;
     Handle(*keyframe);
     newest_ = std::move(keyframe);
   }
-  PoseHint hint;  // a daemon that stops answers what is still queued
-  while (hint_requests_.Pop(&hint)) {
-    if (hint.command)
-      hint.command->Finish({control::ReplyStatus::kFailed, "the daemon stopped", {}});
-  }
-}
-
-bool LocalizationThread::RequestHint(PoseHint hint) { return hint_requests_.Push(std::move(hint)); }
-
-void LocalizationThread::ServeHints() {
-  PoseHint hint;
-  while (hint_requests_.Pop(&hint)) {
-    if (hint.command && hint.command->cancelled()) continue;
-    ApplyHint(hint);
-  }
-  if (hint_reader_ == nullptr) return;
-  for (const auto& received : hint_reader_->TakePoses()) {
-    std::string error;
-    const std::optional<PoseHint> h = HintFromInitialPose(received.msg, map_frame_, &error);
-    if (h) {
-      ApplyHint(*h);
-      continue;
-    }
-    std::lock_guard<std::mutex> lock(hint_mutex_);
-    ++hint_.hints_unreadable;
-    spdlog::warn("localization: /initialpose ignored: {}", error);
-  }
+  hints_.FailQueued();  // a daemon that stops answers what is still queued
 }
 
 void LocalizationThread::ApplyHint(const PoseHint& hint) {
@@ -166,7 +140,7 @@ LocalizationCounters LocalizationThread::counters() const {
   std::lock_guard<std::mutex> lock(hint_mutex_);
   c.hints = hint_.hints;
   c.hints_refused = hint_.hints_refused;
-  c.hints_unreadable = hint_.hints_unreadable;
+  c.hints_unreadable = hints_.unreadable();
   c.last_hint = hint_.last_hint;
   c.last_hint_refused = hint_.last_hint_refused;
   c.last_hint_t_ns = hint_.last_hint_t_ns;

@@ -22,10 +22,12 @@ void LoopClosureThread::Run(const std::atomic<bool>& stop, const Watchdog::Handl
     ServeSaves(beat);
     PublishMapIfDue(beat);  // also when idle: a correction may wait for the period to end
     DrainGnss();            // 4 Hz at most: the keyframe wait below is short enough
+    hints_.Drain([this](const PoseHint& h) { ApplyHint(h); });
     if (!q_.keyframes_in->WaitPop(&keyframe, 100'000)) continue;
     Handle(*keyframe);
-    keyframe.reset();
+    newest_ = std::move(keyframe);
   }
+  hints_.FailQueued();
   // Stopping: the optimizer has stopped; what it queued last is not worth a solve now.
 }
 
@@ -70,6 +72,57 @@ void LoopClosureThread::ApplyCorrection(const estimator::LoopClosureUpdate& u, i
   if (map_ != nullptr) map_->MarkChanged();
   q_.corrections_out->Push(MapCorrection{
       t_ns, C, std::make_shared<const std::vector<estimator::MapNode>>(closure_.MapPath())});
+}
+
+void LoopClosureThread::ApplyHint(const PoseHint& hint) {
+  std::string text;
+  bool refused = true;
+  if (gnss_) {
+    text = "refused: the map frame is tied to ENU by GNSS (estimator.loop_closure.gnss)";
+  } else if (!newest_) {
+    text = "refused: no keyframe yet (the estimator has not started)";
+  } else {
+    // A moves the map frame so that the IMU at the newest keyframe lands on the hint's x, y,
+    // yaw; its height and tilt stay.
+    const estimator::LocalizationHint h = ImuHint(hint, T_base_imu_);
+    const Eigen::Isometry3d T_map_imu = closure_.T_map_odom() * newest_->T_world_imu;
+    const double yaw_now = std::atan2(T_map_imu.linear()(1, 0), T_map_imu.linear()(0, 0));
+    Eigen::Isometry3d A = Eigen::Isometry3d::Identity();
+    A.linear() = Eigen::AngleAxisd(h.yaw_rad - yaw_now, Eigen::Vector3d::UnitZ()).matrix();
+    const Eigen::Vector3d moved = A.linear() * T_map_imu.translation();
+    A.translation() << h.x_m - moved.x(), h.y_m - moved.y(), 0.0;
+    refused = !closure_.Reanchor(A);
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "map frame re-anchored: base_link at (%.2f, %.2f) yaw %.1f deg (moved %.2f m, "
+                  "turned %.1f deg)",
+                  hint.x_m, hint.y_m, hint.yaw_rad * 180.0 / std::numbers::pi,
+                  A.translation().norm(),
+                  Eigen::AngleAxisd(A.linear()).angle() * 180.0 / std::numbers::pi);
+    text = buf;
+  }
+  {
+    std::lock_guard<std::mutex> lock(hint_mutex_);
+    ++hint_.hints;
+    hint_.hints_refused += refused ? 1 : 0;
+    hint_.last_hint = text;
+  }
+  if (refused) {
+    spdlog::warn("loop closure: hint from {}: {}", hint.source, text);
+  } else {
+    spdlog::info("loop closure: hint from {}: {}", hint.source, text);
+    if (map_ != nullptr) map_->MarkChanged();
+    MapCorrection c{newest_->t_ns, closure_.T_map_odom(),
+                    std::make_shared<const std::vector<estimator::MapNode>>(closure_.MapPath())};
+    c.jump = true;  // the operator moved the frame: no slewing
+    q_.corrections_out->Push(std::move(c));
+  }
+  if (hint.command) {
+    const std::string_view prefix = "refused: ";
+    hint.command->Finish(
+        refused ? control::Reply{control::ReplyStatus::kRefused, text.substr(prefix.size()), {}}
+                : control::Reply{control::ReplyStatus::kOk, text, {}});
+  }
 }
 
 void LoopClosureThread::DrainGnss() {
@@ -184,6 +237,10 @@ LoopClosureCounters LoopClosureThread::counters() const {
   c.gnss_rejected = gnss_rejected_.load(kRelaxed);
   c.gnss_aligned = gnss_aligned_.load(kRelaxed);
   c.enu_yaw_rad = enu_yaw_rad_.load(kRelaxed);
+  std::lock_guard<std::mutex> lock(hint_mutex_);
+  c.hints = hint_.hints;
+  c.hints_refused = hint_.hints_refused;
+  c.last_hint = hint_.last_hint;
   return c;
 }
 

@@ -125,6 +125,11 @@ ipc::DiagnosticStatus LoopClosureStatus(const HealthSnapshot& s) {
     d.values.push_back({"gnss_aligned", c.gnss_aligned ? "true" : "false"});
     d.values.push_back({"enu_yaw_deg", Num(c.enu_yaw_rad * 180.0 / std::numbers::pi, "%.2f")});
   }
+  if (c.hints > 0) {
+    d.values.push_back({"hints", Count(c.hints)});
+    d.values.push_back({"hints_refused", Count(c.hints_refused)});
+    d.values.push_back({"last_hint", c.last_hint});
+  }
   return d;
 }
 

@@ -198,12 +198,13 @@ bool Runtime::LoadLocalization(std::string* error) {
 
 bool Runtime::ReadPoseHints(const OutputFrames& frames, std::string* error) {
   if (localization_) localization_->SetBaseFrame(frames.T_imu_base.inverse());
+  if (loop_closure_) loop_closure_->SetBaseFrame(frames.T_imu_base.inverse());
   const std::string& topic = config_.ipc.initialpose_topic;
   if (topic.empty() || !participant_) return true;
-  if (!localization_) {
+  if (!localization_ && !loop_closure_) {
     spdlog::warn(
-        "ipc.initialpose_topic: pose hints are read only while localizing in a saved "
-        "map (map.localize); /{} is not read",
+        "ipc.initialpose_topic: pose hints need a map frame (localizing in a saved map, or "
+        "loop closure while mapping); /{} is not read",
         topic);
     return true;
   }
@@ -218,8 +219,10 @@ bool Runtime::ReadPoseHints(const OutputFrames& frames, std::string* error) {
     *error = "ipc.initialpose_topic: " + *error;
     return false;
   }
-  localization_->ReadHintsFrom(hint_reader_.get(), frames.names.map);
-  spdlog::info("localization: pose hints from /{} (frame {})", topic, frames.names.map);
+  if (localization_) localization_->ReadHintsFrom(hint_reader_.get(), frames.names.map);
+  if (loop_closure_) loop_closure_->ReadHintsFrom(hint_reader_.get(), frames.names.map);
+  spdlog::info("pose hints from /{} (frame {}): {}", topic, frames.names.map,
+               localization_ ? "relocalize in the saved map" : "re-anchor the map being built");
   return true;
 }
 

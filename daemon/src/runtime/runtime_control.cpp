@@ -75,16 +75,18 @@ std::shared_ptr<PendingCommand> Runtime::Submit(const control::Request& request,
         return refuse(ReplyStatus::kBusy, "earlier reset requests are still queued");
       return command;
     case control::Command::kRelocalize: {
-      if (!localization_) {
+      if (!localization_ && !loop_closure_) {
         return refuse(ReplyStatus::kRefused,
-                      "relocalize needs a saved map to localize in (map.localize); while "
-                      "mapping, the map frame is the one this drive started");
+                      "relocalize needs a map frame: localizing in a saved map (map.localize) "
+                      "or loop closure while mapping");
       }
       std::string error;
       std::optional<PoseHint> hint = HintFromArgument(request.argument, &error);
       if (!hint) return refuse(ReplyStatus::kBadRequest, error);
       hint->command = command;
-      if (!localization_->RequestHint(std::move(*hint)))
+      const bool queued = localization_ ? localization_->RequestHint(std::move(*hint))
+                                        : loop_closure_->RequestHint(std::move(*hint));
+      if (!queued)
         return refuse(ReplyStatus::kBusy, "earlier relocalize requests are still queued");
       return command;
     }

@@ -117,6 +117,13 @@ void LoopClosure::OptimizeGraph(LoopClosureUpdate* update) {
 
 Eigen::Isometry3d LoopClosure::T_map_odom() const { return T_map_odom_; }
 
+bool LoopClosure::Reanchor(const Eigen::Isometry3d& A) {
+  if (gnss_) return false;
+  graph_.TransformAll(A);
+  T_map_odom_ = A * T_map_odom_;
+  return true;
+}
+
 LoopClosureUpdate LoopClosure::AddGnss(const GnssFix& fix) {
   LoopClosureUpdate update;
   if (!gnss_) return update;

@@ -17,6 +17,10 @@ size_t PoseGraph::AddNode(const Eigen::Isometry3d& T_world_imu) {
   return nodes_.size() - 1;
 }
 
+void PoseGraph::TransformAll(const Eigen::Isometry3d& A) {
+  for (auto& node : nodes_) PoseToParameters(A * PoseFromParameters(node.data()), node.data());
+}
+
 bool PoseGraph::AddOdometryEdge(size_t i,
                                 size_t j,
                                 const Eigen::Isometry3d& T_i_j,

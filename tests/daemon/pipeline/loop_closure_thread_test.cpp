@@ -64,5 +64,55 @@ TEST(LoopClosureThread, ClosesTheLoopOfADriftedDriveAndHandsOverTheCorrection) {
   EXPECT_GT((odom.translation() - truth.back().translation()).norm(), 1.0);
 }
 
+// While mapping, an operator's pose hint (swlioctl relocalize, /initialpose) re-anchors the map
+// frame: the reply says so, the correction jumps, and base_link at the newest keyframe is where
+// the hint put it (the base 0.5 m behind the IMU here).
+TEST(LoopClosureThread, APoseHintReanchorsTheMapBeingBuilt) {
+  SpscQueue<KeyframePtr> keyframes{"keyframes", "test", "loop_closure", 512};
+  SpscQueue<MapCorrection> corrections{"corrections", "loop_closure", "test", 16};
+  LoopClosureThread thread(estimator::LoopClosureConfig{}, {&keyframes, &corrections});
+  Eigen::Isometry3d T_base_imu = Eigen::Isometry3d::Identity();
+  T_base_imu.translation() << 0.5, 0.0, 0.3;
+  thread.SetBaseFrame(T_base_imu);
+  std::atomic<bool> stop{false};
+  std::thread runner([&] { thread.Run(stop, Watchdog::Handle{}); });
+  const test::Scene scene = test::BoxYard(7);
+  const std::vector<Eigen::Isometry3d> truth = test::RectangleDrive(0.0);
+  for (size_t k = 0; k < 15; ++k) {
+    auto kf = std::make_shared<estimator::KeyframeCloud>(
+        test::Cut(scene, static_cast<int64_t>(k) * 500'000'000, truth[k]));
+    kf->T_world_imu = truth[k];
+    ASSERT_TRUE(keyframes.Push(KeyframePtr(std::move(kf))));
+  }
+  for (int i = 0; i < 600 && thread.counters().keyframes < 15; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  PoseHint hint;
+  hint.source = "swlioctl";
+  hint.x_m = 100.0;
+  hint.y_m = 50.0;
+  hint.yaw_rad = 1.5;
+  hint.command = std::make_shared<PendingCommand>(
+      control::Request{control::Command::kRelocalize, "100 50 85.9"});
+  ASSERT_TRUE(thread.RequestHint(hint));
+  std::optional<control::Reply> reply;
+  for (int i = 0; i < 600 && !(reply = hint.command->Result()); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  stop = true;
+  runner.join();
+  ASSERT_TRUE(reply.has_value());
+  EXPECT_EQ(reply->status, control::ReplyStatus::kOk) << reply->message;
+  EXPECT_NE(reply->message.find("re-anchored"), std::string::npos) << reply->message;
+  MapCorrection last, m;
+  while (corrections.Pop(&m)) last = m;
+  EXPECT_TRUE(last.jump);
+  const Eigen::Isometry3d T_map_base = last.T_map_odom * truth[14] * T_base_imu.inverse();
+  EXPECT_NEAR(T_map_base.translation().x(), 100.0, 1e-6);
+  EXPECT_NEAR(T_map_base.translation().y(), 50.0, 1e-6);
+  EXPECT_NEAR(std::atan2(T_map_base.linear()(1, 0), T_map_base.linear()(0, 0)), 1.5, 1e-6);
+  ASSERT_NE(last.path, nullptr);
+  EXPECT_EQ(thread.counters().hints, 1u);
+  EXPECT_EQ(thread.counters().hints_refused, 0u);
+}
+
 }  // namespace
 }  // namespace swlio::daemon

@@ -46,8 +46,8 @@ struct IpcConfig {
   /// any sensor stream). Empty: not published.
   std::string sweep_topic = "swlio/cloud_registered";
   /// Input: operators' pose hints (rviz2's "2D Pose Estimate" publishes /initialpose,
-  /// geometry_msgs/PoseWithCovarianceStamped of base_link in the map frame), read while
-  /// localizing in a saved map (map.localize). Empty (the default): no input is read.
+  /// geometry_msgs/PoseWithCovarianceStamped of base_link in the map frame): relocalize in a
+  /// saved map (map.localize) or re-anchor the map being built. Empty (the default): not read.
   std::string initialpose_topic;
   FrameNames frames;
   /// map → odom is published whenever the correction changes and otherwise at least once per

@@ -19,9 +19,9 @@
 #include <mutex>
 #include <string>
 
+#include "swlio/daemon/pipeline/hint_inbox.h"
 #include "swlio/daemon/pipeline/live_types.h"
 #include "swlio/daemon/pipeline/loop_closure_thread.h"
-#include "swlio/daemon/pipeline/pose_hint.h"
 #include "swlio/daemon/pipeline/spsc_queue.h"
 #include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/estimator/map/map_localizer.h"
@@ -65,13 +65,12 @@ class LocalizationThread {
   /// topic), whose frame must be `map_frame`; T_base_imu turns base_link hints into the IMU's.
   /// Call before Run.
   void ReadHintsFrom(ipc::Subscriber* reader, const std::string& map_frame) {
-    hint_reader_ = reader;
-    map_frame_ = map_frame;
+    hints_.ReadFrom(reader, map_frame);
   }
   void SetBaseFrame(const Eigen::Isometry3d& T_base_imu) { T_base_imu_ = T_base_imu; }
   /// An operator's hint (control thread only); hint.command is answered. False when requests
   /// are already queued.
-  bool RequestHint(PoseHint hint);
+  bool RequestHint(PoseHint hint) { return hints_.Request(std::move(hint)); }
   void Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat);
   /// Relaxed copies (any thread).
   LocalizationCounters counters() const;
@@ -80,8 +79,6 @@ class LocalizationThread {
   void Handle(const estimator::KeyframeCloud& keyframe);
   /// The correction to the publisher; false when its queue was full.
   bool Publish(const estimator::KeyframeCloud& keyframe, bool jump);
-  /// The queued swlioctl hints and what /initialpose brought.
-  void ServeHints();
   void ApplyHint(const PoseHint& hint);
 
   estimator::MapLocalizer localizer_;
@@ -91,11 +88,8 @@ class LocalizationThread {
   bool published_in_map_ = false;  ///< the jump has been sent
   bool jump_next_ = false;         ///< a hint was accepted: the next correction jumps
   KeyframePtr newest_;             ///< the keyframe hints are applied to
-  ipc::Subscriber* hint_reader_ = nullptr;
-  std::string map_frame_ = "map";
   Eigen::Isometry3d T_base_imu_ = Eigen::Isometry3d::Identity();
-  /// control → localization: swlioctl relocalize requests.
-  SpscQueue<PoseHint> hint_requests_{"hint_requests", "control", "localization", 4};
+  HintInbox hints_{"localization"};
   mutable std::mutex hint_mutex_;  ///< guards the last_hint* fields of hint_
   LocalizationCounters hint_;      ///< only the hint fields are used
   std::atomic<int> state_{0};

@@ -10,17 +10,27 @@
 /// GNSS (estimator.loop_closure.gnss): the propagator's fixes go into the graph too
 /// (LoopClosure::AddGnss); their corrections reach the publisher the same way. With loop
 /// detection off (`enabled: false`) the thread runs for GNSS alone.
+/// Operators' pose hints while mapping (/initialpose, swlioctl relocalize; hint_inbox.h)
+/// re-anchor the map frame: the graph moves so that base_link at the newest keyframe is where
+/// the hint says (x, y, yaw; height and tilt stay), and the correction jumps there. Refused with
+/// GNSS, which ties the map frame to ENU.
 
 #include <atomic>
 #include <cstdint>
+#include <mutex>
 #include <string>
 
 #include "swlio/daemon/control/pending_command.h"
 #include "swlio/daemon/output/map_publisher.h"
+#include "swlio/daemon/pipeline/hint_inbox.h"
 #include "swlio/daemon/pipeline/live_types.h"
 #include "swlio/daemon/pipeline/spsc_queue.h"
 #include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/estimator/loop/loop_closure.h"
+
+namespace swlio::ipc {
+class Subscriber;
+}
 
 namespace swlio::daemon {
 
@@ -50,6 +60,9 @@ struct LoopClosureCounters {
   uint64_t gnss_rejected = 0;      ///< fix type, accuracy, rate, no odometry around it, innovation
   bool gnss_aligned = false;       ///< the map-to-ENU alignment is estimated
   double enu_yaw_rad = 0.0;        ///< of the map frame in ENU
+  uint64_t hints = 0;              ///< operators' pose hints taken (re-anchoring)
+  uint64_t hints_refused = 0;
+  std::string last_hint;  ///< the last hint's outcome; empty: none yet
 };
 
 class LoopClosureThread {
@@ -71,6 +84,13 @@ class LoopClosureThread {
   /// which owns the graph, at its next loop (≤ 100 ms), to PATH and PATH.pcd. False when
   /// requests are already queued.
   bool RequestSave(std::shared_ptr<PendingCommand> command);
+  /// Pose hints: from /initialpose through `reader` (not owned; call before Run), and from
+  /// swlioctl (control thread; false when requests are queued). T_base_imu: see SetBaseFrame.
+  void ReadHintsFrom(ipc::Subscriber* reader, const std::string& map_frame) {
+    hints_.ReadFrom(reader, map_frame);
+  }
+  bool RequestHint(PoseHint hint) { return hints_.Request(std::move(hint)); }
+  void SetBaseFrame(const Eigen::Isometry3d& T_base_imu) { T_base_imu_ = T_base_imu; }
 
  private:
   void Handle(const estimator::KeyframeCloud& keyframe);
@@ -83,8 +103,15 @@ class LoopClosureThread {
   void PublishMapIfDue(const Watchdog::Handle& beat);
   /// Executes the queued save-map requests.
   void ServeSaves(const Watchdog::Handle& beat);
+  /// Re-anchors the map frame at a pose hint (or refuses it), answers and logs it.
+  void ApplyHint(const PoseHint& hint);
 
   estimator::LoopClosure closure_;
+  HintInbox hints_{"loop_closure"};
+  Eigen::Isometry3d T_base_imu_ = Eigen::Isometry3d::Identity();
+  KeyframePtr newest_;             ///< the keyframe a hint re-anchors at
+  mutable std::mutex hint_mutex_;  ///< guards the hint fields of hint_
+  LoopClosureCounters hint_;       ///< only the hint fields are used
   /// control → loop_closure: save-map requests (a few; one more is refused as busy).
   SpscQueue<std::shared_ptr<PendingCommand>> saves_{"save_requests", "control", "loop_closure", 4};
   LoopClosureQueues q_;

@@ -88,6 +88,10 @@ class LoopClosure {
   /// The ENU origin in use (configured, or the first fix), none before.
   std::optional<Geodetic> enu_origin() const;
 
+  /// Re-anchors the map frame (an operator's pose hint while mapping): every node, the
+  /// correction and what follows move by `A` (T_map' = A · T_map). False (nothing changed) with
+  /// GNSS on: then the map frame is tied to ENU.
+  bool Reanchor(const Eigen::Isometry3d& A);
   /// The correction at the newest node (identity before the first loop).
   Eigen::Isometry3d T_map_odom() const;
   /// `T_odom_imu` at `t_ns` in the map frame, with the correction of the last node at or

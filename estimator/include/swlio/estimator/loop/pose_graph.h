@@ -77,6 +77,9 @@ class PoseGraph {
   PoseGraphSummary Optimize(int max_iterations = 20);
 
   size_t size() const { return nodes_.size(); }
+  /// Moves every node by `A` (T ← A · T): the whole graph in another world frame; odometry and
+  /// loop edges are relative and unchanged (GNSS edges are not: do not call with them).
+  void TransformAll(const Eigen::Isometry3d& A);
   size_t loop_edges() const { return loop_edges_; }
   /// Loop edges switched off by the consistency check so far.
   size_t loops_switched_off() const { return switched_off_; }
