@@ -542,6 +542,8 @@ void Bind(Section s,
   s.Get("plane_voxel_m", c.plane_voxel_m);
   s.Get("edge_voxel_m", c.edge_voxel_m);
   s.Get("local_map_radius_m", c.local_map_radius_m);
+  s.Get("output_rebase_rate_mps", c.output_rebase_rate_mps);
+  s.Get("output_rebase_rate_radps", c.output_rebase_rate_radps);
   s.Removed("window_size", "use estimator.window.window_size instead");
   s.Removed("max_iterations", "use estimator.window.max_iterations instead");
   s.Removed("num_threads",

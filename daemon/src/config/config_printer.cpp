@@ -375,6 +375,8 @@ void EmitEstimator(ConfigWriter& w, const DaemonConfig& c) {
   w.Put("plane_voxel_m", e.plane_voxel_m);
   w.Put("edge_voxel_m", e.edge_voxel_m);
   w.Put("local_map_radius_m", e.local_map_radius_m);
+  w.Put("output_rebase_rate_mps", e.output_rebase_rate_mps);
+  w.Put("output_rebase_rate_radps", e.output_rebase_rate_radps);
   Emit(w, c.window);
   Emit(w, c.loop_closure);
   Emit(w, c.localization);

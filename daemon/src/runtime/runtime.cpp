@@ -119,6 +119,8 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
     spdlog::warn("GNSS: needs estimator.mode tightly-coupled and no localization; off");
   estimator::ImuRatePropagatorConfig propagator;
   propagator.gravity_mps2 = config.estimator.gravity_mps2;
+  propagator.rebase_rate_mps = config.estimator.output_rebase_rate_mps;
+  propagator.rebase_rate_radps = config.estimator.output_rebase_rate_radps;
   rt->propagator_ = std::make_unique<PropagatorThread>(
       config.imu.baud, propagator,
       PropagatorQueues{&q.imu_serial, &q.states, &q.imu, &q.poses, gnss ? &q.gnss : nullptr}, time);

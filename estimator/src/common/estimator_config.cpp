@@ -38,6 +38,11 @@ ConfigIssues EstimatorConfig::Validate() const {
   AppendWithPrefix(issues, "imu_noise", imu_noise.Validate());
   AppendWithPrefix(issues, "extrinsic_imu_lidar", extrinsic_imu_lidar.Validate());
   CheckInRange(issues, "gravity_mps2", gravity_mps2, 9.7, 9.9);
+  CheckInRange(issues, "output_rebase_rate_mps", output_rebase_rate_mps, 0.0, 10.0);
+  CheckInRange(issues, "output_rebase_rate_radps", output_rebase_rate_radps, 0.0, 10.0);
+  CheckThat(issues, (output_rebase_rate_mps > 0.0) == (output_rebase_rate_radps > 0.0),
+            "output_rebase_rate_radps",
+            "must be 0 exactly when output_rebase_rate_mps is (a rotation never taken in)");
   CheckInRange(issues, "init_static_duration_s", init_static_duration_s, 0.2, 30.0);
   CheckInRange(issues, "plane_voxel_m", plane_voxel_m, 0.05, 2.0);
   CheckInRange(issues, "edge_voxel_m", edge_voxel_m, 0.05, 2.0);

@@ -125,6 +125,55 @@ TEST(ImuRatePropagator, ANewStateRepropagatesTheBufferedSamplesExactly) {
       << "the correction must show in the output";
 }
 
+// With a re-basing rate, a new state does not make the output jump: the output keeps its pose
+// at the re-basing and takes the correction in at the rate (each step the motion plus at most
+// rate × period), reaching the re-propagated state once the correction is used up; a
+// correction over rebase_max_m is taken at once.
+TEST(ImuRatePropagator, ReBasingTakesACorrectionInAtItsRateWithoutAJump) {
+  ImuRatePropagatorConfig config = Config();
+  config.rebase_rate_mps = 0.1;
+  config.rebase_rate_radps = 0.05;
+  ImuRatePropagator smooth(config), plain(Config());
+  smooth.SetState(TurnStart());
+  plain.SetState(TurnStart());
+  Eigen::Isometry3d last = Eigen::Isometry3d::Identity();
+  for (int64_t t = 0; t <= 500 * kNsPerMs; t += kStepNs) {
+    last = smooth.Add(TurnSample(t))->state.T_world_imu;
+    plain.Add(TurnSample(t));
+  }
+  // A correction of 8 mm and 0.2° at 0.4 s (what an optimized state moves the output by).
+  State corrected = TurnStart();
+  ImuPropagator reference(kG);
+  reference.Reset(TurnStart());
+  for (int64_t t = 0; t <= 400 * kNsPerMs; t += kStepNs) reference.Add(TurnSample(t));
+  corrected = reference.state();
+  corrected.T_world_imu.translation() += Eigen::Vector3d(0.006, -0.005, 0.002);
+  corrected.T_world_imu.linear() =
+      corrected.T_world_imu.linear() * lie::Exp(Eigen::Vector3d(0.0, 0.0, 0.0035));
+  const Eigen::Isometry3d at_rebase = smooth.SetState(corrected)->state.T_world_imu;
+  const Eigen::Isometry3d target = plain.SetState(corrected)->state.T_world_imu;
+  EXPECT_LT((at_rebase.translation() - last.translation()).norm(), 1e-12) << "no jump";
+  EXPECT_GT((target.translation() - last.translation()).norm(), 0.007) << "the plain one jumps";
+  // Every later step: the motion of one period (≤ 1.5 m/s · 2.5 ms) plus ≤ 0.1 m/s · 2.5 ms.
+  const double max_step_m = kSpeed * 2.5e-3 + 0.1 * 2.5e-3 + 1e-9;
+  Eigen::Isometry3d previous = at_rebase;
+  for (int64_t t = 500 * kNsPerMs + kStepNs; t <= 700 * kNsPerMs; t += kStepNs) {
+    const Eigen::Isometry3d now = smooth.Add(TurnSample(t))->state.T_world_imu;
+    const Eigen::Isometry3d exact = plain.Add(TurnSample(t))->state.T_world_imu;
+    EXPECT_LE((now.translation() - previous.translation()).norm(), max_step_m) << t;
+    previous = now;
+    if (t >= 600 * kNsPerMs) {  // 8 mm at 0.1 m/s: used up after 80 ms
+      EXPECT_LT((now.translation() - exact.translation()).norm(), 1e-6) << t;
+      EXPECT_LT(lie::Angle(now.linear().transpose() * exact.linear()), 1e-6) << t;
+    }
+  }
+  // A re-initialization's 0.5 m: at once.
+  State far = corrected;
+  far.T_world_imu.translation() += Eigen::Vector3d(0.5, 0.0, 0.0);
+  const Eigen::Isometry3d jumped = smooth.SetState(far)->state.T_world_imu;
+  EXPECT_TRUE(jumped.isApprox(plain.SetState(far)->state.T_world_imu, 1e-12));
+}
+
 TEST(ImuRatePropagator, SamplesBeforeTheFirstStateAreBufferedThenIntegrated) {
   ImuRatePropagator rate(Config());
   for (int i = 0; i < 10; ++i) EXPECT_FALSE(rate.Add(TurnSample(i * kStepNs)).has_value());

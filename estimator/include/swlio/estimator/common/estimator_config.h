@@ -50,6 +50,10 @@ struct EstimatorConfig {
   double plane_voxel_m = 0.4;        ///< down-sampling of planar features
   double edge_voxel_m = 0.2;         ///< down-sampling of edge features
   double local_map_radius_m = 80.0;  ///< local map kept around the robot
+  /// The IMU-rate output (odom → base_link) never jumps: each newly optimized state's
+  /// correction is taken in at these rates (imu_rate_propagator.h; 0 and 0: at once).
+  double output_rebase_rate_mps = 0.1;
+  double output_rebase_rate_radps = 0.05;
 
   ConfigIssues Validate() const;
 };

@@ -10,11 +10,19 @@
 /// integrated again from the new state: the output then equals integrating from that state
 /// through the same samples (`ImuPropagator`, whose step function `StrapdownStep` is shared).
 ///
+/// Continuity (REP 105's odom): a new state moves the propagated pose by the correction the
+/// optimizer made (millimetres). With `rebase_rate_mps` > 0 the output does not jump: it keeps
+/// the pose it had and takes the correction in at that rate (and `rebase_rate_radps`), so each
+/// step is the motion plus at most rate × period. A correction beyond `rebase_max_m` /
+/// `rebase_max_rad` (a re-initialization, a registration that moved far) is taken at once: an
+/// output that lags the estimate by decimetres for seconds is worse than one jump.
+///
 /// Pure and single-threaded: no threads, clocks or locks; allocates only in the constructor.
 /// The caller (the daemon's propagator thread) feeds samples and states in time order and
 /// publishes the outputs.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -30,6 +38,11 @@ struct ImuRatePropagatorConfig {
   /// full the oldest is dropped (counted); a state older than the buffer is then integrated
   /// without the dropped samples.
   size_t buffer_samples = 800;
+  /// Re-basing: 0 takes each correction at once (the output equals integrating from the state).
+  double rebase_rate_mps = 0.0;
+  double rebase_rate_radps = 0.0;
+  double rebase_max_m = 0.1;
+  double rebase_max_rad = 0.05;
 
   ConfigIssues Validate() const;
 };
@@ -76,15 +89,23 @@ class ImuRatePropagator {
   const ImuSample& At(size_t i) const { return ring_[(head_ + i) % ring_.size()]; }
   void Push(const ImuSample& sample);
   void DropUpTo(int64_t t_ns);
-  ImuRateOutput Output(const ImuSample* newest) const;
+  /// The output at current_'s time (the re-basing offset applied and decayed); remembers it.
+  ImuRateOutput Output(const ImuSample* newest);
 
   double gravity_mps2_;
+  ImuRatePropagatorConfig config_;
   std::vector<ImuSample> ring_;  ///< fixed size: the buffer's capacity
   size_t head_ = 0;              ///< index of the oldest sample
   size_t size_ = 0;
   bool has_state_ = false;
   int64_t optimized_t_ns_ = 0;  ///< time of the last optimized state
   State current_;               ///< propagated to the newest integrated sample
+  /// Output = current_ · rebase_ (body frame; re-basing not taken in yet); the last output and
+  /// its time.
+  Eigen::Isometry3d rebase_ = Eigen::Isometry3d::Identity();
+  bool has_output_ = false;
+  Eigen::Isometry3d last_output_ = Eigen::Isometry3d::Identity();
+  int64_t last_output_t_ns_ = 0;
   ImuRateCounters counters_;
 };
 
