@@ -291,6 +291,12 @@ ipc::DiagnosticStatus QueueStatus(const HealthSnapshot& s) {
                             ", high " + std::to_string(q.high_water) + ", dropped " +
                             std::to_string(q.dropped)});
   }
+  // What the publisher thread wrote (the map cloud and the sweep have their own statuses).
+  d.values.push_back({"dds_samples", "poses " + Count(s.publisher.poses) + ", tf " +
+                                         Count(s.publisher.transforms) + ", odometry " +
+                                         Count(s.publisher.odometry) + ", odom_odometry " +
+                                         Count(s.publisher.odom_odometry) + ", paths " +
+                                         Count(s.publisher.paths)});
   d.values.push_back({"dds_write_failures", Count(s.publisher.failures)});
   d.values.push_back({"non_finite_poses_dropped", Count(s.publisher.non_finite)});
   d.level = drops == 0 ? ipc::DiagnosticLevel::kOk : ipc::DiagnosticLevel::kWarn;

@@ -71,5 +71,41 @@ TEST(HealthReporter, SaysWhenTheStampsAreMonotonic) {
   EXPECT_EQ(Value(*t, "stamp_clock"), "monotonic");
 }
 
+// What went out over DDS, /tf included (REP 105 consumers depend on it), and a refused pose hint
+// as a warning with its reason (issue 34).
+TEST(HealthReporter, CountsTheDdsSamplesAndWarnsOfARefusedHint) {
+  HealthSnapshot s;
+  s.t_ns = 40'000'000'000;
+  s.publisher.poses = 4000;
+  s.publisher.transforms = 4011;
+  s.publisher.odometry = 100;
+  s.publisher.odom_odometry = 100;
+  s.publisher.paths = 7;
+  s.localization.enabled = true;
+  s.localization.state = estimator::LocalizationState::kTracking;
+  s.localization.hints = 2;
+  s.localization.hints_refused = 1;
+  s.localization.last_hint = "refused: no map node within 30 m";
+  s.localization.last_hint_refused = true;
+  s.localization.last_hint_t_ns = 35'000'000'000;
+  HealthReporter r;
+  const ipc::DiagnosticArray a = r.Diagnostics(s);
+  const ipc::DiagnosticStatus* q = Find(a, "swlio: queues");
+  ASSERT_NE(q, nullptr);
+  EXPECT_EQ(Value(*q, "dds_samples"),
+            "poses 4000, tf 4011, odometry 100, odom_odometry 100, paths 7");
+  const ipc::DiagnosticStatus* l = Find(a, "swlio: localization");
+  ASSERT_NE(l, nullptr);
+  EXPECT_EQ(l->level, ipc::DiagnosticLevel::kWarn);
+  EXPECT_EQ(l->message, "pose hint refused: no map node within 30 m; still localized as before");
+  EXPECT_EQ(Value(*l, "hints_refused"), "1");
+  s.t_ns = 70'000'000'000;  // 35 s later: news no more, the value kept
+  const ipc::DiagnosticArray b = r.Diagnostics(s);
+  const ipc::DiagnosticStatus* later = Find(b, "swlio: localization");
+  ASSERT_NE(later, nullptr);
+  EXPECT_EQ(later->level, ipc::DiagnosticLevel::kOk);
+  EXPECT_EQ(Value(*later, "last_hint"), "refused: no map node within 30 m");
+}
+
 }  // namespace
 }  // namespace swlio::daemon
