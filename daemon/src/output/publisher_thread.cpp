@@ -185,11 +185,23 @@ void PublisherThread::WritePose(const ImuRatePose& pose) {
   WriteTf();
 }
 
+void PublisherThread::FollowExtrinsic(const SweepEstimate& e) {
+  // 0.1 mm / 0.006°: below that a refinement is noise, and /tf_static is latched (each new
+  // sample replaces the last for every late joiner).
+  if (!e.has_extrinsic) return;
+  const Eigen::Isometry3d d = frames_.T_imu_lidar.inverse() * e.T_imu_lidar;
+  if (d.translation().norm() < 1e-4 && Eigen::AngleAxisd(d.linear()).angle() < 1e-4) return;
+  frames_.T_imu_lidar = e.T_imu_lidar;
+  WriteStaticTf();
+  static_resends_.fetch_add(1, std::memory_order_relaxed);
+}
+
 void PublisherThread::WriteOdometry(const SweepEstimate& e) {
   if (e.status == estimator::OdometryStatus::kInitializing ||
       e.status == estimator::OdometryStatus::kSkipped) {
     return;
   }
+  FollowExtrinsic(e);
   const ipc::FrameNames& names = frames_.names;
   ipc::Odometry odom = ToOdometryMessage(e.state, last_gyro_imu_radps_, e.covariance,
                                          frames_.T_imu_base, names.odom, names.base_link);
@@ -251,6 +263,7 @@ PublisherCounters PublisherThread::counters() const {
   c.held = held_.load(kRelaxed);
   c.odom_odometry = odom_odometry_.load(kRelaxed);
   c.transforms = transforms_.load(kRelaxed);
+  c.static_resends = static_resends_.load(kRelaxed);
   c.pose_latency = pose_latency_.Snapshot();
   return c;
 }

@@ -158,6 +158,10 @@ void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& 
   e.update_ms = last_ms_;
   e.scan_last_rx_ns = LastRxOf(scan.t_end_ns);
   e.keyframe = r.keyframe;
+  if (const estimator::WindowEstimator* w = runner_.window(); w != nullptr) {
+    e.T_imu_lidar = w->T_imu_lidar();
+    e.has_extrinsic = true;
+  }
   e.reset = result.diverged != estimator::DivergenceReason::kNone;
   q_.states_out->Push(e);
   q_.odometry_out->Push(e);

@@ -296,7 +296,8 @@ ipc::DiagnosticStatus QueueStatus(const HealthSnapshot& s) {
                                          Count(s.publisher.transforms) + ", odometry " +
                                          Count(s.publisher.odometry) + ", odom_odometry " +
                                          Count(s.publisher.odom_odometry) + ", paths " +
-                                         Count(s.publisher.paths)});
+                                         Count(s.publisher.paths) + ", tf_static re-sent " +
+                                         Count(s.publisher.static_resends)});
   d.values.push_back({"dds_write_failures", Count(s.publisher.failures)});
   d.values.push_back({"non_finite_poses_dropped", Count(s.publisher.non_finite)});
   d.level = drops == 0 ? ipc::DiagnosticLevel::kOk : ipc::DiagnosticLevel::kWarn;

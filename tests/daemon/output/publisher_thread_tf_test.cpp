@@ -258,5 +258,65 @@ TEST(PublisherThreadTf, TfChainEqualsThePublishedPoseAndOdomNeverJumps) {
   }
 }
 
+// /tf_static follows the extrinsic the estimator uses (online refinement): a sweep whose
+// extrinsic moved by 1 cm re-sends base_link → lidar_link; one equal to what was sent does not.
+// DDS domain 160.
+TEST(PublisherThreadTf, TfStaticFollowsAnExtrinsicRefinedOnline) {
+  ipc::IpcConfig ipc;
+  ipc.domain_id = 160;
+  ipc.dds_config_file = (test::SourceDir() / "config" / "cyclonedds-loopback.xml").string();
+  std::string error;
+  auto participant = ipc::Participant::Create(ipc, &error);
+  ASSERT_NE(participant, nullptr) << error;
+  auto publisher = ipc::Publisher::Create(*participant, ipc, &error);
+  ASSERT_NE(publisher, nullptr) << error;
+  ipc::SubscriberOptions options;
+  options.topics.fill(false);
+  options.topics[static_cast<size_t>(ipc::Topic::kTfStatic)] = true;
+  auto subscriber = ipc::Subscriber::Create(*participant, ipc, options, &error);
+  ASSERT_NE(subscriber, nullptr) << error;
+  for (int i = 0; i < 1500 && publisher->MatchedSubscriptions(ipc::Topic::kTfStatic) == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+
+  OutputFrames frames;
+  frames.T_imu_base = Pose({-0.4, 0.1, -0.6}, 0.3);
+  frames.T_imu_lidar = Pose({0.2, 0.0, 0.15}, -0.05);
+  SpscQueue<ImuRatePose> poses("poses", "test", "publisher", 16);
+  SpscQueue<SweepEstimate> odometry("odometry", "test", "publisher", 16);
+  Doorbell bell;
+  PublisherThread thread(publisher.get(), frames,
+                         PublisherQueues{&poses, &odometry, &bell, nullptr}, {}, nullptr,
+                         1'000'000'000, 100, {});
+  std::atomic<bool> stop{false};
+  std::thread runner([&] { thread.Run(stop, Watchdog::Handle{}); });
+  const Eigen::Isometry3d refined = Pose({0.21, 0.0, 0.15}, -0.05);
+  for (const Eigen::Isometry3d& T : {frames.T_imu_lidar, refined, refined}) {
+    SweepEstimate e;
+    e.status = estimator::OdometryStatus::kTracking;
+    e.state = DriveState(0);
+    e.T_imu_lidar = T;
+    e.has_extrinsic = true;
+    ASSERT_TRUE(odometry.Push(e));
+    bell.Ring();
+  }
+  for (int k = 0; k < 1000 && thread.counters().odom_odometry < 3; ++k)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  stop = true;
+  runner.join();
+  EXPECT_EQ(thread.counters().static_resends, 1u);
+  const auto got = CollectUntil(*subscriber, 2, [&] { return subscriber->TakeTfStatic(); });
+  ASSERT_EQ(got.size(), 2u) << "the start's /tf_static and the one re-sent";
+  const Eigen::Isometry3d expected = frames.T_imu_base.inverse() * refined;
+  bool found = false;
+  for (const ipc::TransformStamped& t : got.back().msg.transforms) {
+    if (t.child_frame_id != "lidar_link") continue;
+    found = true;
+    EXPECT_NEAR(t.transform.translation_m[0], expected.translation().x(), 1e-12);
+    EXPECT_NEAR(t.transform.translation_m[1], expected.translation().y(), 1e-12);
+    EXPECT_NEAR(t.transform.translation_m[2], expected.translation().z(), 1e-12);
+  }
+  EXPECT_TRUE(found);
+}
+
 }  // namespace
 }  // namespace swlio::daemon

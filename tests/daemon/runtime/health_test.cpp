@@ -93,7 +93,7 @@ TEST(HealthReporter, CountsTheDdsSamplesAndWarnsOfARefusedHint) {
   const ipc::DiagnosticStatus* q = Find(a, "swlio: queues");
   ASSERT_NE(q, nullptr);
   EXPECT_EQ(Value(*q, "dds_samples"),
-            "poses 4000, tf 4011, odometry 100, odom_odometry 100, paths 7");
+            "poses 4000, tf 4011, odometry 100, odom_odometry 100, paths 7, tf_static re-sent 0");
   const ipc::DiagnosticStatus* l = Find(a, "swlio: localization");
   ASSERT_NE(l, nullptr);
   EXPECT_EQ(l->level, ipc::DiagnosticLevel::kWarn);

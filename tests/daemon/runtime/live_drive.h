@@ -51,7 +51,8 @@ struct LiveDrive {
   /// arrive here). tests/ipc uses 101..138 and 163..164 (DdsSecurity); the daemon tests 140..161:
   /// Runtime.* 140, RuntimeFaults.* 141..153 and 156, SwliodCommand 154, Runtime.AWallClockStep…
   /// 157, RuntimeControl.* 159, RuntimeFastDdsTf.* 161, RuntimeInitialPose.* 162; not live drives:
-  /// MapPublisher 155, PublisherThreadTf 158. Benchmarks use 200 and up (bench/daemon_latency.cpp).
+  /// MapPublisher 155, PublisherThreadTf 158 and 160. Benchmarks use 200 and up
+  /// (bench/daemon_latency.cpp).
   uint32_t dds_domain = 140;
 };
 

@@ -60,9 +60,10 @@ struct PublisherCounters {
   uint64_t odometry = 0;
   uint64_t health = 0;
   uint64_t paths = 0;
-  uint64_t odom_odometry = 0;  ///< odom-frame odometry
-  uint64_t transforms = 0;     ///< /tf and /tf_static samples
-  uint64_t failures = 0;       ///< writes DDS refused
+  uint64_t odom_odometry = 0;   ///< odom-frame odometry
+  uint64_t transforms = 0;      ///< /tf and /tf_static samples
+  uint64_t static_resends = 0;  ///< /tf_static sent again: the extrinsic was refined online
+  uint64_t failures = 0;        ///< writes DDS refused
   /// Poses and odometry not published because a position or orientation was not finite
   /// (never sent to the planner; a non-zero count is a bug to report).
   uint64_t non_finite = 0;
@@ -117,6 +118,8 @@ class PublisherThread {
                                           bool send);
   void WritePose(const ImuRatePose& pose);
   void WriteOdometry(const SweepEstimate& e);
+  /// Re-sends /tf_static when the estimator's extrinsic moved (online refinement).
+  void FollowExtrinsic(const SweepEstimate& e);
   void WriteTf();
   void WriteStaticTf();
   void Periodic(int64_t now_ns);
@@ -144,7 +147,7 @@ class PublisherThread {
   Eigen::Vector3d last_gyro_imu_radps_ = Eigen::Vector3d::Zero();
   LatencyHistogram pose_latency_;
   std::atomic<uint64_t> poses_{0}, odometry_{0}, health_count_{0}, paths_{0}, failures_{0},
-      non_finite_{0}, held_{0}, odom_odometry_{0}, transforms_{0};
+      non_finite_{0}, held_{0}, odom_odometry_{0}, transforms_{0}, static_resends_{0};
 };
 
 }  // namespace swlio::daemon

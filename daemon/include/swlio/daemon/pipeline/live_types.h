@@ -54,6 +54,10 @@ struct SweepEstimate {
   double update_ms = 0.0;       ///< the whole update (front end + window), thread CPU
   int64_t scan_last_rx_ns = 0;  ///< host receive time of the sweep's last packet
   bool keyframe = false;        ///< the sweep's features went into the local map
+  /// The LiDAR–IMU extrinsic the estimator used for this sweep (refined online when
+  /// configured): /tf_static follows it. Meaningless unless has_extrinsic.
+  Eigen::Isometry3d T_imu_lidar = Eigen::Isometry3d::Identity();
+  bool has_extrinsic = false;
   /// The estimator re-initialized (its state diverged): the IMU-rate output must stop
   /// propagating the old state until the next estimate.
   bool reset = false;
