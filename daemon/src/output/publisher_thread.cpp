@@ -96,6 +96,11 @@ const Eigen::Isometry3d& PublisherThread::StepCorrection(int64_t t_ns,
                                                          const Eigen::Isometry3d& T_odom_imu,
                                                          bool send) {
   const Eigen::Isometry3d& C = slew_.Step(t_ns, T_odom_imu);
+  if (!stored_correction_ || C.matrix() != stored_T_map_odom_.matrix()) {
+    correction_cell_.Store(C);
+    stored_T_map_odom_ = C;
+    stored_correction_ = true;
+  }
   if (!send) return C;
   // Sent whenever the C applied to this pose is not the one sent last, so that every sample
   // holds for the poses up to the next; stamped like this pose even when a sweep's odometry

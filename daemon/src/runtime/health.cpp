@@ -181,6 +181,7 @@ ipc::DiagnosticStatus SweepStatus(const HealthSnapshot& s) {
   d.message = Count(c.published) + " sweeps published";
   d.values = {{"published", Count(c.published)},
               {"failures", Count(c.failures)},
+              {"held", Count(c.held)},
               {"last_ms", Num(c.last_ms, "%.2f")}};
   return d;
 }

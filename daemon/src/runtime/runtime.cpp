@@ -148,12 +148,6 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   frames.T_imu_lidar = T_imu_lidar;
   rt->MakeMapPublisher(frames.names.map);
   if (!rt->ReadPoseHints(frames, error)) return nullptr;
-  if (rt->publisher_ && rt->publisher_->PublishesSweeps() && tight) {
-    rt->sweep_publisher_ =
-        std::make_unique<SweepPublisher>(rt->publisher_.get(), frames.names.odom);
-    rt->sweep_publisher_->StampWith(rt->stamp_clock_.get());
-    rt->optimizer_->PublishSweepsTo(rt->sweep_publisher_.get());
-  }
   Runtime* self = rt.get();
   rt->publisher_thread_ = std::make_unique<PublisherThread>(
       rt->publisher_.get(), frames,
@@ -172,6 +166,12 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   rt->publisher_thread_->StampWith(rt->stamp_clock_.get());
   rt->publisher_thread_->SetMapOdomPeriod(SecToNs(config.ipc.map_odom_period_s));
   if (localize) rt->publisher_thread_->HoldUntilLocalized();
+  if (rt->publisher_ && rt->publisher_->PublishesSweeps() && tight) {
+    rt->sweep_publisher_ = std::make_unique<SweepPublisher>(rt->publisher_.get(), frames.names.map);
+    rt->sweep_publisher_->StampWith(rt->stamp_clock_.get());
+    rt->sweep_publisher_->CorrectWith(&rt->publisher_thread_->correction());
+    rt->optimizer_->PublishSweepsTo(rt->sweep_publisher_.get());
+  }
   rt->OpenControl();
   return rt;
 }

@@ -82,14 +82,14 @@ TEST(Runtime, TracksASimulatedDriveAndPublishesOverDds) {
   EXPECT_GE(r.odometry + (kSanitized ? s.optimizer.skipped_behind : 0u), 70u);
   EXPECT_GE(r.published_health.size(), 5u);
   EXPECT_EQ(s.optimizer.lidar.bad_packets, 0u);
-  // The current sweep for viewers (best effort, every tracked sweep): in odom, every point of
-  // a RoboSense sweep (~16,000 of 28,800), placed around the robot's odom pose of its stamp.
+  // The current sweep for viewers (best effort, every tracked sweep): in map, every point of a
+  // RoboSense sweep (~16,000 of 28,800).
   EXPECT_TRUE(s.sweeps.enabled);
   EXPECT_GE(s.sweeps.published, 60u);
   EXPECT_EQ(s.sweeps.failures, 0u);
   ASSERT_GE(r.sweeps.size(), 10u) << "sweeps received over DDS (best effort, reader depth 1)";
   const ipc::PointCloud2& sweep = r.sweeps.back().msg;
-  EXPECT_EQ(sweep.frame_id, "odom");
+  EXPECT_EQ(sweep.frame_id, "map");
   EXPECT_GT(sweep.width, 5000u);
   ASSERT_TRUE(ipc::HasXyzLayout(sweep));
   double max_range_m = 0.0;

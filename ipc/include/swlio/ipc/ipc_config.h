@@ -41,9 +41,9 @@ struct IpcConfig {
   std::string odom_odometry_topic = "swlio/odometry/odom";
   std::string tf_topic = "tf";                ///< tf2's /tf: odom → base_link, map → odom
   std::string tf_static_topic = "tf_static";  ///< tf2's /tf_static: base_link → imu, lidar
-  /// The current sweep for viewers (rviz2, Foxglove): de-skewed and registered, in the odom
-  /// frame at the sweep's end (map via /tf), BEST_EFFORT (a viewer selects Best Effort, as for
-  /// any sensor stream). Empty: not published.
+  /// The current sweep for viewers (rviz2, Foxglove): de-skewed and registered, in the map
+  /// frame at the sweep's end, BEST_EFFORT (a viewer selects Best Effort, as for any sensor
+  /// stream). Empty: not published.
   std::string sweep_topic = "swlio/cloud_registered";
   /// Input: operators' pose hints (rviz2's "2D Pose Estimate" publishes /initialpose,
   /// geometry_msgs/PoseWithCovarianceStamped of base_link in the map frame): relocalize in a

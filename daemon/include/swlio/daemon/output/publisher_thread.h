@@ -36,6 +36,7 @@
 #include <functional>
 #include <vector>
 
+#include "swlio/daemon/output/correction_cell.h"
 #include "swlio/daemon/output/message_conversion.h"
 #include "swlio/daemon/output/stamp_clock.h"
 #include "swlio/daemon/pipeline/live_types.h"
@@ -91,6 +92,8 @@ class PublisherThread {
   /// Localization in a saved map: publish no pose or odometry until the first correction that
   /// jumps (the relocalization) has arrived. Call before Run.
   void HoldUntilLocalized() { holding_ = true; }
+  /// The correction this thread applies now (any thread may read it).
+  const CorrectionCell& correction() const { return correction_cell_; }
   /// Stamps through `stamps` (not owned; outlives Run), sampled by this thread. Call before Run.
   void StampWith(StampClock* stamps) { stamps_ = stamps; }
   /// map → odom goes out at least this often (daemon time) while poses flow, besides every
@@ -138,6 +141,9 @@ class PublisherThread {
   ipc::Path path_;  ///< the message, filled from keyframes_ when published
   bool path_changed_ = false;
   bool holding_ = false;
+  CorrectionCell correction_cell_;
+  Eigen::Isometry3d stored_T_map_odom_ = Eigen::Isometry3d::Identity();
+  bool stored_correction_ = false;
   StampClock* stamps_ = nullptr;
   ipc::TFMessage tf_;  ///< the /tf sample being built
   int64_t map_odom_period_ns_ = 100'000'000;

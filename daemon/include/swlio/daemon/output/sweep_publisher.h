@@ -2,11 +2,12 @@
 /// @file
 /// The current sweep for viewers (ipc.sweep_topic; issue 34): after each tracked sweep the
 /// optimizer thread hands over the estimator's de-skewed sweep (every point in the LiDAR frame
-/// at the sweep's end) and the pose it registered; this writes it as sensor_msgs/PointCloud2
-/// (x, y, z, intensity) in the odom frame, stamped at the sweep's end in the published stamps'
-/// clock. rviz2 or Foxglove with the fixed frame `map` place it through /tf's map → odom at
-/// that stamp, the same correction the map-frame pose of that instant carries. The message
-/// buffer is reused: no allocation once it has held the largest sweep.
+/// at the sweep's end) and the odometry pose it registered; this writes it as
+/// sensor_msgs/PointCloud2 (x, y, z, intensity) in the map frame, placed with the correction the
+/// publisher thread applies now (correction_cell.h), stamped at the sweep's end in the published
+/// stamps' clock. Until the publisher has a correction (localizing: the first relocalization)
+/// sweeps are held back and counted. The message buffer is reused: no allocation once it has
+/// held the largest sweep.
 
 #include <Eigen/Geometry>
 #include <atomic>
@@ -14,6 +15,7 @@
 #include <string>
 
 #include "swlio/core/types.h"
+#include "swlio/daemon/output/correction_cell.h"
 #include "swlio/daemon/output/stamp_clock.h"
 #include "swlio/ipc/messages.h"
 
@@ -27,6 +29,7 @@ struct SweepPublishCounters {
   bool enabled = false;
   uint64_t published = 0;
   uint64_t failures = 0;
+  uint64_t held = 0;     ///< not published: no map correction yet
   double last_ms = 0.0;  ///< conversion and write of the last sweep (thread time of the caller)
 };
 
@@ -36,6 +39,8 @@ class SweepPublisher {
   SweepPublisher(ipc::Publisher* publisher, std::string frame_id);
   /// The published stamps' clock (null: host time).
   void StampWith(const StampClock* stamps) { stamps_ = stamps; }
+  /// The correction into the map frame (null: the points stay in the frame given).
+  void CorrectWith(const CorrectionCell* correction) { correction_ = correction; }
   /// `deskewed` in the LiDAR frame at host time `t_host_ns`, where the LiDAR is at T_odom_lidar.
   bool Publish(const Scan& deskewed, const Eigen::Isometry3d& T_odom_lidar, int64_t t_host_ns);
   SweepPublishCounters counters() const;
@@ -43,8 +48,9 @@ class SweepPublisher {
  private:
   ipc::Publisher* publisher_;
   const StampClock* stamps_ = nullptr;
+  const CorrectionCell* correction_ = nullptr;
   ipc::PointCloud2 msg_;
-  std::atomic<uint64_t> published_{0}, failures_{0};
+  std::atomic<uint64_t> published_{0}, failures_{0}, held_{0};
   std::atomic<double> last_ms_{0.0};
 };
 
