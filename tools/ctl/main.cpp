@@ -90,9 +90,7 @@ int Send(const std::string& socket, const swlio::control::Request& request, doub
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Main(int argc, char** argv) {
   CLI::App app{"swlioctl: control swliod over its UNIX socket (docs/control.md)"};
   app.require_subcommand(1);
   std::string socket = "/run/swlio/swliod.sock";
@@ -139,4 +137,15 @@ int main(int argc, char** argv) {
     request.argument = numbers.str();
   }
   return Send(socket, request, timeout_s);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Main(argc, argv);
+  } catch (const std::exception& e) {  // std::bad_alloc, a filesystem error on the path
+    std::cerr << "swlioctl: " << e.what() << "\n";
+  }
+  return kExitIo;
 }

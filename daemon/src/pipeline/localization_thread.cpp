@@ -29,7 +29,8 @@ void LocalizationThread::Run(const std::atomic<bool>& stop, const Watchdog::Hand
     hints_.Drain([this](const PoseHint& h) { ApplyHint(h); });
     if (!q_.keyframes_in->WaitPop(&keyframe, 100'000)) continue;
     Handle(*keyframe);
-    newest_ = std::move(keyframe);
+    newest_ = keyframe;  // a copy: WaitPop assigns `keyframe` next
+    keyframe.reset();
   }
   hints_.FailQueued();  // a daemon that stops answers what is still queued
 }
@@ -102,7 +103,7 @@ void LocalizationThread::Handle(const estimator::KeyframeCloud& keyframe) {
   if (u.state != LocalizationState::kTracking || !u.accepted) return;
   const bool jump = !published_in_map_ || jump_next_;
   if (jump) {
-    localized_t_ns_.store(keyframe.t_ns, kRelaxed);
+    if (localized_t_ns_.load(kRelaxed) < 0) localized_t_ns_.store(keyframe.t_ns, kRelaxed);
     const Eigen::Vector3d p = (localizer_.T_map_odom() * keyframe.T_world_imu).translation();
     spdlog::info("localization: localized in the map at ({:.2f}, {:.2f}, {:.2f}) m", p.x(), p.y(),
                  p.z());

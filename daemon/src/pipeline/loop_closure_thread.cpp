@@ -25,7 +25,8 @@ void LoopClosureThread::Run(const std::atomic<bool>& stop, const Watchdog::Handl
     hints_.Drain([this](const PoseHint& h) { ApplyHint(h); });
     if (!q_.keyframes_in->WaitPop(&keyframe, 100'000)) continue;
     Handle(*keyframe);
-    newest_ = std::move(keyframe);
+    newest_ = keyframe;  // a copy: WaitPop assigns `keyframe` next
+    keyframe.reset();
   }
   hints_.FailQueued();
   // Stopping: the optimizer has stopped; what it queued last is not worth a solve now.
@@ -91,7 +92,7 @@ void LoopClosureThread::ApplyHint(const PoseHint& hint) {
     A.linear() = Eigen::AngleAxisd(h.yaw_rad - yaw_now, Eigen::Vector3d::UnitZ()).matrix();
     const Eigen::Vector3d moved = A.linear() * T_map_imu.translation();
     A.translation() << h.x_m - moved.x(), h.y_m - moved.y(), 0.0;
-    refused = !closure_.Reanchor(A);
+    refused = !closure_.Reanchor(A);  // false only with GNSS, refused above
     char buf[200];
     std::snprintf(buf, sizeof buf,
                   "map frame re-anchored: base_link at (%.2f, %.2f) yaw %.1f deg (moved %.2f m, "
@@ -99,7 +100,7 @@ void LoopClosureThread::ApplyHint(const PoseHint& hint) {
                   hint.x_m, hint.y_m, hint.yaw_rad * 180.0 / std::numbers::pi,
                   A.translation().norm(),
                   Eigen::AngleAxisd(A.linear()).angle() * 180.0 / std::numbers::pi);
-    text = buf;
+    text = refused ? std::string("refused: the map frame could not be moved") : std::string(buf);
   }
   {
     std::lock_guard<std::mutex> lock(hint_mutex_);
@@ -210,9 +211,10 @@ void LoopClosureThread::ServeSaves(const Watchdog::Handle& beat) {
     char message[160];
     std::snprintf(message, sizeof message, "saved %zu nodes in %.2f s", nodes,
                   static_cast<double>(MonotonicNowNs() - t0) * 1e-9);
-    command->Finish(
-        {control::ReplyStatus::kOk, message,
-         "map: " + path + "\nnodes: " + std::to_string(nodes) + "\ncloud: " + path + ".pcd\n"});
+    std::string body = "map: ";
+    body.append(path).append("\nnodes: ").append(std::to_string(nodes));
+    body.append("\ncloud: ").append(path).append(".pcd\n");
+    command->Finish({control::ReplyStatus::kOk, message, body});
   }
 }
 

@@ -12,13 +12,13 @@ OptimizerThread::OptimizerThread(const drivers::LidarConfig& lidar,
                                  const OptimizerQueues& queues,
                                  const TimeScale& time,
                                  int64_t max_sweep_lag_ns)
-    : q_(queues),
-      time_(time),
-      lidar_(lidar),
+    : time_(time),
+      shedding_(max_sweep_lag_ns),
+      q_(queues),
       runner_(setup,
               &ThreadCpuNowNs,
               [this](const Scan& scan, const estimator::WindowResult& r) { OnResult(scan, r); }),
-      shedding_(max_sweep_lag_ns) {}
+      lidar_(lidar) {}
 
 void OptimizerThread::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
   while (!stop.load(std::memory_order_relaxed)) {

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstring>
 #include <thread>
@@ -86,7 +87,13 @@ TEST(RuntimeControl, StatusSaveMapAndResetOnALiveDrive) {
   };
   ClientOutcome out;
   out.map_path = (dir / "live.map").string();
+  // The 40 s run from the simulator's start: a sanitized build first casts the whole drive,
+  // which on a loaded machine took longer than that (an ASan run asked 40 s into the precast).
+  std::atomic<bool> streaming{false};
+  drive.on_sim_start = [&](int64_t, double) { streaming = true; };
   std::thread client([&] {
+    for (int i = 0; i < 3000 && !streaming; ++i)  // ≤ 300 s
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
     out.tracking_status = StatusWhen(
         socket,
         [](const std::string& b) {

@@ -141,12 +141,11 @@ class PublisherThread {
   ipc::Path path_;  ///< the message, filled from keyframes_ when published
   bool path_changed_ = false;
   bool holding_ = false;
-  CorrectionCell correction_cell_;
-  Eigen::Isometry3d stored_T_map_odom_ = Eigen::Isometry3d::Identity();
-  bool stored_correction_ = false;
+  bool stored_correction_ = false;  ///< correction_cell_ holds stored_T_map_odom_
   StampClock* stamps_ = nullptr;
   ipc::TFMessage tf_;  ///< the /tf sample being built
   int64_t map_odom_period_ns_ = 100'000'000;
+  Eigen::Isometry3d stored_T_map_odom_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d sent_T_map_odom_ = Eigen::Isometry3d::Identity();
   int64_t sent_map_odom_t_ns_ = 0;  ///< daemon time of the newest map → odom sent
   bool sent_map_odom_ = false;
@@ -154,6 +153,7 @@ class PublisherThread {
   LatencyHistogram pose_latency_;
   std::atomic<uint64_t> poses_{0}, odometry_{0}, health_count_{0}, paths_{0}, failures_{0},
       non_finite_{0}, held_{0}, odom_odometry_{0}, transforms_{0}, static_resends_{0};
+  CorrectionCell correction_cell_;
 };
 
 }  // namespace swlio::daemon

@@ -81,22 +81,22 @@ class LocalizationThread {
   bool Publish(const estimator::KeyframeCloud& keyframe, bool jump);
   void ApplyHint(const PoseHint& hint);
 
+  HintInbox hints_{"localization"};
+  Eigen::Isometry3d T_base_imu_ = Eigen::Isometry3d::Identity();
   estimator::MapLocalizer localizer_;
   LoopClosureQueues q_;
   MapPublisher* map_ = nullptr;
   uint64_t map_nodes_ = 0;
-  bool published_in_map_ = false;  ///< the jump has been sent
-  bool jump_next_ = false;         ///< a hint was accepted: the next correction jumps
   KeyframePtr newest_;             ///< the keyframe hints are applied to
-  Eigen::Isometry3d T_base_imu_ = Eigen::Isometry3d::Identity();
-  HintInbox hints_{"localization"};
   mutable std::mutex hint_mutex_;  ///< guards the last_hint* fields of hint_
   LocalizationCounters hint_;      ///< only the hint fields are used
-  std::atomic<int> state_{0};
   std::atomic<uint64_t> keyframes_{0}, hypotheses_{0}, dropped_{0}, tracked_{0}, failures_{0},
       lost_{0};
   std::atomic<int64_t> localized_t_ns_{-1};
   std::atomic<double> last_ms_{0.0}, max_ms_{0.0};
+  std::atomic<int> state_{0};
+  bool published_in_map_ = false;  ///< the jump has been sent
+  bool jump_next_ = false;         ///< a hint was accepted: the next correction jumps
 };
 
 }  // namespace swlio::daemon
