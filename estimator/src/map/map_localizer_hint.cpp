@@ -45,7 +45,10 @@ const char* ToString(HintVerdict verdict) {
 
 HintOutcome MapLocalizer::ApplyHint(const KeyframeCloud& keyframe, const LocalizationHint& hint) {
   ++stats_.hints;
-  HintOutcome out = FitNearHint(keyframe, hint);
+  // The keyframe's best matching places, once: starts near the hint and the global search.
+  const auto matches = DistinctPlaces(
+      descriptors_.Query(KeyframeDescriptor(descriptor_config_, keyframe), map_.nodes.size(), {}));
+  HintOutcome out = FitNearHint(keyframe, hint, matches);
   if (out.verdict == HintVerdict::kNoMap || out.verdict == HintVerdict::kNoFit) {
     ++stats_.hints_refused;
     return out;
@@ -53,8 +56,6 @@ HintOutcome MapLocalizer::ApplyHint(const KeyframeCloud& keyframe, const Localiz
   // The global search: a place outside the hint's region that fits clearly better means the
   // hint is wrong; one about as good (a look-alike bay) leaves it to the next keyframes.
   const double region_m = kHintSigmas * std::max(hint.sigma_xy_m, kMinSearchM);
-  const ScanContext query = KeyframeDescriptor(descriptor_config_, keyframe);
-  const auto matches = DistinctPlaces(descriptors_.Query(query, map_.nodes.size(), {}));
   const Eigen::Isometry3d T_Gq_imu = T_gravity_imu(keyframe.T_world_imu, keyframe.T_imu_lidar);
   bool look_alike = false;
   for (const auto& [node, match] : matches) {
@@ -93,7 +94,10 @@ HintOutcome MapLocalizer::ApplyHint(const KeyframeCloud& keyframe, const Localiz
   return out;
 }
 
-HintOutcome MapLocalizer::FitNearHint(const KeyframeCloud& keyframe, const LocalizationHint& hint) {
+HintOutcome MapLocalizer::FitNearHint(
+    const KeyframeCloud& keyframe,
+    const LocalizationHint& hint,
+    const std::vector<std::pair<size_t, ScanContextMatch>>& matches) {
   HintOutcome out;
   const double search_m = kHintSigmas * std::max(hint.sigma_xy_m, kMinSearchM);
   const double search_rad = kHintSigmas * std::max(hint.sigma_yaw_rad, kMinSearchRad);
@@ -123,10 +127,8 @@ HintOutcome MapLocalizer::FitNearHint(const KeyframeCloud& keyframe, const Local
     Eigen::Isometry3d T_map_imu;
   };
   std::vector<Start> starts{{nearest, T_map_imu_hint}};
-  const ScanContext query = KeyframeDescriptor(descriptor_config_, keyframe);
   const Eigen::Isometry3d T_Gq_imu = T_gravity_imu(keyframe.T_world_imu, keyframe.T_imu_lidar);
-  for (const auto& [node, match] :
-       DistinctPlaces(descriptors_.Query(query, map_.nodes.size(), {}))) {
+  for (const auto& [node, match] : matches) {
     const SavedMapNode& n = map_.nodes[node];
     if ((n.T_map_imu.translation().head<2>() - xy).norm() > search_m + config_.distinct_m) continue;
     const Eigen::Isometry3d T_node_lidar = T_candidate_lidar_from_descriptor(

@@ -131,7 +131,10 @@ class MapLocalizer {
       const std::vector<std::pair<size_t, ScanContextMatch>>& matches) const;
   /// The best accepted registration of `keyframe` within the hint's 3σ: from the hinted pose,
   /// then from descriptor matches of nodes near it.
-  HintOutcome FitNearHint(const KeyframeCloud& keyframe, const LocalizationHint& hint);
+  /// `matches`: the keyframe's DistinctPlaces.
+  HintOutcome FitNearHint(const KeyframeCloud& keyframe,
+                          const LocalizationHint& hint,
+                          const std::vector<std::pair<size_t, ScanContextMatch>>& matches);
   /// Registers `keyframe` against node `node`'s submap from the map pose `T_map_imu_guess`,
   /// allowing a correction of `max_m` / `max_rad`.
   LoopCheck RegisterFrom(const KeyframeCloud& keyframe,
