@@ -25,6 +25,9 @@ set(_swlio_release_only
   "\\.RuntimeFaults\\.(MissingDifop|LidarThatNever|ImuThatNever)"
   # The Fast DDS consumer's TF check: a whole minute of the short drive with loop closure.
   "\\.RuntimeFastDdsTf\\."
+  # The black box on a 42 s live drive with three faults, its incidents replayed; the ring, the
+  # incidents and a full disk run under the sanitizers in RecorderRing.* and IncidentStore.*.
+  "\\.RuntimeBlackBox\\."
   # Two live drives (a map, then pose hints in it); the localization thread's hints run under
   # the sanitizers in LocalizationThread.*.
   "\\.RuntimeInitialPose\\."
@@ -56,7 +59,8 @@ set(_swlio_no_tsan
   "\\.ClockMapping\\."
   "\\.RecordingReaderStreams\\."
   # Live drives with injected faults run the same threads as Runtime.*, which stays.
-  "\\.RuntimeFaults\\.")
+  "\\.RuntimeFaults\\."
+  "\\.RuntimeBlackBox\\.")
 
 foreach(_swlio_list IN ITEMS core drivers estimator ipc daemon daemon_live tools)
   foreach(_test IN LISTS swlio_${_swlio_list}_TESTS)

@@ -5,11 +5,12 @@
 namespace swlio::control {
 namespace {
 
-constexpr std::array<std::pair<std::string_view, Command>, 4> kCommands = {
+constexpr std::array<std::pair<std::string_view, Command>, 5> kCommands = {
     {{"status", Command::kStatus},
      {"save-map", Command::kSaveMap},
      {"reset", Command::kReset},
-     {"relocalize", Command::kRelocalize}}};
+     {"relocalize", Command::kRelocalize},
+     {"mark", Command::kMark}}};
 
 constexpr std::array<std::pair<std::string_view, ReplyStatus>, 5> kErrorCodes = {
     {{"bad-request", ReplyStatus::kBadRequest},
@@ -45,6 +46,7 @@ bool CheckArgument(Command command, std::string_view argument, std::string* erro
     // The numbers are the daemon's to read (pose_hint.h); here only that there are some.
     return !argument.empty() || Fail(error, "relocalize needs x y yaw_deg [sigma_m]");
   }
+  if (command == Command::kMark) return true;  // any note, or none
   if (command != Command::kSaveMap) {
     return argument.empty() || Fail(error, std::string(ToString(command)) + " takes no argument");
   }

@@ -23,9 +23,11 @@ std::string Refusal(std::string_view line) {
 }
 
 TEST(ControlProtocol, RequestsRoundTrip) {
-  for (const Request& r : {Request{Command::kStatus, ""}, Request{Command::kReset, ""},
-                           Request{Command::kSaveMap, "/var/lib/swlio/site A.map"},
-                           Request{Command::kRelocalize, "-12.5 3 90 0.8"}}) {
+  for (const Request& r :
+       {Request{Command::kStatus, ""}, Request{Command::kReset, ""},
+        Request{Command::kSaveMap, "/var/lib/swlio/site A.map"},
+        Request{Command::kRelocalize, "-12.5 3 90 0.8"}, Request{Command::kMark, ""},
+        Request{Command::kMark, "robot stopped at bay 3, unsure why"}}) {
     std::string line = FormatRequest(r);
     ASSERT_EQ(line.back(), '\n');
     line.pop_back();

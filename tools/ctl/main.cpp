@@ -120,6 +120,11 @@ int Main(int argc, char** argv) {
       "(degrees, counter-clockwise from the map's x axis), within SIGMA (m, default 0.5)");
   relocalize->add_option("X Y YAW [SIGMA]", pose, "numbers")->required()->expected(3, 4);
   relocalize->callback([&] { request.command = Command::kRelocalize; });
+  std::vector<std::string> note;
+  CLI::App* mark = app.add_subcommand(
+      "mark", "keep the last minutes as an incident of the black box (record.ring), with a note");
+  mark->add_option("NOTE", note, "what the operator saw (words)");
+  mark->callback([&] { request.command = Command::kMark; });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -135,6 +140,10 @@ int Main(int argc, char** argv) {
     numbers.precision(17);
     for (size_t i = 0; i < pose.size(); ++i) numbers << (i > 0 ? " " : "") << pose[i];
     request.argument = numbers.str();
+  }
+  if (request.command == Command::kMark) {
+    for (const std::string& word : note)
+      request.argument += (request.argument.empty() ? "" : " ") + word;
   }
   return Send(socket, request, timeout_s);
 }

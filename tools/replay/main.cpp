@@ -7,7 +7,9 @@
 // Events are processed in recorded order and none is dropped. By default they are paced at
 // the recorded speed (× --speed), so subscribers see them as they came; --deterministic
 // processes as fast as possible and guarantees byte-identical output on every run (no clock
-// is read: stage timings are not taken).
+// is read: stage timings are not taken). A daemon recording or black-box incident is replayed
+// with the configuration it carries (config.yaml) unless --config says otherwise, and a
+// recording made by another version is named as such.
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -23,6 +25,8 @@
 #include "swlio/daemon/output/tum_output.h"
 #include "swlio/daemon/pipeline/estimator_runner.h"
 #include "swlio/daemon/recording/input_open.h"
+#include "swlio/daemon/recording/recording_provenance.h"
+#include "swlio/daemon/runtime/version.h"
 #include "swlio/daemon/runtime/watchdog.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
@@ -70,7 +74,18 @@ class DdsOut {
   swlio::ipc::Path path_;
 };
 
-int Run(const Options& opt) {
+int Run(Options opt) {
+  // A daemon recording or incident carries its configuration: replay what the daemon ran.
+  if (opt.config.empty()) {
+    if (auto recorded = swlio::daemon::RecordedConfigFile(opt.dir)) {
+      opt.config = recorded->string();
+      std::cerr << "swlio-replay: the recording's configuration: " << opt.config << "\n";
+    }
+  }
+  if (const std::string note = swlio::daemon::VersionNote(opt.dir, swlio::daemon::SwlioVersion());
+      !note.empty()) {
+    std::cerr << "swlio-replay: " << note << "\n";
+  }
   swlio::daemon::DaemonConfig config;
   if (!opt.config.empty()) {
     const auto loaded = swlio::daemon::LoadConfigFile(opt.config);
@@ -146,7 +161,9 @@ int Main(int argc, char** argv) {
       ->check(CLI::ExistingPath);
   swlio::tools::AddBagOptions(app, &opt.bag);
   app.add_option("--out", opt.out, "trajectory (TUM, IMU frame, sweep ends)")->required();
-  app.add_option("--config", opt.config, "swlio YAML (estimator options; ports from the manifest)");
+  app.add_option("--config", opt.config,
+                 "swlio YAML (estimator options; ports from the manifest); default: the "
+                 "recording's config.yaml (swliod recordings and incidents carry it)");
   app.add_option("--dds-config", opt.dds_config,
                  "publish odometry and path over DDS with this loopback-only Cyclone XML");
   app.add_option("--domain", opt.domain, "DDS domain id")->capture_default_str();

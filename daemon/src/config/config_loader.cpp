@@ -597,6 +597,19 @@ void Bind(Section s, LoggingConfig& c) {
   s.Finish();
 }
 
+void Bind(Section s, RecordConfig& c) {
+  s.Get("ring", c.ring);
+  s.Get("directory", c.directory);
+  s.Get("ring_minutes", c.ring_minutes);
+  s.Get("segment_s", c.segment_s);
+  s.Get("max_disk_mb", c.max_disk_mb);
+  s.Get("incident_before_s", c.incident_before_s);
+  s.Get("incident_after_s", c.incident_after_s);
+  s.Get("incidents_max_count", c.incidents_max_count);
+  s.Get("incidents_max_mb", c.incidents_max_mb);
+  s.Finish();
+}
+
 void Bind(Section s, RealtimeConfig& c) {
   s.Get("enabled", c.enabled);
   s.Get("lock_memory", c.lock_memory);
@@ -639,6 +652,7 @@ void BindRoot(Section root, DaemonConfig& c, Context& ctx) {
   Bind(root.Child("map"), c.map);
   Bind(root.Child("ipc"), c.ipc);
   Bind(root.Child("logging"), c.logging);
+  Bind(root.Child("record"), c.record);
   Bind(root.Child("realtime"), c.realtime);
   Bind(root.Child("control"), c.control);
   root.Finish();
@@ -652,6 +666,7 @@ void ResolvePaths(DaemonConfig& c, const std::filesystem::path& base_dir) {
     }
   };
   resolve(c.logging.directory);
+  resolve(c.record.directory);
   resolve(c.ipc.dds_config_file);
   resolve(c.map.save_path);
   resolve(c.map.load_path);

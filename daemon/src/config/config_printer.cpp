@@ -433,6 +433,20 @@ void Emit(ConfigWriter& w, const LoggingConfig& c) {
   w.EndMap();
 }
 
+void Emit(ConfigWriter& w, const RecordConfig& c) {
+  w.BeginMap("record");
+  w.Put("ring", c.ring);
+  w.Put("directory", c.directory);
+  w.Put("ring_minutes", c.ring_minutes);
+  w.Put("segment_s", c.segment_s);
+  w.Put("max_disk_mb", c.max_disk_mb);
+  w.Put("incident_before_s", c.incident_before_s);
+  w.Put("incident_after_s", c.incident_after_s);
+  w.Put("incidents_max_count", c.incidents_max_count);
+  w.Put("incidents_max_mb", c.incidents_max_mb);
+  w.EndMap();
+}
+
 void Emit(ConfigWriter& w, const RealtimeConfig& c) {
   w.BeginMap("realtime");
   w.Put("enabled", c.enabled);
@@ -477,6 +491,7 @@ std::string PrintConfig(const DaemonConfig& config) {
   Emit(w, config.map);
   Emit(w, config.ipc);
   Emit(w, config.logging);
+  Emit(w, config.record);
   Emit(w, config.realtime);
   Emit(w, config.control);
   w.EndMap();

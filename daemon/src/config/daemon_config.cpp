@@ -52,6 +52,22 @@ ConfigIssues LoggingConfig::Validate() const {
   return issues;
 }
 
+ConfigIssues RecordConfig::Validate() const {
+  ConfigIssues issues;
+  CheckThat(issues, !ring || !directory.empty(), "directory", "must be set when ring is on");
+  CheckInRange(issues, "ring_minutes", ring_minutes, 0.5, 1440.0);
+  CheckInRange(issues, "segment_s", segment_s, 1.0, 600.0);
+  CheckThat(issues, segment_s <= ring_minutes * 60.0, "segment_s", "must not exceed ring_minutes");
+  CheckInRange<int64_t>(issues, "max_disk_mb", max_disk_mb, 8, 1'000'000);
+  CheckInRange(issues, "incident_before_s", incident_before_s, 0.0, 86400.0);
+  CheckThat(issues, incident_before_s <= ring_minutes * 60.0, "incident_before_s",
+            "must not exceed ring_minutes (the ring holds no more)");
+  CheckInRange(issues, "incident_after_s", incident_after_s, 0.0, 3600.0);
+  CheckInRange<int64_t>(issues, "incidents_max_count", incidents_max_count, 0, 10'000);
+  CheckInRange<int64_t>(issues, "incidents_max_mb", incidents_max_mb, 0, 10'000'000);
+  return issues;
+}
+
 std::vector<ThreadSchedConfig> DefaultThreadSchedule() {
   return {{"lidar_rx", 80, -1, -10},  {"imu_rx", 80, -1, -10}, {"propagator", 70, -1, -10},
           {"publisher", 60, -1, -10}, {"optimizer", 0, -1, 0}, {"loop_closure", 0, -1, 5}};
@@ -124,6 +140,7 @@ ConfigIssues DaemonConfig::Validate() const {
   AppendWithPrefix(issues, "map", map.Validate());
   AppendWithPrefix(issues, "ipc", ipc.Validate());
   AppendWithPrefix(issues, "logging", logging.Validate());
+  AppendWithPrefix(issues, "record", record.Validate());
   AppendWithPrefix(issues, "realtime", realtime.Validate());
   AppendWithPrefix(issues, "control", control.Validate());
   return issues;

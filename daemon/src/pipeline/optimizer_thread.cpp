@@ -165,6 +165,12 @@ void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& 
   e.reset = result.diverged != estimator::DivergenceReason::kNone;
   q_.states_out->Push(e);
   q_.odometry_out->Push(e);
+  if (record_ != nullptr && (r.status == estimator::OdometryStatus::kTracking ||
+                             r.status == estimator::OdometryStatus::kMatchFailed)) {
+    State host = r.state;  // as swlio-replay --out writes it
+    host.t_ns = time_.ToHost(host.t_ns);
+    record_->Push(host);
+  }
   if (q_.keyframes_out != nullptr && result.keyframe != nullptr) {
     q_.keyframes_out->Push(KeyframePtr(result.keyframe));
   }

@@ -1,60 +1,49 @@
 #include "swlio/daemon/recording/recorder.h"
 
-#include <Eigen/Geometry>
+#include <spdlog/spdlog.h>
+
 #include <cstdlib>
-#include <initializer_list>
+#include <fstream>
 #include <string>
 
-#include "swlio/core/exact_number.h"
-#include "swlio/drivers/candump_log.h"
-#include "swlio/drivers/recording_format.h"
+#include "swlio/daemon/config/config_printer.h"
+#include "swlio/daemon/runtime/version.h"
 
 namespace swlio::daemon {
 namespace {
 
-std::string List(std::initializer_list<double> values) {
-  std::string s = "[";
-  for (const double v : values) s += (s.size() > 1 ? ", " : "") + ExactNumber(v);
-  return s + "]";
-}
+int64_t SecToNs(double s) { return static_cast<int64_t>(s * 1e9); }
 
-/// Every number exactly (shortest round trip): swlio-run, swlio-replay and scripts read them.
-void WriteManifest(const std::filesystem::path& path,
-                   const DaemonConfig& config,
-                   const Eigen::Isometry3d& T_imu_lidar,
-                   const TimeScale& time,
-                   const ClockOffsetSample& offset) {
-  const Eigen::Vector3d t = T_imu_lidar.translation();
-  const Eigen::Quaterniond q(T_imu_lidar.linear());
-  std::ofstream y(path);
-  y << "# swliod recording: raw sensor bytes with host receive times (CLOCK_MONOTONIC ns)\n"
-    << "# format_version 2: extrinsic_T_imu_lidar in the LiDAR vendor driver's frame (x forward,\n"
-    << "# y left, z up); version 1 (before swlio issue 32) used the RoboSense manual's frame.\n"
-    << "format_version: " << drivers::kRecordingFormatVersion << "\nmode: daemon\n"
-    << "# Receive times are on the daemon's time base (time_scale.h): host = origin + (t −\n"
-    << "# origin) / scale. Both are 1 / any on a robot (times are host times).\n"
-    << "time_scale: " << ExactNumber(time.scale) << "\ntime_origin_ns: " << time.origin_ns << "\n"
-    << "# The published stamps' clock (ipc.stamp_clock), and CLOCK_REALTIME − CLOCK_MONOTONIC at\n"
-    << "# the start; clock_offsets.csv has it at every change (host times, before time_scale).\n"
-    << "stamp_clock: " << config.ipc.stamp_clock
-    << "\nrealtime_minus_monotonic_ns: " << offset.offset_ns << "\n"
-    << "extrinsic_T_imu_lidar:  # LiDAR points (x forward, y left, z up) into the IMU frame\n"
-    << "  translation_m: " << List({t.x(), t.y(), t.z()}) << "\n"
-    << "  quaternion_xyzw: " << List({q.x(), q.y(), q.z(), q.w()}) << "\n"
-    << "lidar:\n  model: " << config.lidar.model << "\n  msop_port: " << config.lidar.msop_port
-    << "\n  difop_port: " << config.lidar.difop_port
-    << "\n  lens_offset_m: " << ExactNumber(config.lidar.EffectiveLensOffsetM())
-    << "\nimu:\n  device: " << config.imu.device << "\n  baud: " << config.imu.baud
-    << "\nfiles: {lidar: lidar.pcap, imu: imu.xbus, imu_rx: imu.rx.csv, clock_offsets: "
-       "clock_offsets.csv}\n";
+RecordingSetup SetupFor(const DaemonConfig& config,
+                        const Eigen::Isometry3d& T_imu_lidar,
+                        const TimeScale& time) {
+  RecordingSetup s;
+  s.config = &config;
+  s.T_imu_lidar = T_imu_lidar;
+  s.time = time;
+  s.config_text = PrintConfig(config);
+  s.version = SwlioVersion();
+  s.msop_port = static_cast<uint16_t>(config.lidar.msop_port);
+  s.difop_port = static_cast<uint16_t>(config.lidar.difop_port);
+  return s;
 }
 
 }  // namespace
 
-Recorder::Recorder(const DaemonConfig& config, const TimeScale& time)
-    : time_(time), msop_port_(config.lidar.msop_port), difop_port_(config.lidar.difop_port) {}
+Recorder::Recorder(const RecordingSetup& setup, const StampClock* stamps) : setup_(setup) {
+  if (stamps != nullptr) clocks_ = stamps->clocks();
+}
 
 Recorder::~Recorder() = default;
+
+bool Recorder::OpenFolder(const std::filesystem::path& dir, std::string* error) {
+  const ClockOffsetSample start = SampleClockOffset(clocks_);
+  files_ = RecordingFiles::Open(dir, setup_, start, error);
+  if (!files_) return false;
+  last_offset_row_ns_ = start.offset_ns;
+  segment_start_ns_ = setup_.time.ToDaemon(MonotonicNowNs());
+  return true;
+}
 
 std::unique_ptr<Recorder> Recorder::Create(const std::filesystem::path& dir,
                                            const DaemonConfig& config,
@@ -62,68 +51,82 @@ std::unique_ptr<Recorder> Recorder::Create(const std::filesystem::path& dir,
                                            const TimeScale& time,
                                            std::string* error,
                                            const StampClock* stamps) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) {
-    *error = "cannot create " + dir.string() + ": " + ec.message();
-    return nullptr;
-  }
-  std::unique_ptr<Recorder> r(new Recorder(config, time));
-  r->pcap_ = drivers::PcapWriter::Create((dir / "lidar.pcap").string(), {}, error);
-  if (!r->pcap_) return nullptr;
-  r->xbus_.open(dir / "imu.xbus", std::ios::binary);
-  r->rx_csv_.open(dir / "imu.rx.csv");
-  if (!r->xbus_ || !r->rx_csv_) {
-    *error = "cannot write imu.xbus / imu.rx.csv in " + dir.string();
-    return nullptr;
-  }
-  r->rx_csv_ << "byte_offset,bytes,t_rx_ns\n";
-  r->offsets_csv_.open(dir / "clock_offsets.csv");
-  if (!r->offsets_csv_) {
-    *error = "cannot write clock_offsets.csv in " + dir.string();
-    return nullptr;
-  }
-  r->offsets_csv_ << "t_monotonic_ns,realtime_minus_monotonic_ns\n";
-  if (stamps != nullptr) r->clocks_ = stamps->clocks();
-  if (config.can.enabled) {
-    r->can_interface_ = config.can.interface;
-    r->can_log_.open(dir / "can.log");
-    if (!r->can_log_) {
-      *error = "cannot write can.log in " + dir.string();
-      return nullptr;
-    }
-  }
-  const ClockOffsetSample start = SampleClockOffset(r->clocks_);
-  WriteManifest(dir / "manifest.yaml", config, T_imu_lidar, time, start);
-  r->WriteClockOffset(start);
+  // The setup points at the configuration: keep a copy that lives as long as the recorder.
+  auto owned = std::make_shared<DaemonConfig>(config);
+  std::unique_ptr<Recorder> r(new Recorder(SetupFor(*owned, T_imu_lidar, time), stamps));
+  r->owned_config_ = std::move(owned);
+  if (!r->OpenFolder(dir, error)) return nullptr;
   return r;
 }
 
+std::unique_ptr<Recorder> Recorder::CreateRing(const RecordingSetup& setup,
+                                               const std::string& version,
+                                               std::string* error,
+                                               const StampClock* stamps) {
+  const RecordConfig& c = setup.config->record;
+  std::unique_ptr<Recorder> r(new Recorder(setup, stamps));
+  r->ring_dir_ = std::filesystem::path(c.directory) / "ring";
+  std::error_code ec;
+  std::filesystem::create_directories(r->ring_dir_, ec);
+  if (ec) {
+    *error = "black box: cannot create " + r->ring_dir_.string() + ": " + ec.message();
+    return nullptr;
+  }
+  r->ring_ = std::make_unique<RingSegments>(r->ring_dir_);
+  r->store_ = std::make_unique<IncidentStore>(std::filesystem::path(c.directory) / "incidents",
+                                              r->ring_.get(), c, version);
+  const std::vector<std::filesystem::path> leftovers = r->ring_->Leftovers();
+  const std::filesystem::path mark = r->ring_dir_ / kCleanStopMark;
+  if (!leftovers.empty() && !std::filesystem::exists(mark, ec)) {
+    spdlog::warn("black box: the previous run did not stop cleanly; keeping its last {} segments",
+                 leftovers.size());
+    r->store_->KeepLeftovers(leftovers, SampleClockOffset(r->clocks_).offset_ns + MonotonicNowNs());
+  }
+  const std::filesystem::path first = r->ring_->NextDir();  // numbers go on after leftovers
+  for (const std::filesystem::path& p : leftovers) std::filesystem::remove_all(p, ec);
+  std::filesystem::remove(mark, ec);
+  if (!r->OpenFolder(first, error)) {
+    *error = "black box: " + *error;
+    return nullptr;
+  }
+  return r;
+}
+
+void Recorder::AddHealthRow(std::string row) {
+  std::lock_guard<std::mutex> lock(side_mutex_);
+  if (health_rows_.size() < 600) health_rows_.push_back(std::move(row));
+}
+
+void Recorder::AddEvent(IncidentEvent event) {
+  if (!store_) return;
+  std::lock_guard<std::mutex> lock(side_mutex_);
+  events_.push_back(std::move(event));
+}
+
 void Recorder::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) {
-  int64_t next_flush_ns = MonotonicNowNs() + 1'000'000'000;
+  int64_t next_housekeeping_ns = MonotonicNowNs() + 1'000'000'000;
   while (!stop.load(std::memory_order_relaxed)) {
     beat.Beat();
     LidarPacket p;
     if (!Drain() && lidar_.WaitPop(&p, 50'000)) WritePacket(p);  // sleep until data arrives
     const int64_t now = MonotonicNowNs();
     RecordClockOffset(now);
-    if (now >= next_flush_ns) {
-      Flush();
-      next_flush_ns = now + 1'000'000'000;
+    if (now >= next_housekeeping_ns) {
+      Housekeep(now);
+      next_housekeeping_ns = now + 1'000'000'000;
     }
   }
   while (Drain()) {
   }
   next_offset_check_ns_ = 0;  // the offset as the recording ends
   RecordClockOffset(MonotonicNowNs());
-  Flush();
+  Finish();
 }
 
 void Recorder::WritePacket(const LidarPacket& p) {
-  const uint16_t port = p.difop ? difop_port_ : msop_port_;
-  const bool ok =
-      pcap_->Write(time_.ToDaemon(p.t_rx_ns), port, port, std::span(p.bytes).first(p.size));
-  (ok ? lidar_packets_ : write_errors_).fetch_add(1, std::memory_order_relaxed);
+  if (!files_) return discarded_.fetch_add(1, std::memory_order_relaxed), void();
+  files_->Packet(setup_.time.ToDaemon(p.t_rx_ns), p.difop, std::span(p.bytes).first(p.size));
+  lidar_packets_.fetch_add(1, std::memory_order_relaxed);
 }
 
 bool Recorder::Drain() {
@@ -135,46 +138,143 @@ bool Recorder::Drain() {
   }
   drivers::CanRxFrame f;
   while (can_.Pop(&f)) {
-    const bool ok = drivers::WriteCandumpLine(
-        can_log_, drivers::MakeCandumpRecord(time_.ToDaemon(f.t_ns), can_interface_, f.frame));
-    if (!ok) write_errors_.fetch_add(1, std::memory_order_relaxed);
+    if (files_) files_->Can(setup_.time.ToDaemon(f.t_ns), f);
     any = true;
   }
   SerialChunk c;
   while (serial_.Pop(&c)) {
-    xbus_.write(reinterpret_cast<const char*>(c.bytes.data()), c.size);
-    rx_csv_ << offset_ << ',' << c.size << ',' << time_.ToDaemon(c.t_rx_ns) << '\n';
-    offset_ += c.size;
+    any = true;
+    if (!files_) {
+      discarded_.fetch_add(1, std::memory_order_relaxed);
+      continue;
+    }
+    files_->Serial(setup_.time.ToDaemon(c.t_rx_ns), std::span(c.bytes).first(c.size));
     serial_bytes_.fetch_add(c.size, std::memory_order_relaxed);
+  }
+  State s;
+  while (odometry_.Pop(&s)) {
+    if (files_) files_->Odometry(s);
     any = true;
   }
   return any;
 }
 
 void Recorder::RecordClockOffset(int64_t now_ns) {
-  if (now_ns < next_offset_check_ns_) return;
+  if (now_ns < next_offset_check_ns_ || !files_) return;
   next_offset_check_ns_ = now_ns + 10'000'000;
   const ClockOffsetSample s = SampleClockOffset(clocks_);
-  if (std::llabs(s.offset_ns - last_offset_row_ns_) > kClockOffsetRowNs) WriteClockOffset(s);
+  if (std::llabs(s.offset_ns - last_offset_row_ns_) > kClockOffsetRowNs) {
+    files_->ClockOffset(s);
+    last_offset_row_ns_ = s.offset_ns;
+  }
 }
 
-void Recorder::WriteClockOffset(const ClockOffsetSample& s) {
-  offsets_csv_ << s.t_monotonic_ns << ',' << s.offset_ns << '\n';
-  last_offset_row_ns_ = s.offset_ns;
+void Recorder::TakeSideInputs() {
+  std::vector<std::string> rows;
+  std::vector<IncidentEvent> events;
+  {
+    std::lock_guard<std::mutex> lock(side_mutex_);
+    rows.swap(health_rows_);
+    events.swap(events_);
+  }
+  std::vector<std::string> lines;
+  if (log_tap_) lines = log_tap_->Take();
+  if (files_) {
+    for (const std::string& r : rows) files_->HealthRow(r);
+    for (const std::string& l : lines) files_->LogLine(l);
+  }
+  for (const IncidentEvent& e : events) store_->OnEvent(e);
+  if (!events.empty() && !files_) store_->CloseAll();  // no segment will come any more
 }
 
-void Recorder::Flush() {
-  bool ok = pcap_->Flush() && xbus_.flush().good() && rx_csv_.flush().good() &&
-            offsets_csv_.flush().good();
-  if (can_log_.is_open()) ok = can_log_.flush().good() && ok;
-  if (!ok) write_errors_.fetch_add(1, std::memory_order_relaxed);
+void Recorder::Housekeep(int64_t now_ns) {
+  TakeSideInputs();
+  if (files_) files_->Flush();
+  if (files_ && files_->failed()) StopOnFailure();
+  if (!ring_) return;
+  const int64_t t_ns = setup_.time.ToDaemon(now_ns);
+  const RecordConfig& c = setup_.config->record;
+  const uint64_t max_bytes = static_cast<uint64_t>(c.max_disk_mb) * 1'000'000;
+  if (files_ &&
+      (t_ns - segment_start_ns_ >= SecToNs(c.segment_s) || files_->bytes() >= max_bytes / 4)) {
+    Rotate(t_ns);
+  }
+  const uint64_t open_bytes = files_ ? files_->bytes() : 0;
+  ring_->Trim(t_ns, {SecToNs(c.ring_minutes * 60.0), max_bytes}, open_bytes, store_->KeepFromNs());
+  ring_bytes_.store(ring_->bytes() + open_bytes, std::memory_order_relaxed);
+}
+
+void Recorder::CloseSegment(int64_t t_ns) {
+  const bool ok = files_->Close();
+  ring_->Add({files_->dir(), segment_start_ns_, t_ns, DirectoryBytes(files_->dir())});
+  if (!ok) {
+    StopOnFailure();
+    return;
+  }
+  files_.reset();
+  store_->OnSegmentClosed(t_ns);
+}
+
+void Recorder::Rotate(int64_t t_ns) {
+  CloseSegment(t_ns);
+  if (stopped_.load()) return;
+  std::string error;
+  if (!OpenFolder(ring_->NextDir(), &error)) {
+    std::lock_guard<std::mutex> lock(side_mutex_);
+    stop_error_ = error;
+    stopped_.store(true);
+    spdlog::error("black box: stopped: {}", error);
+    store_->CloseAll();
+  }
+}
+
+void Recorder::StopOnFailure() {
+  {
+    std::lock_guard<std::mutex> lock(side_mutex_);
+    stop_error_ = files_->error();
+  }
+  stopped_.store(true);
+  spdlog::error("{}: stopped, nothing more is recorded: {}", ring_ ? "black box" : "recording",
+                files_->error());
+  files_->Close();
+  files_.reset();
+  if (store_) store_->CloseAll();
+}
+
+void Recorder::Finish() {
+  TakeSideInputs();
+  if (!files_) return;
+  const int64_t t_ns = setup_.time.ToDaemon(MonotonicNowNs());
+  if (!ring_) {
+    if (!files_->Close()) StopOnFailure();
+    return;
+  }
+  CloseSegment(t_ns);
+  store_->CloseAll();
+  std::ofstream(ring_dir_ / kCleanStopMark) << "swliod stopped cleanly\n";
 }
 
 RecorderCounters Recorder::counters() const {
   RecorderCounters c;
   c.lidar_packets = lidar_packets_.load(std::memory_order_relaxed);
   c.serial_bytes = serial_bytes_.load(std::memory_order_relaxed);
-  c.write_errors = write_errors_.load(std::memory_order_relaxed);
+  c.discarded = discarded_.load(std::memory_order_relaxed);
+  c.stopped = stopped_.load();
+  c.write_errors = c.stopped ? 1 : 0;
+  c.ring = ring_ != nullptr;
+  {
+    std::lock_guard<std::mutex> lock(side_mutex_);
+    c.error = stop_error_;
+  }
+  if (ring_) {
+    c.segments = ring_->count();
+    c.ring_bytes = ring_bytes_.load(std::memory_order_relaxed);
+    c.segments_deleted = ring_->deleted();
+    const int64_t oldest = ring_->oldest_start_ns();
+    if (oldest != 0)
+      c.ring_span_s = static_cast<double>(setup_.time.ToDaemon(MonotonicNowNs()) - oldest) * 1e-9;
+  }
+  if (store_) c.incidents = store_->counters();
   return c;
 }
 

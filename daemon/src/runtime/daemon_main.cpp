@@ -75,12 +75,17 @@ int RunDaemon(const DaemonConfig& config, const RuntimeOptions& options, int64_t
   const int64_t start_ns = MonotonicNowNs();
   const auto status_period_ns = static_cast<int64_t>(config.logging.status_period_s * 1e9);
   int64_t next_status_ns = start_ns + status_period_ns;
+  int64_t next_record_ns = start_ns + 1'000'000'000;  // health.csv rows and incident events
   HealthReporter logged;
   bool ready = false;
   int signal = 0;
   while ((signal = WaitForStopSignal()) == 0) {
     const int64_t now = MonotonicNowNs();
-    notifier.Tick(now);
+    const Watchdog::Report watchdog = notifier.Tick(now);
+    if (now >= next_record_ns) {
+      next_record_ns = now + 1'000'000'000;
+      rt->ObserveForRecording(watchdog.stalled);
+    }
     if (!ready && rt->Ready()) {
       ready = true;
       notifier.Ready("tracking");

@@ -357,6 +357,7 @@ ipc::DiagnosticArray HealthReporter::Diagnostics(const HealthSnapshot& now) {
   if (now.localization.enabled) a.status.push_back(LocalizationStatus(now));
   if (now.map.enabled) a.status.push_back(MapStatus(now));
   if (now.sweeps.enabled) a.status.push_back(SweepStatus(now));
+  if (now.recording) a.status.push_back(RecorderStatus(now));
   return a;
 }
 

@@ -33,8 +33,7 @@ std::shared_ptr<spdlog::logger> SetupLogging(const LoggingConfig& config, std::s
 
   auto logger = std::make_shared<spdlog::logger>("swlio", sinks.begin(), sinks.end());
   logger->set_level(spdlog::level::trace);  // the sinks filter
-  // ISO-8601 local time with ms, level, thread id: enough to line logs up with recordings.
-  logger->set_pattern("%Y-%m-%dT%H:%M:%S.%e%z %-5l [%t] %v");
+  logger->set_pattern(kLogPattern);
   // Status lines and faults reach the file at once (field engineers read it while it runs);
   // debug/trace output stays buffered.
   logger->flush_on(spdlog::level::info);

@@ -7,7 +7,10 @@
 #include <utility>
 
 #include "swlio/core/time.h"
+#include "swlio/daemon/blackbox/health_row.h"
+#include "swlio/daemon/config/config_printer.h"
 #include "swlio/daemon/runtime/thread_setup.h"
+#include "swlio/daemon/runtime/version.h"
 #include "swlio/estimator/map/saved_map.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
@@ -63,6 +66,7 @@ Runtime::Runtime(const DaemonConfig& config, const RuntimeOptions& options)
 
 Runtime::~Runtime() {
   Stop();
+  LogTap::Detach(log_tap_);
   if (can_socket_ >= 0) close(can_socket_);
 }
 
@@ -92,17 +96,8 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
                                                   options.stamp_clocks);
   const Eigen::Isometry3d T_imu_lidar =
       options.T_imu_lidar.value_or(config.estimator.extrinsic_imu_lidar.ToIsometry());
-  if (!options.record_dir.empty()) {
-    DaemonConfig recorded = config;  // the ports actually bound (a test may ask for any port)
-    recorded.lidar.msop_port = rt->lidar_rx_->msop_port();
-    recorded.lidar.difop_port = rt->lidar_rx_->difop_port();
-    rt->recorder_ = Recorder::Create(options.record_dir, recorded, T_imu_lidar, time, error,
-                                     rt->stamp_clock_.get());
-    if (!rt->recorder_) return nullptr;
-    rt->lidar_rx_->RecordTo(&rt->recorder_->lidar_queue());
-    rt->imu_rx_->RecordTo(&rt->recorder_->serial_queue());
-    if (rt->can_rx_) rt->can_rx_->RecordTo(&rt->recorder_->can_queue());
-  }
+  rt->time_ = time;
+  if (!rt->MakeRecorder(T_imu_lidar, time, error)) return nullptr;
   const EstimatorSetup setup = MakeEstimatorSetup(config, T_imu_lidar, ModeFromConfig(config));
   // Loop closure and localization need the window's keyframes (tightly coupled mode);
   // localizing in a saved map replaces loop closure.
@@ -136,6 +131,7 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
       OptimizerQueues{&q.lidar, &q.imu, &q.states, &q.odometry, &q.optimizer_wake,
                       keyframes ? &q.keyframes : nullptr, wheel ? &q.wheel : nullptr},
       time, SecToNs(config.realtime.max_sweep_lag_s));
+  if (rt->recorder_) rt->optimizer_->RecordOdometryTo(&rt->recorder_->odometry_queue());
   if (loops) {
     rt->loop_closure_ = std::make_unique<LoopClosureThread>(
         config.loop_closure,
@@ -174,6 +170,62 @@ std::unique_ptr<Runtime> Runtime::Create(const DaemonConfig& config,
   }
   rt->OpenControl();
   return rt;
+}
+
+bool Runtime::MakeRecorder(const Eigen::Isometry3d& T_imu_lidar,
+                           const TimeScale& time,
+                           std::string* error) {
+  const bool ring = options_.record_dir.empty() && config_.record.ring;
+  if (options_.record_dir.empty() && !ring) return true;
+  DaemonConfig& recorded = recorded_config_;  // the ports actually bound (tests ask for any)
+  recorded = config_;
+  recorded.lidar.msop_port = lidar_rx_->msop_port();
+  recorded.lidar.difop_port = lidar_rx_->difop_port();
+  if (!ring) {
+    recorder_ = Recorder::Create(options_.record_dir, recorded, T_imu_lidar, time, error,
+                                 stamp_clock_.get());
+    if (!recorder_) return false;
+  } else {
+    RecordingSetup setup;
+    setup.config = &recorded_config_;
+    setup.T_imu_lidar = T_imu_lidar;
+    setup.time = time;
+    setup.config_text = PrintConfig(recorded_config_);
+    setup.version = SwlioVersion();
+    setup.msop_port = lidar_rx_->msop_port();
+    setup.difop_port = lidar_rx_->difop_port();
+    std::string why;
+    recorder_ = Recorder::CreateRing(setup, SwlioVersion(), &why, stamp_clock_.get());
+    if (!recorder_) {
+      blackbox_error_ = why;
+      spdlog::error("{}; the daemon runs without it", why);
+      return true;
+    }
+    spdlog::info(
+        "black box: the last {:.0f} min in {} (at most {} MB); incidents: {:.0f} s before "
+        "to {:.0f} s after an event",
+        config_.record.ring_minutes, config_.record.directory, config_.record.max_disk_mb,
+        config_.record.incident_before_s, config_.record.incident_after_s);
+  }
+  log_tap_ = LogTap::Attach();
+  recorder_->TapLog(log_tap_);
+  lidar_rx_->RecordTo(&recorder_->lidar_queue());
+  imu_rx_->RecordTo(&recorder_->serial_queue());
+  if (can_rx_) can_rx_->RecordTo(&recorder_->can_queue());
+  return true;
+}
+
+void Runtime::ObserveForRecording(const std::vector<std::string>& stalled) {
+  if (!recorder_) return;
+  const HealthSnapshot s = Snapshot();
+  const int64_t t_ns = time_.ToDaemon(s.t_ns);
+  const int64_t realtime_ns = s.t_ns + stamp_clock_->counters().offset_ns;
+  recorder_->AddHealthRow(HealthCsvRow(s, t_ns, realtime_ns, ReadProcessUsage()));
+  if (!recorder_->incidents()) return;
+  for (IncidentEvent& e : incident_detector_.Update(s, t_ns, realtime_ns, stalled)) {
+    spdlog::warn("incident: {}: {}", e.reason, e.detail);
+    recorder_->AddEvent(std::move(e));
+  }
 }
 
 bool Runtime::LoadLocalization(std::string* error) {
@@ -294,6 +346,10 @@ void Runtime::Start() {
   if (recorder_) {
     Spawn(out, "recorder", [this](const Watchdog::Handle& b) { recorder_->Run(stop_out_, b); });
   }
+  if (recorder_ && recorder_->incidents() != nullptr) {
+    Spawn(&keeper_threads_, "incidents",
+          [this](const Watchdog::Handle& b) { recorder_->incidents()->Run(stop_keeper_, b); });
+  }
 }
 
 void Runtime::Stop() {
@@ -301,7 +357,7 @@ void Runtime::Stop() {
        {std::pair{&stop_control_, &control_threads_}, std::pair{&stop_rx_, &rx_threads_},
         std::pair{&stop_propagator_, &propagator_threads_},
         std::pair{&stop_optimizer_, &optimizer_threads_}, std::pair{&stop_loop_, &loop_threads_},
-        std::pair{&stop_out_, &out_threads_}}) {
+        std::pair{&stop_out_, &out_threads_}, std::pair{&stop_keeper_, &keeper_threads_}}) {
     flag->store(true);
     for (std::thread& t : *group) {
       if (t.joinable()) t.join();
@@ -336,6 +392,13 @@ HealthSnapshot Runtime::Snapshot() const {
   s.queues = queues_->Counters();
   if (recorder_) {
     for (const QueueCounters& c : recorder_->QueueCountersList()) s.queues.push_back(c);
+    s.recording = true;
+    s.recorder = recorder_->counters();
+  } else if (!blackbox_error_.empty()) {
+    s.recording = true;
+    s.recorder.ring = true;
+    s.recorder.stopped = true;
+    s.recorder.error = blackbox_error_;
   }
   return s;
 }

@@ -44,6 +44,31 @@ std::string Runtime::Status() {
   return StatusReport(Snapshot(), facts, LastHealth());
 }
 
+std::shared_ptr<PendingCommand> Runtime::Mark(std::shared_ptr<PendingCommand> command,
+                                              Reply* refusal) {
+  if (!recorder_ || recorder_->incidents() == nullptr) {
+    *refusal = Reply{ReplyStatus::kRefused,
+                     "the black box is off (record.ring" +
+                         std::string(blackbox_error_.empty() ? ")" : ": " + blackbox_error_ + ")"),
+                     ""};
+    return nullptr;
+  }
+  const int64_t now = MonotonicNowNs();
+  const std::string note = command->request().argument;
+  IncidentEvent e{time_.ToDaemon(now), now + stamp_clock_->counters().offset_ns, "mark",
+                  note.empty() ? "marked by an operator" : "operator: " + note};
+  spdlog::warn("incident: mark: {}", e.detail);
+  recorder_->AddEvent(std::move(e));
+  command->Finish(Reply{ReplyStatus::kOk,
+                        "marked: the incident keeps " +
+                            std::to_string(static_cast<int>(config_.record.incident_before_s)) +
+                            " s before to " +
+                            std::to_string(static_cast<int>(config_.record.incident_after_s)) +
+                            " s after now, under " + config_.record.directory + "/incidents",
+                        ""});
+  return command;
+}
+
 std::shared_ptr<PendingCommand> Runtime::Submit(const control::Request& request, Reply* refusal) {
   auto command = std::make_shared<PendingCommand>(request);
   auto refuse = [refusal](ReplyStatus status, std::string message) {
@@ -90,6 +115,8 @@ std::shared_ptr<PendingCommand> Runtime::Submit(const control::Request& request,
         return refuse(ReplyStatus::kBusy, "earlier relocalize requests are still queued");
       return command;
     }
+    case control::Command::kMark:
+      return Mark(command, refusal);
     case control::Command::kStatus:
       break;
   }

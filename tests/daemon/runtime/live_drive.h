@@ -50,7 +50,8 @@ struct LiveDrive {
   /// tests publish edge values such as NaN and DBL_MAX: a CI-like run of ctest -j2 saw them
   /// arrive here). tests/ipc uses 101..138 and 163..164 (DdsSecurity); the daemon tests 140..161:
   /// Runtime.* 140, RuntimeFaults.* 141..153 and 156, SwliodCommand 154, Runtime.AWallClockStep…
-  /// 157, RuntimeControl.* 159, RuntimeFastDdsTf.* 161, RuntimeInitialPose.* 162; not live drives:
+  /// 157, RuntimeControl.* 159, RuntimeFastDdsTf.* 161, RuntimeInitialPose.* 162,
+  /// RuntimeBlackBox.* 165; not live drives:
   /// MapPublisher 155, PublisherThreadTf 158 and 160. Benchmarks use 200 and up
   /// (bench/daemon_latency.cpp).
   uint32_t dds_domain = 140;
@@ -68,6 +69,7 @@ struct LiveDriveResult {
   double speed = 1.0;
   std::optional<sim::SimSetup> setup;
   DaemonConfig config;
+  TimeScale daemon_time;             ///< the Runtime's time base (recordings' times are on it)
   bool ready = false;                ///< the READY=1 condition held at some point
   std::vector<HealthSample> health;  ///< every 100 ms
   HealthSnapshot final;              ///< after Stop
@@ -185,6 +187,7 @@ inline LiveDriveResult RunLiveDrive(const LiveDrive& drive) {
   auto subscriber = ipc::Subscriber::Create(*participant, out.config.ipc, reader, &out.error);
   if (!subscriber) return out;
 
+  out.daemon_time = rt->time_scale();
   rt->Start();
   sim::LiveOptions live;
   live.msop_port = rt->msop_port();
@@ -234,6 +237,8 @@ inline LiveDriveResult RunLiveDrive(const LiveDrive& drive) {
     if (const int64_t now = MonotonicNowNs(); now >= next_snapshot_ns) {  // every 100 ms
       snapshots.emplace_back(now, rt->Snapshot());
       next_snapshot_ns = now + 100'000'000;
+      // What swliod's supervision loop does every second (health.csv, incident events).
+      if (snapshots.size() % 10 == 0) rt->ObserveForRecording({});
     }
   }
   simulator.join();

@@ -4,9 +4,10 @@
 /// line per connection, one reply, then the daemon closes.
 ///
 ///   request = command [ " " argument ] "\n"          at most kMaxRequestBytes in all
-///   command = "status" | "save-map" | "reset" | "relocalize"
+///   command = "status" | "save-map" | "reset" | "relocalize" | "mark"
 ///                                                    save-map takes an absolute path,
-///                                                    relocalize "x y yaw_deg [sigma_m]"
+///                                                    relocalize "x y yaw_deg [sigma_m]",
+///                                                    mark an optional note
 ///   reply   = "ok" [ " " text ] "\n" body             body: lines of text until EOF
 ///           | "error " code ": " text "\n"
 ///   code    = "bad-request" | "refused" | "busy" | "failed" | "timeout"
@@ -27,13 +28,15 @@ inline constexpr size_t kMaxRequestBytes = 4096;
 /// The client stops reading a reply beyond this (a status is a few kB).
 inline constexpr size_t kMaxReplyBytes = 1 << 20;
 
-enum class Command : uint8_t { kStatus, kSaveMap, kReset, kRelocalize };
-/// "status", "save-map", "reset", "relocalize".
+enum class Command : uint8_t { kStatus, kSaveMap, kReset, kRelocalize, kMark };
+/// "status", "save-map", "reset", "relocalize", "mark".
 const char* ToString(Command command);
 
 struct Request {
   Command command = Command::kStatus;
-  std::string argument;  ///< save-map: the absolute path; relocalize: its numbers; else empty
+  /// save-map: the absolute path; relocalize: its numbers; mark: the note (may be empty); else
+  /// empty
+  std::string argument;
 };
 
 /// One request line without its "\n" (a trailing "\r" is dropped); std::nullopt with *error

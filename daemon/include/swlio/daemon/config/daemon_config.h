@@ -34,6 +34,23 @@ struct LoggingConfig {
   ConfigIssues Validate() const;
 };
 
+/// The black box (YAML `record`; docs/blackbox.md): the raw sensor bytes of the last minutes
+/// in rotating segments, and incidents kept from them. Off unless the file turns it on (the
+/// robot's config/swlio.yaml does; tests and the demo do not).
+struct RecordConfig {
+  bool ring = false;                                  ///< keep the rotating segments
+  std::string directory = "/var/lib/swlio/blackbox";  ///< ring/ and incidents/ go here
+  double ring_minutes = 10.0;                         ///< sensor time the ring spans
+  double segment_s = 10.0;                            ///< one segment's span (rotation period)
+  int64_t max_disk_mb = 2048;                         ///< the ring's segments, the open one too
+  double incident_before_s = 120.0;  ///< an incident keeps this much before its first event
+  double incident_after_s = 60.0;    ///< and this much after it
+  int64_t incidents_max_count = 20;  ///< kept incidents; the oldest goes first, never the newest
+  int64_t incidents_max_mb = 4096;   ///< their size on disk, likewise
+
+  ConfigIssues Validate() const;
+};
+
 /// Scheduling of one daemon thread (YAML `realtime.threads[i]`).
 struct ThreadSchedConfig {
   /// lidar_rx, imu_rx, can_rx, propagator, optimizer, publisher, recorder, loop_closure or
@@ -129,6 +146,7 @@ struct DaemonConfig {
   MapFilesConfig map;
   ipc::IpcConfig ipc;
   LoggingConfig logging;
+  RecordConfig record;
   RealtimeConfig realtime;
   ControlConfig control;
 

@@ -85,6 +85,9 @@ class OptimizerThread {
   bool RequestReset(std::shared_ptr<PendingCommand> command);
   /// Publish each tracked sweep through `sweeps` (not owned; null: none). Call before Run.
   void PublishSweepsTo(SweepPublisher* sweeps) { sweeps_ = sweeps; }
+  /// Also pushes every tracked sweep's state, stamped on the host clock as swlio-replay writes
+  /// it, to `record` (the recorder's odometry.tum). Call before Run.
+  void RecordOdometryTo(SpscQueue<State>* record) { record_ = record; }
 
  private:
   void OnResult(const Scan& scan, const estimator::WindowResult& result);
@@ -101,6 +104,7 @@ class OptimizerThread {
   /// control → optimizer: reset requests (a few; one more is refused as busy).
   SpscQueue<std::shared_ptr<PendingCommand>> resets_{"reset_requests", "control", "optimizer", 4};
   SweepPublisher* sweeps_ = nullptr;
+  SpscQueue<State>* record_ = nullptr;
   uint64_t processed_ = 0;
   uint64_t reinitializations_ = 0;
   uint64_t wheel_factors_ = 0, wheel_rejected_ = 0;

@@ -17,6 +17,7 @@
 #include "swlio/daemon/pipeline/optimizer_thread.h"
 #include "swlio/daemon/pipeline/propagator_thread.h"
 #include "swlio/daemon/pipeline/spsc_queue.h"
+#include "swlio/daemon/recording/recorder.h"
 #include "swlio/daemon/sensors/can_rx.h"
 #include "swlio/daemon/sensors/imu_rx.h"
 #include "swlio/daemon/sensors/lidar_rx.h"
@@ -38,6 +39,8 @@ struct HealthSnapshot {
   MapPublishCounters map;             ///< `enabled` false unless the map cloud is published
   SweepPublishCounters sweeps;        ///< `enabled` false unless ipc.sweep_topic is published
   StampClockCounters stamp_clock;     ///< the published stamps' clock and its offset
+  bool recording = false;             ///< --record or the black box (record.ring)
+  RecorderCounters recorder;
   std::vector<QueueCounters> queues;
 };
 
@@ -76,6 +79,10 @@ class HealthReporter {
   HealthSnapshot previous_;
   bool have_previous_ = false;
 };
+
+/// The recording's status (the black box's, or --record's): ring bounds, incidents, and a
+/// stop (a full disk) as an error.
+ipc::DiagnosticStatus RecorderStatus(const HealthSnapshot& s);
 
 /// The IMU's Xbus framing counters as health reports them: the configuration handshakes'
 /// (framed on imu_rx) plus the stream's (decoded on the propagator).

@@ -24,6 +24,8 @@
 #include <thread>
 #include <vector>
 
+#include "swlio/daemon/blackbox/incident_detector.h"
+#include "swlio/daemon/blackbox/log_tap.h"
 #include "swlio/daemon/config/daemon_config.h"
 #include "swlio/daemon/control/control_server.h"
 #include "swlio/daemon/output/map_publisher.h"
@@ -51,7 +53,8 @@ struct RuntimeOptions {
   double time_scale = 1.0;
   /// Replaces the configuration's extrinsic (e.g. a simulator's or recording's rig).
   std::optional<Eigen::Isometry3d> T_imu_lidar;
-  /// Record the raw sensor bytes into this folder (recorder.h); empty: no recording.
+  /// Record the raw sensor bytes into this folder (recorder.h); empty: no recording, or the
+  /// black box when the configuration's record.ring is on (a folder given here wins).
   std::filesystem::path record_dir;
   /// With `can.enabled`: read CAN frames from this fd instead of opening `can.interface` (tests
   /// use a socketpair; not owned). −1: open the interface.
@@ -81,7 +84,13 @@ class Runtime : public ControlTarget {
   /// Sensors stream and the estimator has a state (the READY=1 condition).
   bool Ready() const;
   HealthSnapshot Snapshot() const;
+  /// The supervision loop, about once a second: a health.csv row for the recording and, for
+  /// the black box, incident events from the health (incident_detector.h), each also logged.
+  /// `stalled`: the watchdog's stalled threads.
+  void ObserveForRecording(const std::vector<std::string>& stalled);
   const Watchdog& watchdog() const { return watchdog_; }
+  /// The daemon's time base (time_scale.h): recordings and incidents are stamped on it.
+  const TimeScale& time_scale() const { return time_; }
   uint16_t msop_port() const;
   uint16_t difop_port() const;
   uint64_t sched_failures() const { return sched_failures_.load(); }
@@ -111,13 +120,22 @@ class Runtime : public ControlTarget {
   void SaveMap();
   /// The control socket (control.socket): a failure is logged and the daemon runs without.
   void OpenControl();
+  /// swlioctl mark: an incident event now (answered at once; refused without the black box).
+  std::shared_ptr<PendingCommand> Mark(std::shared_ptr<PendingCommand> command,
+                                       control::Reply* refusal);
   /// The health message the publisher built last (what `status` reports).
   std::optional<ipc::DiagnosticArray> LastHealth() const;
+  /// --record DIR or the black box (record.ring); false with *error only for --record (the
+  /// black box's failure is logged and shown in health: the daemon runs without it).
+  bool MakeRecorder(const Eigen::Isometry3d& T_imu_lidar,
+                    const TimeScale& time,
+                    std::string* error);
   void Spawn(std::vector<std::thread>* group,
              const char* name,
              std::function<void(const Watchdog::Handle&)> body);
 
   DaemonConfig config_;
+  DaemonConfig recorded_config_;  ///< config_ with the bound ports: the recording's
   RuntimeOptions options_;
   Watchdog watchdog_;
   std::unique_ptr<Queues> queues_;
@@ -140,8 +158,12 @@ class Runtime : public ControlTarget {
   std::unique_ptr<SweepPublisher> sweep_publisher_;  ///< ipc.sweep_topic; used by the optimizer
   std::unique_ptr<PublisherThread> publisher_thread_;
   std::unique_ptr<Recorder> recorder_;
-  HealthReporter published_health_;                  ///< used by the publisher thread only
-  mutable std::mutex health_mutex_;                  ///< guards last_health_
+  std::shared_ptr<LogTap> log_tap_;     ///< the recorder's log.txt source
+  std::string blackbox_error_;          ///< why record.ring could not start
+  IncidentDetector incident_detector_;  ///< the supervision loop's (ObserveForRecording)
+  TimeScale time_;                      ///< the daemon's time base
+  HealthReporter published_health_;     ///< used by the publisher thread only
+  mutable std::mutex health_mutex_;     ///< guards last_health_
   std::optional<ipc::DiagnosticArray> last_health_;  ///< publisher → control thread
   std::unique_ptr<ControlServer> control_;           ///< null without a control socket
   std::atomic<uint64_t> sched_failures_{0};          ///< realtime settings a thread could not apply
@@ -151,13 +173,15 @@ class Runtime : public ControlTarget {
   std::atomic<bool> stop_optimizer_{false};
   std::atomic<bool> stop_loop_{false};
   bool map_saved_ = false;
-  std::atomic<bool> stop_out_{false};  ///< publisher, recorder
+  std::atomic<bool> stop_out_{false};     ///< publisher, recorder
+  std::atomic<bool> stop_keeper_{false};  ///< the incidents' keeper, after the recorder
   std::vector<std::thread> control_threads_;
   std::vector<std::thread> rx_threads_;
   std::vector<std::thread> propagator_threads_;
   std::vector<std::thread> optimizer_threads_;
   std::vector<std::thread> loop_threads_;
   std::vector<std::thread> out_threads_;
+  std::vector<std::thread> keeper_threads_;
 };
 
 }  // namespace swlio::daemon
