@@ -1,5 +1,6 @@
 #include "swlio/daemon/runtime/logging.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <vector>
 
@@ -7,13 +8,32 @@
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "swlio/daemon/runtime/journal_sink.h"
+
 namespace swlio::daemon {
+
+bool StartedBySystemd() {
+  return std::getenv("JOURNAL_STREAM") != nullptr || std::getenv("INVOCATION_ID") != nullptr;
+}
+
+bool JournaldOn(const LoggingConfig& config) {
+  if (config.journald == "true") return true;
+  if (config.journald == "false") return false;
+  return StartedBySystemd();
+}
+
+std::string EffectiveStderrLevel(const LoggingConfig& config, bool journald_on) {
+  if (config.stderr_level != "auto") return config.stderr_level;
+  return journald_on ? "off" : "info";
+}
 
 std::shared_ptr<spdlog::logger> SetupLogging(const LoggingConfig& config, std::string* error) {
   std::vector<spdlog::sink_ptr> sinks;
+  const bool journald = JournaldOn(config);
   auto stderr_sink = std::make_shared<spdlog::sinks::stderr_sink_mt>();
-  stderr_sink->set_level(spdlog::level::from_str(config.stderr_level));
+  stderr_sink->set_level(spdlog::level::from_str(EffectiveStderrLevel(config, journald)));
   sinks.push_back(stderr_sink);
+  if (journald) sinks.push_back(std::make_shared<JournalSink>());  // every level: journalctl -p
 
   if (!config.directory.empty()) {
     try {

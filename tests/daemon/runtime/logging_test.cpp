@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string>
 
+#include "swlio/daemon/runtime/journal_sink.h"
 #include "test_data.h"
 
 namespace swlio::daemon {
@@ -62,6 +65,88 @@ TEST(Logging, UnwritableDirectoryIsAnError) {
   std::string error;
   EXPECT_EQ(SetupLogging(config, &error), nullptr);
   EXPECT_NE(error.find("cannot open log file"), std::string::npos) << error;
+}
+
+/// Sets or clears an environment variable for one test, restoring it after.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    const char* old = std::getenv(name);
+    if (old != nullptr) old_ = old;
+    had_ = old != nullptr;
+    if (value != nullptr) {
+      setenv(name, value, 1);
+    } else {
+      unsetenv(name);
+    }
+  }
+  ~ScopedEnv() {
+    if (had_) {
+      setenv(name_, old_.c_str(), 1);
+    } else {
+      unsetenv(name_);
+    }
+  }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+  std::string old_;
+  bool had_ = false;
+};
+
+TEST(Logging, JournaldAutoFollowsSystemdsEnvironment) {
+  LoggingConfig config;
+  ASSERT_EQ(config.journald, "auto");
+  {
+    const ScopedEnv stream("JOURNAL_STREAM", nullptr);
+    const ScopedEnv invocation("INVOCATION_ID", nullptr);
+    EXPECT_FALSE(StartedBySystemd());
+    EXPECT_FALSE(JournaldOn(config));
+    config.journald = "true";
+    EXPECT_TRUE(JournaldOn(config));
+    config.journald = "auto";
+  }
+  {
+    const ScopedEnv stream("JOURNAL_STREAM", "8:12345");
+    const ScopedEnv invocation("INVOCATION_ID", nullptr);
+    EXPECT_TRUE(JournaldOn(config));
+  }
+  {
+    const ScopedEnv stream("JOURNAL_STREAM", nullptr);
+    const ScopedEnv invocation("INVOCATION_ID", "0123456789abcdef0123456789abcdef");
+    EXPECT_TRUE(JournaldOn(config));
+    config.journald = "false";
+    EXPECT_FALSE(JournaldOn(config));
+  }
+}
+
+TEST(Logging, StderrIsOffWhileTheJournalSinkIsOnUnlessSetExplicitly) {
+  LoggingConfig config;
+  ASSERT_EQ(config.stderr_level, "auto");
+  EXPECT_EQ(EffectiveStderrLevel(config, false), "info");
+  EXPECT_EQ(EffectiveStderrLevel(config, true), "off");
+  config.stderr_level = "warn";
+  EXPECT_EQ(EffectiveStderrLevel(config, true), "warn");
+  EXPECT_EQ(EffectiveStderrLevel(config, false), "warn");
+
+  // The sinks SetupLogging makes: stderr first, then the journal sink when on.
+  config.directory.clear();
+  config.stderr_level = "auto";
+  config.journald = "true";
+  std::string error;
+  auto logger = SetupLogging(config, &error);
+  ASSERT_NE(logger, nullptr) << error;
+  ASSERT_EQ(logger->sinks().size(), 2u);
+  EXPECT_EQ(logger->sinks()[0]->level(), spdlog::level::off);
+  EXPECT_NE(dynamic_cast<JournalSink*>(logger->sinks()[1].get()), nullptr);
+  EXPECT_EQ(logger->sinks()[1]->level(), spdlog::level::trace);
+  config.journald = "false";
+  logger = SetupLogging(config, &error);
+  ASSERT_NE(logger, nullptr) << error;
+  ASSERT_EQ(logger->sinks().size(), 1u);
+  EXPECT_EQ(logger->sinks()[0]->level(), spdlog::level::info);
 }
 
 }  // namespace

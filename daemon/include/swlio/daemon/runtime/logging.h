@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// Logging set-up: one spdlog logger writing to rotating files and to stderr (which journald
-/// collects under systemd), configured from LoggingConfig.
+/// Logging set-up: one spdlog logger writing to rotating files, to stderr, and (journal_sink.h)
+/// to the systemd journal with structured fields, configured from LoggingConfig.
 
 #include <memory>
 #include <string>
@@ -12,8 +12,21 @@
 
 namespace swlio::daemon {
 
+/// Whether systemd started this process: JOURNAL_STREAM or INVOCATION_ID is in the environment
+/// (systemd.exec(5), "Environment variables in spawned processes").
+bool StartedBySystemd();
+
+/// Whether the journal sink is on: `config.journald` "true" or "false", or for "auto"
+/// StartedBySystemd().
+bool JournaldOn(const LoggingConfig& config);
+
+/// stderr's level: `config.stderr_level`, or for "auto" "info", and "off" while the journal sink
+/// is on (under systemd stderr goes to the journal as well: each line would be there twice).
+std::string EffectiveStderrLevel(const LoggingConfig& config, bool journald_on);
+
 /// Creates the logger named "swlio" (and makes it spdlog's default). Creates the log directory
-/// when missing. Returns nullptr and fills `error` when the file cannot be opened.
+/// when missing; adds the journal sink when JournaldOn(config). Returns nullptr and fills `error`
+/// when the file cannot be opened.
 std::shared_ptr<spdlog::logger> SetupLogging(const LoggingConfig& config, std::string* error);
 
 }  // namespace swlio::daemon
