@@ -18,8 +18,8 @@
 namespace swlio::daemon {
 namespace {
 
-// journald ignores fields whose name is longer (JOURNAL_NATIVE_PROTOCOL: "field names ...
-// up to 64 characters").
+// journald drops a field whose name is longer, starts with a digit or '_', or holds anything but
+// [A-Z0-9_] (journal_field_valid() in systemd's journal code; systemd.journal-fields(7)).
 constexpr size_t kJournalFieldNameMax = 64;
 constexpr std::string_view kJournalFieldPrefix = "SWLIO_";
 
