@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -96,6 +100,35 @@ class ScopedEnv {
   bool had_ = false;
 };
 
+/// JOURNAL_STREAM's text for an open file: "<device>:<inode>".
+std::string StreamOf(int fd) {
+  struct stat st {};
+  EXPECT_EQ(fstat(fd, &st), 0);
+  return std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
+}
+
+TEST(Logging, SystemdIsSeenInTheEnvironmentAndStderr) {
+  const auto dir = test::MakeTempDir("journalstream");
+  const int stderr_like = open((dir / "a").c_str(), O_CREAT | O_WRONLY, 0644);
+  const int other = open((dir / "b").c_str(), O_CREAT | O_WRONLY, 0644);
+  ASSERT_GE(stderr_like, 0);
+  ASSERT_GE(other, 0);
+  const std::string ours = StreamOf(stderr_like);
+  const std::string theirs = StreamOf(other);
+  const char* id = "0123456789abcdef0123456789abcdef";
+  EXPECT_FALSE(StartedBySystemd(nullptr, nullptr, stderr_like));
+  EXPECT_TRUE(StartedBySystemd(ours.c_str(), nullptr, stderr_like));  // stderr is the journal
+  EXPECT_TRUE(StartedBySystemd(ours.c_str(), id, stderr_like));
+  EXPECT_TRUE(StartedBySystemd(nullptr, id, stderr_like));  // a service logging elsewhere
+  // Inherited from a service higher up (a desktop session, a CI runner): not our stderr.
+  EXPECT_FALSE(StartedBySystemd(theirs.c_str(), nullptr, stderr_like));
+  EXPECT_FALSE(StartedBySystemd(theirs.c_str(), id, stderr_like));
+  EXPECT_FALSE(StartedBySystemd("garbage", nullptr, stderr_like));
+  EXPECT_FALSE(StartedBySystemd((ours + "x").c_str(), nullptr, stderr_like));
+  close(stderr_like);
+  close(other);
+}
+
 TEST(Logging, JournaldAutoFollowsSystemdsEnvironment) {
   LoggingConfig config;
   ASSERT_EQ(config.journald, "auto");
@@ -109,7 +142,7 @@ TEST(Logging, JournaldAutoFollowsSystemdsEnvironment) {
     config.journald = "auto";
   }
   {
-    const ScopedEnv stream("JOURNAL_STREAM", "8:12345");
+    const ScopedEnv stream("JOURNAL_STREAM", StreamOf(STDERR_FILENO).c_str());
     const ScopedEnv invocation("INVOCATION_ID", nullptr);
     EXPECT_TRUE(JournaldOn(config));
   }

@@ -12,8 +12,15 @@
 
 namespace swlio::daemon {
 
-/// Whether systemd started this process: JOURNAL_STREAM or INVOCATION_ID is in the environment
-/// (systemd.exec(5), "Environment variables in spawned processes").
+/// Whether systemd started this process as a service, from its environment (systemd.exec(5),
+/// "Environment variables in spawned processes"): `journal_stream` (JOURNAL_STREAM,
+/// "<device>:<inode>") names `stderr_fd`, i.e. stderr goes to the journal; or `invocation_id`
+/// (INVOCATION_ID) is set without JOURNAL_STREAM (a service whose output goes elsewhere).
+/// A JOURNAL_STREAM naming another file is inherited, not ours (systemd.exec(5) says to compare
+/// it with stderr): a shell in a desktop session or a CI job started by a service.
+bool StartedBySystemd(const char* journal_stream, const char* invocation_id, int stderr_fd);
+
+/// StartedBySystemd() with this process's environment and stderr.
 bool StartedBySystemd();
 
 /// Whether the journal sink is on: `config.journald` "true" or "false", or for "auto"
