@@ -31,8 +31,8 @@ struct LoggingConfig {
   int64_t max_files = 10;             ///< rotated files kept
   double status_period_s = 5.0;       ///< period of the one-line status in the log
   /// Every log record to the journal with structured fields (sd_journal_sendv; SWLIO_EVENT,
-  /// SWLIO_STATE, counters): "true", "false", or "auto": on when systemd started swliod (the
-  /// JOURNAL_STREAM or INVOCATION_ID environment variable is set, systemd.exec(5)). While it is
+  /// SWLIO_STATE, counters): "true", "false", or "auto": on when systemd started swliod
+  /// (StartedBySystemd(): JOURNAL_STREAM names stderr, or INVOCATION_ID is set). While it is
   /// on, stderr_level "auto" means off (under systemd stderr goes to the journal too: each line
   /// would be there twice), else info.
   std::string journald = "auto";
