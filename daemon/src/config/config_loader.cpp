@@ -591,6 +591,8 @@ void Bind(Section s, LoggingConfig& c) {
   s.Get("file_name", c.file_name);
   s.Get("file_level", c.file_level);
   s.Get("stderr_level", c.stderr_level);
+  s.Get("journald", c.journald);  // auto, or a YAML boolean (yes/on/True… spelled as true/false)
+  if (bool on = false; ParseBool(c.journald, &on)) c.journald = on ? "true" : "false";
   s.Get("max_file_size_mb", c.max_file_size_mb);
   s.Get("max_files", c.max_files);
   s.Get("status_period_s", c.status_period_s);

@@ -427,6 +427,7 @@ void Emit(ConfigWriter& w, const LoggingConfig& c) {
   w.Put("file_name", c.file_name);
   w.Put("file_level", c.file_level);
   w.Put("stderr_level", c.stderr_level);
+  w.Put("journald", c.journald);
   w.Put("max_file_size_mb", c.max_file_size_mb);
   w.Put("max_files", c.max_files);
   w.Put("status_period_s", c.status_period_s);

@@ -43,7 +43,11 @@ ConfigIssues LoggingConfig::Validate() const {
   ConfigIssues issues;
   const std::string levels = "must be trace, debug, info, warn, error, critical or off, got '";
   CheckThat(issues, IsLogLevelName(file_level), "file_level", levels + file_level + "'");
-  CheckThat(issues, IsLogLevelName(stderr_level), "stderr_level", levels + stderr_level + "'");
+  CheckThat(
+      issues, stderr_level == "auto" || IsLogLevelName(stderr_level), "stderr_level",
+      "must be auto, trace, debug, info, warn, error, critical or off, got '" + stderr_level + "'");
+  CheckThat(issues, journald == "auto" || journald == "true" || journald == "false", "journald",
+            "must be auto, true or false, got '" + journald + "'");
   CheckThat(issues, !file_name.empty() && file_name.find('/') == std::string::npos, "file_name",
             "must be a plain file name");
   CheckInRange<int64_t>(issues, "max_file_size_mb", max_file_size_mb, 1, 1024);

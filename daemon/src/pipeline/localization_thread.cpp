@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "swlio/core/time.h"
+#include "swlio/daemon/runtime/event_log.h"
 #include "swlio/ipc/subscriber.h"
 
 namespace swlio::daemon {
@@ -97,8 +98,11 @@ void LocalizationThread::Handle(const estimator::KeyframeCloud& keyframe) {
     max_ms_.store(std::max(max_ms_.load(kRelaxed), ms), kRelaxed);
   }
   if (before == LocalizationState::kTracking && u.state == LocalizationState::kRelocalizing) {
-    spdlog::warn("localization: lost ({} registrations in a row failed); relocalizing",
-                 st.track_failures);
+    LogEvent(
+        spdlog::level::warn, "localization_lost",
+        fmt::format("localization: lost ({} registrations in a row failed); relocalizing",
+                    st.track_failures),
+        {{"TRACK_FAILURES", std::to_string(st.track_failures)}, {"LOST", std::to_string(st.lost)}});
   }
   if (u.state != LocalizationState::kTracking || !u.accepted) return;
   const bool jump = !published_in_map_ || jump_next_;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "swlio/daemon/runtime/event_log.h"
+
 namespace swlio::daemon {
 
 OptimizerThread::OptimizerThread(const drivers::LidarConfig& lidar,
@@ -137,11 +139,15 @@ void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& 
   if (result.diverged != estimator::DivergenceReason::kNone) {
     recovering_ = true;
     last_divergence_ = result.diverged;
-    spdlog::warn(
-        "estimator: state diverged ({}) at the sweep ending {:.3f} s; re-initializing "
-        "(static or moving start) at the last good pose, with a new local map",
-        estimator::ToString(result.diverged),
-        static_cast<double>(time_.ToHost(scan.t_end_ns)) * 1e-9);
+    const double t_s = static_cast<double>(time_.ToHost(scan.t_end_ns)) * 1e-9;
+    LogEvent(spdlog::level::warn, "divergence",
+             fmt::format("estimator: state diverged ({}) at the sweep ending {:.3f} s; "
+                         "re-initializing (static or moving start) at the last good pose, with a "
+                         "new local map",
+                         estimator::ToString(result.diverged), t_s),
+             {{"REASON", estimator::ToString(result.diverged)},
+              {"SWEEP_END_S", fmt::format("{:.3f}", t_s)},
+              {"REINITIALIZATIONS", std::to_string(result.reinitializations)}});
   }
   tracking_ = Classify(r);
   last_sweep_t_ns_ = scan.t_end_ns;

@@ -7,6 +7,8 @@
 #include <ctime>
 #include <string>
 
+#include "swlio/daemon/runtime/event_log.h"
+#include "swlio/daemon/runtime/health_events.h"
 #include "swlio/daemon/runtime/thread_setup.h"
 #include "swlio/daemon/runtime/watchdog.h"
 
@@ -30,24 +32,6 @@ int WaitForStopSignal() {
   return sig > 0 ? sig : 0;
 }
 
-/// The estimator fell behind and shed sweeps: the CPU it gets does not suffice.
-void LogCpuDegraded(const HealthRates& rates) {
-  if (rates.sweeps_skipped_behind == 0) return;
-  spdlog::warn(
-      "degraded: CPU: {} sweeps skipped since the last status (the estimator fell behind the "
-      "LiDAR); the IMU-rate pose continues. A busy computer or a CPU quota: docs/scheduling.md",
-      rates.sweeps_skipped_behind);
-}
-
-void LogDrops(const HealthSnapshot& s) {
-  for (const QueueCounters& q : s.queues) {
-    if (q.dropped > 0) {
-      spdlog::warn("queue {} ({} -> {}): {} dropped, high water {}/{}", q.name, q.producer,
-                   q.consumer, q.dropped, q.high_water, q.capacity);
-    }
-  }
-}
-
 }  // namespace
 
 void BlockStopSignals() {
@@ -68,9 +52,15 @@ int RunDaemon(const DaemonConfig& config, const RuntimeOptions& options, int64_t
   if (const std::string problem = LockMemory(config.realtime); !problem.empty()) {
     spdlog::warn("realtime: {}", problem);
   }
-  spdlog::info("started: lidar {} on UDP {} (MSOP) / {} (DIFOP), imu {} at {} baud, mode {}",
-               config.lidar.model, rt->msop_port(), config.lidar.difop_port, config.imu.device,
-               config.imu.baud, config.estimator.mode);
+  LogEvent(
+      spdlog::level::info, "started",
+      fmt::format("started: lidar {} on UDP {} (MSOP) / {} (DIFOP), imu {} at {} baud, mode {}",
+                  config.lidar.model, rt->msop_port(), config.lidar.difop_port, config.imu.device,
+                  config.imu.baud, config.estimator.mode),
+      {{"LIDAR_MODEL", config.lidar.model},
+       {"MSOP_PORT", std::to_string(rt->msop_port())},
+       {"IMU_DEVICE", config.imu.device},
+       {"MODE", config.estimator.mode}});
   notifier.Status("waiting for sensors and initialization");
   const int64_t start_ns = MonotonicNowNs();
   const auto status_period_ns = static_cast<int64_t>(config.logging.status_period_s * 1e9);
@@ -89,31 +79,32 @@ int RunDaemon(const DaemonConfig& config, const RuntimeOptions& options, int64_t
     if (!ready && rt->Ready()) {
       ready = true;
       notifier.Ready("tracking");
-      spdlog::info("ready: sensors streaming, estimator initialized after {:.1f} s",
-                   static_cast<double>(now - start_ns) * 1e-9);
+      const double after_s = static_cast<double>(now - start_ns) * 1e-9;
+      LogEvent(
+          spdlog::level::info, "ready",
+          fmt::format("ready: sensors streaming, estimator initialized after {:.1f} s", after_s),
+          {{"AFTER_S", fmt::format("{:.1f}", after_s)}});
     }
     if (now >= next_status_ns) {
       next_status_ns = now + status_period_ns;
       const HealthSnapshot s = rt->Snapshot();
       const HealthRates rates = logged.Rates(s);
       const std::string line = StatusLine(s, rates);
-      spdlog::info("{}", line);
       notifier.Status(line);
-      LogDrops(s);
-      for (const std::string& w : ClockJumpWarnings(s, rates)) spdlog::warn("{}", w);
-      LogCpuDegraded(rates);
+      LogHealthEvents(StatusEvents(s, rates, line));
     }
     if (max_run_ns > 0 && now - start_ns >= max_run_ns) break;
   }
   notifier.Stopping(signal != 0 ? "stopping on signal " + std::to_string(signal)
                                 : "stopping: run time limit");
-  spdlog::info("stopping ({})", signal != 0 ? strsignal(signal) : "run time limit");
+  const std::string why = signal != 0 ? strsignal(signal) : "run time limit";
+  LogEvent(spdlog::level::info, "stopping", "stopping (" + why + ")", {{"REASON", why}});
   rt->Stop();
   const HealthSnapshot s = rt->Snapshot();
   const HealthRates rates = logged.Rates(s);
-  spdlog::info("final {}", StatusLine(s, rates));
-  LogDrops(s);
-  for (const std::string& w : ClockJumpWarnings(s, rates)) spdlog::warn("{}", w);
+  std::vector<HealthEvent> final_events = StatusEvents(s, rates, "final " + StatusLine(s, rates));
+  final_events.front().fields.push_back({"FINAL", "1"});
+  LogHealthEvents(final_events);
   return 0;
 }
 

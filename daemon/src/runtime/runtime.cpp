@@ -9,6 +9,7 @@
 #include "swlio/core/time.h"
 #include "swlio/daemon/blackbox/health_row.h"
 #include "swlio/daemon/config/config_printer.h"
+#include "swlio/daemon/runtime/event_log.h"
 #include "swlio/daemon/runtime/thread_setup.h"
 #include "swlio/daemon/runtime/version.h"
 #include "swlio/estimator/map/saved_map.h"
@@ -223,7 +224,8 @@ void Runtime::ObserveForRecording(const std::vector<std::string>& stalled) {
   recorder_->AddHealthRow(HealthCsvRow(s, t_ns, realtime_ns, ReadProcessUsage()));
   if (!recorder_->incidents()) return;
   for (IncidentEvent& e : incident_detector_.Update(s, t_ns, realtime_ns, stalled)) {
-    spdlog::warn("incident: {}: {}", e.reason, e.detail);
+    LogEvent(spdlog::level::warn, "incident", "incident: " + e.reason + ": " + e.detail,
+             {{"REASON", e.reason}, {"DETAIL", e.detail}});
     recorder_->AddEvent(std::move(e));
   }
 }

@@ -8,6 +8,8 @@
 #include "swlio/daemon/pipeline/pose_hint.h"
 #include "swlio/daemon/runtime/runtime.h"
 
+#include "swlio/daemon/runtime/event_log.h"
+
 namespace swlio::daemon {
 
 using control::Reply;
@@ -57,7 +59,8 @@ std::shared_ptr<PendingCommand> Runtime::Mark(std::shared_ptr<PendingCommand> co
   const std::string note = command->request().argument;
   IncidentEvent e{time_.ToDaemon(now), now + stamp_clock_->counters().offset_ns, "mark",
                   note.empty() ? "marked by an operator" : "operator: " + note};
-  spdlog::warn("incident: mark: {}", e.detail);
+  LogEvent(spdlog::level::warn, "incident", "incident: mark: " + e.detail,
+           {{"REASON", "mark"}, {"DETAIL", e.detail}});
   recorder_->AddEvent(std::move(e));
   command->Finish(Reply{ReplyStatus::kOk,
                         "marked: the incident keeps " +

@@ -100,6 +100,27 @@ logging:
   EXPECT_EQ(loaded.config.logging.directory, "/etc/swlio/logs");
 }
 
+TEST(ConfigLoader, JournaldIsAutoTrueOrFalse) {
+  EXPECT_EQ(Load("config_version: 1\n").config.logging.journald, "auto");
+  EXPECT_EQ(Load("config_version: 1\n").config.logging.stderr_level, "auto");
+  const std::array<std::pair<const char*, const char*>, 5> spellings = {
+      {{"auto", "auto"}, {"true", "true"}, {"false", "false"}, {"yes", "true"}, {"off", "false"}}};
+  for (const auto& [text, stored] : spellings) {
+    const LoadedConfig loaded =
+        Load(std::string("config_version: 1\nlogging:\n  journald: ") + text + "\n");
+    ASSERT_TRUE(loaded.ok()) << text << ": " << loaded.ErrorReport();
+    EXPECT_EQ(loaded.config.logging.journald, stored) << text;
+  }
+  const ConfigError e = OnlyError(Load("config_version: 1\nlogging:\n  journald: maybe\n"));
+  EXPECT_EQ(e.key, "logging.journald");
+  EXPECT_EQ(e.line, 3);
+  EXPECT_THAT(e.reason, HasSubstr("must be auto, true or false, got 'maybe'"));
+  const ConfigError level = OnlyError(Load("config_version: 1\nlogging:\n  stderr_level: loud\n"));
+  EXPECT_EQ(level.key, "logging.stderr_level");
+  EXPECT_THAT(level.reason, HasSubstr("must be auto, trace"));
+  EXPECT_TRUE(Load("config_version: 1\nlogging:\n  stderr_level: warn\n").ok());
+}
+
 // lidar.lens_offset_m: absent, the model's vendor value (rs_driver's RX for the RoboSense
 // models, none for Velodyne); given, that value for a unit calibrated otherwise; bounded.
 TEST(ConfigLoader, LensOffsetDefaultsToTheModelsVendorValue) {

@@ -19,17 +19,23 @@
 
 namespace swlio::daemon {
 
-/// Log output: rotating files plus stderr (journald picks stderr up under systemd).
+/// Log output: rotating files, stderr, and the systemd journal with structured fields.
 struct LoggingConfig {
   /// Directory of the rotating log files; relative paths are taken from the config file's
   /// directory. Empty disables file logging.
   std::string directory = "/var/log/swlio";
   std::string file_name = "swliod.log";
   std::string file_level = "info";    ///< trace, debug, info, warn, error, critical, off
-  std::string stderr_level = "info";  ///< same levels
+  std::string stderr_level = "auto";  ///< same levels, or auto (below)
   int64_t max_file_size_mb = 20;      ///< rotate when a file reaches this size
   int64_t max_files = 10;             ///< rotated files kept
   double status_period_s = 5.0;       ///< period of the one-line status in the log
+  /// Every log record to the journal with structured fields (sd_journal_sendv; SWLIO_EVENT,
+  /// SWLIO_STATE, counters): "true", "false", or "auto": on when systemd started swliod
+  /// (StartedBySystemd(): JOURNAL_STREAM names stderr, or INVOCATION_ID is set). While it is
+  /// on, stderr_level "auto" means off (under systemd stderr goes to the journal too: each line
+  /// would be there twice), else info.
+  std::string journald = "auto";
 
   ConfigIssues Validate() const;
 };
