@@ -32,6 +32,12 @@ if(_swlio_san)
   add_link_options(${_swlio_san})
 endif()
 
+# Every program binds its symbols at start-up and keeps its relocations read-only afterwards
+# (full RELRO, ld(1) -z relro -z now), as Debian's dpkg-buildflags hardening does; lintian
+# hardening-no-bindnow on the package otherwise. A link option only: compiled objects and the
+# ccache stay as they are.
+add_link_options(LINKER:-z,relro LINKER:-z,now)
+
 function(swlio_target_options target)
   get_target_property(_type ${target} TYPE)
   if(_type STREQUAL "INTERFACE_LIBRARY")
