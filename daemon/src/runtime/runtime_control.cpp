@@ -1,14 +1,14 @@
 // Runtime as the control thread's target (control_server.h, docs/control.md): status from the
 // health snapshot and the health message published last; save-map to the loop-closure thread,
-// which owns the pose graph; reset to the optimizer thread, which owns the estimator.
+// which owns the pose graph; reset to the optimizer thread, which owns the estimator; mark to
+// the black box (record.ring).
 
 #include <spdlog/spdlog.h>
 
 #include "swlio/daemon/control/status_report.h"
 #include "swlio/daemon/pipeline/pose_hint.h"
-#include "swlio/daemon/runtime/runtime.h"
-
 #include "swlio/daemon/runtime/event_log.h"
+#include "swlio/daemon/runtime/runtime.h"
 
 namespace swlio::daemon {
 

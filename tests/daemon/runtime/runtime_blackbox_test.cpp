@@ -2,9 +2,12 @@
 // (a LiDAR outage at 8 s, an IMU unplug at 20 s, a blind LiDAR at 31 s that makes the estimator
 // diverge); exactly those three incidents are kept, each around its fault with the span asked
 // for, while the ring stays within max_disk_mb. An incident then replays byte-identically with
-// swlio-replay --deterministic and follows what the daemon estimated live.
+// swlio-replay --deterministic and follows what the daemon estimated live. A full disk stops
+// the ring and nothing else.
 
 #include <gtest/gtest.h>
+#include <sys/mount.h>
+#include <unistd.h>
 
 #include <Eigen/Geometry>
 #include <cstdio>
@@ -13,6 +16,7 @@
 #include <sstream>
 
 #include "live_drive.h"
+#include "swlio/daemon/blackbox/incident_detector.h"
 #include "swlio/daemon/blackbox/ring_segments.h"
 
 namespace swlio::daemon {
@@ -173,6 +177,36 @@ TEST(RuntimeBlackBox, KeepsExactlyTheInjectedFaultsAndReplaysThem) {
   EXPECT_GE(matched, 50u);
   EXPECT_GE(rms, 0.0);
   EXPECT_LT(rms, 0.10);
+}
+
+// The black box on a 3 MB tmpfs: the disk fills within seconds, the ring stops and says why in
+// health; the daemon goes on tracking and publishing as before, and no pipeline queue drops.
+TEST(RuntimeBlackBox, AFullDiskStopsTheRingAndNothingElse) {
+  if (geteuid() != 0) GTEST_SKIP() << "mounting a small tmpfs needs root";
+  const auto box = ::swlio::test::MakeTempDir("blackbox_full");
+  if (mount("tmpfs", box.c_str(), "tmpfs", 0, "size=3m") != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
+  test::LiveDrive drive;
+  drive.duration_s = 12.0;
+  drive.dds_domain = 165;
+  drive.adjust_config = [&](DaemonConfig* c) {
+    c->record.ring = true;
+    c->record.directory = box.string();
+  };
+  const test::LiveDriveResult r = test::RunLiveDrive(drive);
+  umount2(box.c_str(), MNT_DETACH);
+  ASSERT_TRUE(r.sim_ok) << r.error;
+  r.ShowPublished("swlio: black box");
+  EXPECT_TRUE(r.final.recorder.stopped);
+  EXPECT_NE(r.final.recorder.error.find("No space left on device"), std::string::npos)
+      << r.final.recorder.error;
+  EXPECT_GT(r.final.recorder.discarded, 0u);
+  EXPECT_TRUE(r.PublishedSaid("swlio: black box", "stopped, nothing is recorded"));
+  EXPECT_TRUE(r.ready);
+  EXPECT_EQ(PipelineDrops(r.final), 0u);
+  EXPECT_EQ(r.final.optimizer.reinitializations, 0u);
+  EXPECT_EQ(r.final.optimizer.tracking, TrackingState::kTracking);
+  EXPECT_GE(r.PosesBetween(6.0, 11.0), 1800u);  // 400 Hz: the pose goes on after the stop
 }
 
 }  // namespace
