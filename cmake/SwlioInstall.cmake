@@ -1,5 +1,6 @@
 # `cmake --install` layout (included from the root CMakeLists.txt after every target exists):
 #   <prefix>/bin/                        swliod and the command-line tools
+#   <prefix>/share/swlio/report/         swlio-report's Python package (the script is in bin/)
 #   <prefix>/lib/systemd/system/         swliod.service (paths of this install filled in)
 #   <prefix>/lib/sysusers.d/swlio.conf   the swlio system user (systemd-sysusers)
 #   <prefix>/lib/tmpfiles.d/swlio.conf   /run/swlio for the control socket (systemd-tmpfiles)
@@ -16,6 +17,9 @@ foreach(_program swliod swlioctl swlio-decode swlio-echo swlio-eval swlio-run sw
     install(TARGETS ${_program} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   endif()
 endforeach()
+install(PROGRAMS tools/report/swlio-report DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY tools/report/swlio_report DESTINATION ${CMAKE_INSTALL_DATADIR}/swlio/report
+        FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
 install(FILES systemd/swlio.sysusers.conf DESTINATION lib/sysusers.d RENAME swlio.conf)
 install(FILES systemd/swlio.tmpfiles.conf DESTINATION lib/tmpfiles.d RENAME swlio.conf)
 install(FILES systemd/swliod-realtime.conf DESTINATION ${CMAKE_INSTALL_DATADIR}/swlio)

@@ -1,0 +1,103 @@
+"""Top view (x east/right, y north/up) of the map cloud, trajectories and marked events, equal
+axes, as inline SVG."""
+from html import escape
+
+from .svg_plot import COLORS, EVENT_COLOR, Frame, _fmt, _svg, nice_ticks
+
+WIDTH, MIN_H, MAX_H = 880, 320, 760
+PADS = (52, 14, 26, 30)
+
+
+def _bounds(paths, points):
+    xs = [p[0] for path in paths for p in path["points"]] + [p[0] for p in points]
+    ys = [p[1] for path in paths for p in path["points"]] + [p[1] for p in points]
+    if not xs:
+        return (0.0, 1.0), (0.0, 1.0)
+    return (min(xs), max(xs)), (min(ys), max(ys))
+
+
+def _equal_frame(paths, points):
+    (x0, x1), (y0, y1) = _bounds(paths, points)
+    dx, dy = max(x1 - x0, 1.0), max(y1 - y0, 1.0)
+    x0, x1, y0, y1 = x0 - 0.04 * dx, x1 + 0.04 * dx, y0 - 0.04 * dy, y1 + 0.04 * dy
+    inner_w = WIDTH - PADS[0] - PADS[1]
+    m_per_px = (x1 - x0) / inner_w
+    inner_h = (y1 - y0) / m_per_px
+    if inner_h > MAX_H - PADS[2] - PADS[3]:  # tall: keep the height, widen x around its centre
+        inner_h = MAX_H - PADS[2] - PADS[3]
+        m_per_px = (y1 - y0) / inner_h
+        cx, half = (x0 + x1) / 2, inner_w * m_per_px / 2
+        x0, x1 = cx - half, cx + half
+    inner_h = max(inner_h, MIN_H - PADS[2] - PADS[3])
+    cy, half = (y0 + y1) / 2, inner_h * m_per_px / 2
+    height = int(inner_h + PADS[2] + PADS[3])
+    return Frame((x0, x1), (cy - half, cy + half), WIDTH, height, PADS)
+
+
+def _grid(frame):
+    out = [f'<rect x="{frame.left}" y="{frame.top}" width="{frame.width - frame.left - frame.right}" '
+           f'height="{frame.height - frame.top - frame.bottom}" fill="#fff" stroke="#bbb"/>']
+    for v in nice_ticks(frame.x0, frame.x1, 8):
+        x = frame.px(v)
+        out.append(f'<text x="{x:.1f}" y="{frame.height - frame.bottom + 15}" text-anchor="middle">{_fmt(v)}</text>')
+    for v in nice_ticks(frame.y0, frame.y1, 6):
+        y = frame.py(v)
+        out.append(f'<text x="{frame.left - 4}" y="{y + 4:.1f}" text-anchor="end">{_fmt(v)}</text>')
+    out.append(f'<text x="{frame.width - frame.right}" y="{frame.height - 3}" text-anchor="end">x (m)</text>')
+    out.append(f'<text x="8" y="{frame.top - 8}">y (m)</text>')
+    return out
+
+
+def _cloud(frame, points):
+    if not points:
+        return []
+    d = "".join(f"M{frame.px(x):.1f} {frame.py(y):.1f}h0" for x, y in points)
+    return [f'<path d="{d}" stroke="#9aa5b1" stroke-width="1.6" stroke-linecap="round" fill="none"/>']
+
+
+def _path(frame, path, color):
+    pts = path["points"]
+    if len(pts) < 2:
+        return []
+    step = max(1, len(pts) // 3000)
+    sampled = pts[::step] + [pts[-1]]
+    d = "M" + " L".join(f"{frame.px(x):.1f},{frame.py(y):.1f}" for x, y in sampled)
+    dash = ' stroke-dasharray="6,4"' if path.get("dashed") else ""
+    return [f'<path d="{d}" fill="none" stroke="{color}" stroke-width="1.8"{dash}/>',
+            f'<circle cx="{frame.px(pts[0][0]):.1f}" cy="{frame.py(pts[0][1]):.1f}" r="4" fill="{color}">'
+            f"<title>start of {escape(path['label'])}</title></circle>"]
+
+
+def _marks(frame, marks):
+    out = []
+    for i, (x, y, label, level) in enumerate(marks):
+        color = EVENT_COLOR.get(level, EVENT_COLOR["info"])
+        px, py = frame.px(x), frame.py(y)
+        out.append(f'<circle cx="{px:.1f}" cy="{py:.1f}" r="6" fill="none" stroke="{color}" stroke-width="2.5">'
+                   f"<title>{escape(label)}</title></circle>")
+        out.append(f'<text x="{px + 8:.1f}" y="{py - 6 - 11 * (i % 3):.1f}" fill="{color}" '
+                   f'font-weight="bold">{escape(label[:48])}</text>')
+    return out
+
+
+def _legend(paths, has_cloud):
+    items = [(p.get("color", COLORS[i % len(COLORS)]), p["label"]) for i, p in enumerate(paths)]
+    if has_cloud:
+        items.append(("#9aa5b1", "map cloud (subsampled)"))
+    out, x = [], PADS[0]
+    for color, label in items:
+        out.append(f'<rect x="{x}" y="6" width="10" height="10" fill="{color}"/>')
+        out.append(f'<text x="{x + 13}" y="15">{escape(label)}</text>')
+        x += 24 + int(6.5 * len(label))
+    return out
+
+
+def top_view(paths, cloud, marks, title):
+    """paths: [{"label", "points": [(x, y)], "color"?, "dashed"?}]; cloud: [(x, y)];
+    marks: [(x, y, label, level)]."""
+    frame = _equal_frame(paths, cloud)
+    body = _grid(frame) + _cloud(frame, cloud)
+    for i, path in enumerate(paths):
+        body += _path(frame, path, path.get("color", COLORS[i % len(COLORS)]))
+    body += _marks(frame, marks) + _legend(paths, bool(cloud))
+    return _svg(WIDTH, frame.height, body, title)
