@@ -78,14 +78,16 @@ def odometry_text(t0_s=100.0, rows=40):
 
 
 def incident_yaml(t0_s=100.0, rows=40, gap=(20, 3)):
-    t_event = t0_s + gap[0] + 1.0
-    return (f'format: swlio-incident 1\nswlio_version: "0.1.0 (test)"\nreason: lidar_silent\n'
+    """lidar_silent a second into the gap; without a gap an operator's mark at row 20."""
+    t_event = t0_s + (gap[0] if gap else 19) + 1.0
+    reason, detail = ("lidar_silent", "no LiDAR datagram for 1.0 s") if gap else ("mark", "operator")
+    return (f'format: swlio-incident 1\nswlio_version: "0.1.0 (test)"\nreason: {reason}\n'
             f"t_event_ns: {int(t_event * 1e9)}\nopened_utc: \"{utc_text(t_event, t0_s)}Z\"\n"
             f"span: {{start_ns: {int(t0_s * 1e9)}, end_ns: {int((t0_s + rows - 1) * 1e9)}, "
             f"start_utc: \"{utc_text(t0_s, t0_s)}Z\", end_utc: \"{utc_text(t0_s + rows - 1, t0_s)}Z\", "
             f"cut_short: false}}\nevents:\n"
-            f"  - {{t_ns: {int(t_event * 1e9)}, utc: \"{utc_text(t_event, t0_s)}Z\", reason: lidar_silent, "
-            f"detail: \"no LiDAR datagram for 1.0 s\"}}\n")
+            f"  - {{t_ns: {int(t_event * 1e9)}, utc: \"{utc_text(t_event, t0_s)}Z\", reason: {reason}, "
+            f"detail: \"{detail}\"}}\n")
 
 
 def write_incident(folder, t0_s=100.0, rows=40, gap=(20, 3), **health):

@@ -24,6 +24,7 @@ class Evidence:
         self.columns = {}           # name -> (times_s, values)
         self.states = ([], [])      # estimator tracking state over time
         self.loc_states = ([], [])  # localization state over time
+        self.since_start = False    # counters count from the daemon's start (status lines)
 
     def has(self, name):
         return name in self.columns and any(v is not None for v in self.columns[name][1])
@@ -32,7 +33,12 @@ class Evidence:
         return self.columns.get(name, ([], []))
 
     def grew(self, name):
-        return series.increase(self.get(name)[1]) if self.has(name) else 0.0
+        """A counter's increase over the span; for status lines, whose counters start with the
+        daemon (all of its life is in its log directory), from zero."""
+        if not self.has(name):
+            return 0.0
+        values = self.get(name)[1]
+        return series.increase(([0.0] if self.since_start else []) + list(values))
 
     def maximum(self, name):
         vals = [v for v in self.get(name)[1] if v is not None]
@@ -63,6 +69,7 @@ def status_rows(log_lines, timeline):
 
 def from_status(rows):
     ev = Evidence("status lines")
+    ev.since_start = True
     ts = [t for t, _ in rows]
     for column, field in STATUS_OF.items():
         ev.columns[column] = (ts, [f.get(field) for _, f in rows])

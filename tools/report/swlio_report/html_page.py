@@ -39,16 +39,18 @@ def absent(text):
 
 
 def _facts(inputs, timeline, replay):
+    utc = "" if timeline.utc_offset is not None else (
+        "; UTC unknown: no health.csv, incident.yaml or realtime offset in the manifest")
     rows = [("input", f"{KIND_TEXT[inputs.kind]}: {inputs.path}"),
             ("span (UTC)", f"{timeline.utc_full(timeline.start)} → {timeline.utc_full(timeline.end)} "
-                           f"({timeline.end - timeline.start:.1f} s)")]
+                           f"({timeline.end - timeline.start:.1f} s{utc})")]
     inc = inputs.incident
     if inc is not None:
         rows.append(("incident", f"{inc.reason} at {inc.opened_utc or '?'}"
                                  + (f" (swlio {inc.version})" if inc.version else "")))
     if replay is not None:
         rows.append(("replay", f"{replay.error}" if replay.error else
-                     f"swlio-run in {replay.seconds:.1f} s: {replay.command}"))
+                     f"swlio-run in {replay.seconds:.1f} s (command under Configuration)"))
     files = ", ".join(f"{n} ({s / 1024:.0f} KB)" for n, s in sorted(inputs.present.items()) if s is not None)
     rows.append(("files", files or "none"))
     return "<table>" + "".join(f"<tr><th>{escape(k)}</th><td>{escape(v)}</td></tr>" for k, v in rows) + "</table>"

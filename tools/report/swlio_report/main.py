@@ -29,9 +29,9 @@ def _replay(args, inputs, script_dir):
     config = os.path.join(inputs.path, "config.yaml") if inputs.config_text is not None else None
     if args.keep_replay:
         os.makedirs(args.keep_replay, exist_ok=True)
-        return replay_mod.run(program, inputs.path, args.keep_replay, config, inputs.notes)
+        return replay_mod.run(program, inputs.path, args.keep_replay, config)
     with tempfile.TemporaryDirectory(prefix="swlio-report-") as out:
-        return replay_mod.run(program, inputs.path, out, config, inputs.notes)
+        return replay_mod.run(program, inputs.path, out, config)
 
 
 def _raw(inputs):
@@ -42,9 +42,10 @@ def _raw(inputs):
 
 def build_page(inputs, replay):
     """The HTML text for what was read (and replayed)."""
-    tl = timeline.build(inputs, replay)
+    raw = _raw(inputs)
+    tl = timeline.build(inputs, replay, raw)
     ev = evidence.build(inputs, tl)
-    ctx = verdicts.Context(inputs, ev, tl, replay, _raw(inputs))
+    ctx = verdicts.Context(inputs, ev, tl, replay, raw)
     judged = verdicts.judge(ctx)
     name = os.path.basename(inputs.path.rstrip("/")) or inputs.path
     body = [html_page.summary(inputs, tl, replay, judged)] + sections.figure_sections(ctx)

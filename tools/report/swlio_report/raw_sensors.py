@@ -45,7 +45,7 @@ def imu_bursts(path, notes):
 
 
 def per_second(times, weights=None):
-    """[(bin centre s, count or sum of weights per second)] in 1 s bins."""
+    """[(bin centre s, count or sum of weights per second)] in whole 1 s bins."""
     if not times:
         return []
     t0 = min(times)
@@ -53,8 +53,8 @@ def per_second(times, weights=None):
     for i, t in enumerate(times):
         k = int(t - t0)
         bins[k] = bins.get(k, 0.0) + (weights[i] if weights else 1.0)
-    last = max(bins)
-    return [(t0 + k + 0.5, bins.get(k, 0.0)) for k in range(last + 1)]
+    last = max(bins)  # the last second is partial: left out
+    return [(t0 + k + 0.5, bins.get(k, 0.0)) for k in range(last)]
 
 
 class RawSensors:

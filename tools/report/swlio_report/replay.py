@@ -26,6 +26,7 @@ class Replay:
         self.map_total = 0     # points in the PCD
         self.summary = {}      # swlio-run's JSON summary line(s)
         self.stderr_tail = []
+        self.notes = []        # problems with the replay (not with the input)
 
 
 def find_swlio_run(explicit, script_dir):
@@ -74,10 +75,11 @@ def _run(cmd, replay):
     return True
 
 
-def run(program, path, out_dir, config, notes):
+def run(program, path, out_dir, config):
     """Runs swlio-run on the recording at `path` into out_dir; with the incident's
     config.yaml first, and without it when swlio-run refuses that configuration."""
     replay = Replay()
+    notes = replay.notes
     if program is None:
         replay.error = "swlio-run not found (beside swlio-report, on PATH or --swlio-run)"
         return replay

@@ -110,8 +110,9 @@ def cpu_queues(v, ctx):
 def black_box(v, ctx):
     inputs = ctx.inputs
     has_box = inputs.kind == "incident" or "health.csv" in inputs.present
-    if not has_box:
-        return  # a plain recording or a log directory: no black box to judge
+    if not has_box:  # a plain recording or a log directory: no black box to judge
+        v.missing = "not a black-box incident (no health.csv, incident.yaml)"
+        return
     absent = [f for f in BLACKBOX_FILES if f not in inputs.present]
     if absent:
         v.add("degraded", "absent: " + ", ".join(absent))

@@ -108,15 +108,15 @@ def config_section(ctx):
                        ("manifest.yaml (the recording)", inputs.manifest_text)):
         if text is not None:
             parts.append(f"<details><summary>{escape(name)}</summary><pre>{escape(text)}</pre></details>")
-    if replay is not None and replay.stderr_tail:
-        parts.append("<details><summary>swlio-run's last messages</summary><pre>"
-                     + escape("\n".join(replay.stderr_tail)) + "</pre></details>")
+    if replay is not None and (replay.command or replay.stderr_tail):
+        parts.append("<details><summary>the replay: swlio-run's command and last messages</summary>"
+                     "<pre>" + escape("\n".join([replay.command] + replay.stderr_tail)) + "</pre></details>")
     body = "".join(parts) or absent("No config.yaml or manifest.yaml in this input.")
     return f'<section id="config"><h2>Configuration</h2>{body}</section>'
 
 
 def notes_section(ctx):
-    notes = ctx.inputs.notes
+    notes = ctx.inputs.notes + (["replay: " + n for n in ctx.replay.notes] if ctx.replay else [])
     body = ("<ul>" + "".join(f'<li class="note">{escape(n)}</li>' for n in notes) + "</ul>") if notes \
         else "<p>Every file present was read without problems.</p>"
     return f'<section id="notes"><h2>Notes on the input</h2>{body}</section>'

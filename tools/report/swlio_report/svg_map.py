@@ -75,8 +75,10 @@ def _marks(frame, marks):
         px, py = frame.px(x), frame.py(y)
         out.append(f'<circle cx="{px:.1f}" cy="{py:.1f}" r="6" fill="none" stroke="{color}" stroke-width="2.5">'
                    f"<title>{escape(label)}</title></circle>")
-        out.append(f'<text x="{px + 8:.1f}" y="{py - 6 - 11 * (i % 3):.1f}" fill="{color}" '
-                   f'font-weight="bold">{escape(label[:48])}</text>')
+        right = px > frame.width * 0.6  # labels right of a mark near the right edge would be cut
+        tx, anchor = (px - 8, "end") if right else (px + 8, "start")
+        out.append(f'<text x="{tx:.1f}" y="{py - 6 - 11 * (i % 3):.1f}" fill="{color}" '
+                   f'text-anchor="{anchor}" font-weight="bold">{escape(label[:48])}</text>')
     return out
 
 

@@ -135,12 +135,14 @@ def time_plot(series, title, ylabel, xlabel="s", x_range=None, events=(), floor_
     """series: [{"label", "points": [(x, y)], "color"?, "step"?, "marker"?}]; events:
     [(x, label, level)] drawn as dashed vertical lines."""
     xs = [p[0] for s in series for p in s["points"]]
-    ys = [p[1] for s in series for p in s["points"]]
     x_range = x_range or _range(xs, pad=0.0)
+    ys = [p[1] for s in series for p in s["points"] if x_range[0] <= p[0] <= x_range[1]]
     frame = Frame(x_range, _range(ys, floor_zero=floor_zero), W, H, (PAD_L, PAD_R, PAD_T, PAD_B))
     body = _axes(frame, xlabel, ylabel, title) + _event_lines(frame, events)
+    x0, x1 = x_range
     for i, s in enumerate(series):
         color = s.get("color", COLORS[i % len(COLORS)])
+        s = dict(s, points=[(x, y) for x, y in s["points"] if x0 <= x <= x1])  # inside the frame
         if s.get("marker"):
             body += [f'<circle cx="{frame.px(x):.1f}" cy="{frame.py(y):.1f}" r="2.5" fill="{color}"/>'
                      for x, y in s["points"] if y is not None]

@@ -4,6 +4,7 @@ Every reader returns what it could read and appends a note (one line, the file's
 `notes` for what it could not: a missing file, a truncated last line, garbage rows. Nothing
 here raises on bad content.
 """
+import math
 import os
 
 
@@ -30,9 +31,10 @@ class Table:
 def _value(text):
     text = text.strip()
     try:
-        return float(text)
+        number = float(text)
     except ValueError:
         return text
+    return number if math.isfinite(number) else text  # nan, inf: not a usable number
 
 
 def _describe_bad(name, bad):
@@ -91,7 +93,7 @@ def read_tum(path, notes):
                 values = [float(v) for v in line.split()]
             except ValueError:
                 values = []
-            if len(values) != 8:
+            if len(values) != 8 or not all(math.isfinite(v) for v in values):
                 bad.append(n)
                 continue
             poses.append(tuple(values[:4]))

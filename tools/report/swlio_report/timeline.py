@@ -34,8 +34,10 @@ class Timeline:
         return time.strftime("%H:%M:%S", time.gmtime(u)) + f".{int((u % 1) * 10)}"
 
     def utc_full(self, t):
-        if t is None or self.utc_offset is None:
+        if t is None:
             return "unknown"
+        if self.utc_offset is None:
+            return f"host {t:.1f} s"
         u = t + self.utc_offset
         return time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(u)) + f".{int((u % 1) * 1000):03d}Z"
 
@@ -68,20 +70,23 @@ def utc_offset(inputs):
     return _manifest_offset(inputs.manifest_text)
 
 
-def _host_times(inputs, replay):
+def _host_times(inputs, replay, raw):
     ts = []
     if inputs.health is not None:
         ts += series.seconds(inputs.health.numbers("t_ns"))
     ts += [p[0] for p in inputs.odometry or []]
-    if replay is not None and replay.trajectory:
-        ts += [p[0] for p in replay.trajectory]
+    if replay is not None and replay.timings is not None:
+        ts += series.seconds(replay.timings.numbers("t_ns"))
+    if raw is not None:
+        ts += raw.lidar_times[:1] + raw.lidar_times[-1:] if raw.lidar_times else []
+        ts += [raw.imu[0][0], raw.imu[-1][0]] if raw.imu else []
     return [t for t in ts if t is not None]
 
 
-def build(inputs, replay):
+def build(inputs, replay, raw=None):
     """The time axis: span from the incident, else from every timed source."""
     offset = utc_offset(inputs)
-    ts = _host_times(inputs, replay)
+    ts = _host_times(inputs, replay, raw)
     if offset is not None:
         ts += [line.utc_s - offset for line in inputs.log_lines]
     span = inputs.incident.span if inputs.incident else {}
@@ -94,12 +99,24 @@ def build(inputs, replay):
     return tl
 
 
+DEGRADING = ("lidar_lossy", "imu_lossy", "clock_jump", "estimator_behind", "queue_drops",
+             "localization_ambiguous")
+
+
+def event_level(reason):
+    """How an incident reason is drawn: an operator's mark is information, a lossy sensor or a
+    late estimator degraded, the rest (silence, divergence, lost, watchdog) failed."""
+    if reason == "mark":
+        return "info"
+    return "degraded" if reason in DEGRADING else "failed"
+
+
 def _incident_marks(inputs):
     inc = inputs.incident
     if inc is None:
         return []
-    return [Mark(e.t_ns * 1e-9 if e.t_ns is not None else None, e.reason, "failed", e.detail)
-            for e in inc.events]
+    return [Mark(e.t_ns * 1e-9 if e.t_ns is not None else None, e.reason, event_level(e.reason),
+                 e.detail) for e in inc.events]
 
 
 def _log_marks(inputs, tl):

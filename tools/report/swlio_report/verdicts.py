@@ -51,7 +51,9 @@ class Verdict:
     def reason(self):
         """The worst findings first, at most three, in one line."""
         ordered = sorted(self.findings, key=lambda f: -LEVELS.index(f[0]))
-        return "; ".join(r for _, r in ordered[:3]) if ordered else "no data"
+        return "; ".join(r for _, r in ordered[:3]) if ordered else self.missing
+
+    missing = "no data: the input has nothing on it"
 
     def label(self):
         return self.level or "no data"
@@ -111,6 +113,8 @@ def judge(ctx):
     out = []
     for name, rule in zip(SUBSYSTEMS, from_modules()):
         v = Verdict(name)
+        if not ctx.ev.source:
+            v.missing = "no data: no health.csv and no status lines in this input"
         rule(v, ctx)
         out.append(v)
     return out
