@@ -99,3 +99,35 @@ def write_incident(folder, t0_s=100.0, rows=40, gap=(20, 3), **health):
         with open(os.path.join(folder, name), "w") as f:
             f.write(text)
     return folder
+
+
+def write_logdir(folder, minutes=3):
+    """swliod.log and swliod.1.log: status lines every 5 s from 14:34:00Z, a CPU shortage (sweeps
+    skipped) at 14:35:00, a LiDAR clock jump at 14:35:30, queue drops at 14:36:00."""
+    os.makedirs(folder, exist_ok=True)
+    lines, skipped, jumps, drops = [], 0, 0, 0
+    for k in range(minutes * 12):
+        t = k * 5.0
+        skipped += 4 if t == 60 else 0
+        jumps += 1 if t == 90 else 0
+        drops += 12 if t == 120 else 0
+        lines.append((t, "info", f"status tracking | lidar 750 pkt/s 10.0 sweeps/s, missing 0 | imu 400 "
+                      f"Hz, checksum errors 0, gaps 0 | pose 400 Hz | update 5.1 ms (max {9 + k % 3}.0) | "
+                      f"drops {drops} | skipped behind {skipped} | reinit 0 | clock jumps lidar {jumps} "
+                      f"imu 0 | lag p99 imu read 0.3 ms, lidar read 0.2 ms, read to pose {1 + k % 4}.1 ms"))
+        if t == 60:
+            lines.append((t, "warn", "degraded: CPU: 4 sweeps skipped since the last status (the "
+                          "estimator fell behind the LiDAR); the IMU-rate pose continues."))
+        if t == 90:
+            lines.append((t, "warn", "lidar clock: jumped 1 time(s) since the last status (1 in all); "
+                          "offset now 1.100000 s, drift 3.0 ppm."))
+        if t == 120:
+            lines.append((t, "warn", "queue lidar_packets (lidar -> optimizer): 12 dropped, high water 64/64"))
+    text = "".join(f"{utc_text(100.0 + t, 100.0 - 120.0)}+0000 {lvl:<5} [77] {msg}\n" for t, lvl, msg in lines)
+    half = len(text.splitlines(True)) // 2
+    rows = text.splitlines(True)
+    with open(os.path.join(folder, "swliod.1.log"), "w") as f:
+        f.writelines(rows[:half])
+    with open(os.path.join(folder, "swliod.log"), "w") as f:
+        f.writelines(rows[half:])
+    return folder

@@ -69,6 +69,14 @@ class Verdicts(unittest.TestCase):
         self.assertEqual(v["estimator"].label(), "failed")
         self.assertEqual(v["black box"].label(), "no data")
 
+    def test_log_directory_warnings(self):
+        v = judge(synthetic.write_logdir(self.dir))
+        self.assertEqual(v["clocks"].label(), "degraded")
+        self.assertIn("1 lidar clock jumps, first at 14:35:30.0", v["clocks"].reason())
+        self.assertEqual(v["CPU / queues"].label(), "degraded")
+        self.assertIn("4 sweeps skipped behind; 12 queue drops", v["CPU / queues"].reason())
+        self.assertEqual(v["LiDAR"].label(), "ok")
+
 
 if __name__ == "__main__":
     unittest.main()

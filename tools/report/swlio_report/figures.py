@@ -107,7 +107,8 @@ def _sigma(f, indices, scale=1.0):
 
 def estimator_plots(f):
     update = f.plot([{"label": "replay total (thread CPU)", "points": f.replay_column("timings", "total_ms")},
-                     {"label": "daemon update (health)", "points": f.column("estimator_update_ms")}],
+                     {"label": "daemon update", "points": f.column("estimator_update_ms")},
+                     {"label": "daemon max update", "points": f.column("estimator_max_update_ms")}],
                     "Per-sweep update time", "ms")
     iterations = f.plot([{"label": "solver iterations", "points": f.replay_column("diagnostics", "iterations"),
                           "marker": True}], "Solver iterations per sweep (replay)", "iterations")
