@@ -5,6 +5,7 @@ swlio-run is looked for in --swlio-run, beside the swlio-report script, then on 
 """
 import json
 import os
+import re
 import shutil
 import subprocess
 import time
@@ -27,6 +28,7 @@ class Replay:
         self.summary = {}      # swlio-run's JSON summary line(s)
         self.stderr_tail = []
         self.notes = []        # problems with the replay (not with the input)
+        self.divergences = []  # [(host s, reason)] of the sweeps where the replay re-initialized
 
 
 def find_swlio_run(explicit, script_dir):
@@ -58,6 +60,10 @@ def _summary(stdout):
     return merged
 
 
+# tools/run/main.cpp: "swlio-run: sweep ending at 123.4 s: <reason>, re-initializing"
+_DIVERGED = re.compile(r"sweep ending at ([\d.]+) s: ([^,\n]+), re-initializing")
+
+
 def _run(cmd, replay):
     start = time.monotonic()
     try:
@@ -67,6 +73,7 @@ def _run(cmd, replay):
         return False
     replay.seconds += time.monotonic() - start
     replay.stderr_tail = done.stderr.splitlines()[-8:]
+    replay.divergences = [(float(m.group(1)), m.group(2)) for m in _DIVERGED.finditer(done.stderr)]
     if done.returncode != 0:
         replay.error = f"swlio-run exited with {done.returncode}: " + " / ".join(replay.stderr_tail[-3:])
         return False

@@ -68,6 +68,16 @@ def _path(frame, path, color):
             f"<title>start of {escape(path['label'])}</title></circle>"]
 
 
+def _links(frame, links):
+    """Thin green lines between the two ends of each accepted loop closure."""
+    if not links:
+        return []
+    d = "".join(f"M{frame.px(a[0]):.1f},{frame.py(a[1]):.1f}L{frame.px(b[0]):.1f},{frame.py(b[1]):.1f}"
+                for a, b in links)
+    return [f'<path d="{d}" stroke="#27ae60" stroke-width="1.2" fill="none"><title>{len(links)} '
+            f"accepted loop closure(s)</title></path>"]
+
+
 def _marks(frame, marks):
     out = []
     for i, (x, y, label, level) in enumerate(marks):
@@ -82,8 +92,10 @@ def _marks(frame, marks):
     return out
 
 
-def _legend(paths, has_cloud):
+def _legend(paths, has_cloud, has_links):
     items = [(p.get("color", COLORS[i % len(COLORS)]), p["label"]) for i, p in enumerate(paths)]
+    if has_links:
+        items.append(("#27ae60", "loop closures (replay)"))
     if has_cloud:
         items.append(("#9aa5b1", "map cloud (subsampled)"))
     out, x = [], PADS[0]
@@ -94,12 +106,12 @@ def _legend(paths, has_cloud):
     return out
 
 
-def top_view(paths, cloud, marks, title):
+def top_view(paths, cloud, marks, title, links=()):
     """paths: [{"label", "points": [(x, y)], "color"?, "dashed"?}]; cloud: [(x, y)];
-    marks: [(x, y, label, level)]."""
+    marks: [(x, y, label, level)]; links: [((x, y), (x, y))]."""
     frame = _equal_frame(paths, cloud)
     body = _grid(frame) + _cloud(frame, cloud)
     for i, path in enumerate(paths):
         body += _path(frame, path, path.get("color", COLORS[i % len(COLORS)]))
-    body += _marks(frame, marks) + _legend(paths, bool(cloud))
+    body += _links(frame, links) + _marks(frame, marks) + _legend(paths, bool(cloud), bool(links))
     return _svg(WIDTH, frame.height, body, title)

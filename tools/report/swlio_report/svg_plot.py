@@ -7,6 +7,7 @@ from html import escape
 COLORS = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#17becf"]
 EVENT_COLOR = {"failed": "#c0392b", "degraded": "#d68910", "info": "#7f8c8d"}
 W, H = 880, 180          # a time plot's size (px)
+MAX_POINTS = 1600        # per series: longer ones keep each pixel column's min and max
 PAD_L, PAD_R, PAD_T, PAD_B = 62, 14, 24, 30
 
 
@@ -60,6 +61,33 @@ def _range(values, pad=0.05, floor_zero=False):
         lo, hi = lo - 0.5 if lo else -0.5, hi + 0.5 if hi else 0.5
     d = (hi - lo) * pad
     return (lo if floor_zero and lo == 0 else lo - d), hi + d
+
+
+def decimate(points, max_points=MAX_POINTS):
+    """At most about max_points of a series sorted by x: per bucket of x its lowest and highest
+    point, in x order, so that spikes stay visible. None values (breaks) are kept."""
+    if len(points) <= max_points:
+        return points
+    buckets = max_points // 2
+    x0, x1 = points[0][0], points[-1][0]
+    width = (x1 - x0) / buckets or 1.0
+    out, current, key = [], [], None
+    for p in points:
+        k = int((p[0] - x0) / width)
+        if k != key and current:
+            out += _extremes(current)
+            current = []
+        key = k
+        current.append(p)
+    return out + _extremes(current)
+
+
+def _extremes(bucket):
+    valid = [p for p in bucket if p[1] is not None]
+    if len(valid) <= 2:
+        return valid
+    lo, hi = min(valid, key=lambda p: p[1]), max(valid, key=lambda p: p[1])
+    return sorted({lo, hi}, key=lambda p: p[0])
 
 
 def _polyline(frame, pts, color, width=1.4, step=False):
@@ -142,7 +170,8 @@ def time_plot(series, title, ylabel, xlabel="s", x_range=None, events=(), floor_
     x0, x1 = x_range
     for i, s in enumerate(series):
         color = s.get("color", COLORS[i % len(COLORS)])
-        s = dict(s, points=[(x, y) for x, y in s["points"] if x0 <= x <= x1])  # inside the frame
+        inside = [(x, y) for x, y in s["points"] if x0 <= x <= x1]  # inside the frame
+        s = dict(s, points=decimate(sorted(inside, key=lambda p: p[0])))
         if s.get("marker"):
             body += [f'<circle cx="{frame.px(x):.1f}" cy="{frame.py(y):.1f}" r="2.5" fill="{color}"/>'
                      for x, y in s["points"] if y is not None]

@@ -95,7 +95,7 @@ def build(inputs, replay, raw=None):
     start = start if start is not None else (min(ts) if ts else 0.0)
     end = end if end is not None else (max(ts) if ts else start + 1.0)
     tl = Timeline(offset, start, max(end, start + 1e-3))
-    tl.marks = _marks(inputs, tl)
+    tl.marks = _marks(inputs, tl, replay)
     return tl
 
 
@@ -134,8 +134,16 @@ def _log_marks(inputs, tl):
     return out
 
 
-def _marks(inputs, tl):
+def _replay_marks(replay):
+    if replay is None:
+        return []
+    return [Mark(t, f"replay: {reason}", "failed", f"the replay diverged ({reason}) and re-initialized")
+            for t, reason in replay.divergences]
+
+
+def _marks(inputs, tl, replay):
     marks = _incident_marks(inputs)
     if not marks:  # an incident's own events say it best; otherwise the log's warnings
         marks = _log_marks(inputs, tl)
+    marks += _replay_marks(replay)
     return sorted((m for m in marks if m.t is not None), key=lambda m: m.t)

@@ -40,4 +40,19 @@ def figure(inputs, replay, timeline):
         if xy is not None:
             marks.append((xy[0], xy[1], f"{timeline.utc(m.t)} {m.label}", m.level))
     cloud = replay.map_points if replay else []
-    return top_view(paths, cloud, marks[:12], "Trajectory over the map, top view")
+    return top_view(paths, cloud, marks[:12], "Trajectory over the map, top view",
+                    _loop_links(replay, replayed))
+
+
+def _loop_links(replay, poses):
+    """Both ends of every loop closure the replay accepted, on its trajectory."""
+    loops = replay.loops if replay else None
+    if loops is None or not poses:
+        return []
+    links = []
+    for a, b, verdict in zip(loops.numbers("candidate_t_ns"), loops.numbers("node_t_ns"),
+                             loops.col("verdict")):
+        ends = [position_at(poses, t * 1e-9) if t is not None else None for t in (a, b)]
+        if verdict == "accepted" and None not in ends:
+            links.append(tuple(ends))
+    return links
