@@ -11,6 +11,7 @@ import math
 import os
 import re
 import shutil
+import struct
 import subprocess
 import tempfile
 import time
@@ -20,7 +21,8 @@ import synthetic
 
 BIN = os.environ.get("SWLIO_BIN_DIR", os.path.join(os.path.dirname(__file__), "../../../build/bin"))
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
-DURATION_S = 6
+DURATION_S = 8
+GAP = (4, 2)  # health rows 4 and 5 see no LiDAR datagram: none in (103, 105] s host time
 REMOTE = re.compile(r"https?://|<script|<link|<img|<iframe|\bsrc=|url\(", re.I)
 CONSOLE_ERROR = re.compile(r"Uncaught|ERROR:CONSOLE|:CONSOLE\(\d+\)\].*\berror\b", re.I)
 
@@ -58,15 +60,30 @@ def odometry_from_truth(rows):
     return out
 
 
+def copy_pcap_without(src, dst, start_s, end_s):
+    """lidar.pcap without the packets received in (start_s, end_s]: a LiDAR outage."""
+    with open(src, "rb") as f, open(dst, "wb") as out:
+        head = f.read(24)
+        unit = 1e-9 if head[:4] == b"\x4d\x3c\xb2\xa1" else 1e-6  # nanosecond or microsecond pcap
+        out.write(head)
+        while len(header := f.read(16)) == 16:
+            sec, frac, incl, _ = struct.unpack("<IIII", header)
+            data = f.read(incl)
+            if not start_s < sec + frac * unit <= end_s:
+                out.write(header + data)
+
+
 def write_incident_from(recording, folder):
-    """The recording's files (symlinked) plus health.csv etc. on its host times (from 100 s), the
-    repository's config/swlio.yaml as config.yaml, the daemon's odometry from the simulator's
-    ground truth."""
+    """The recording's files (symlinked; lidar.pcap copied without the outage's packets) plus
+    health.csv etc. on its host times (from 100 s), the repository's config/swlio.yaml as
+    config.yaml, the daemon's odometry from the simulator's ground truth."""
     os.makedirs(folder)
     for name in os.listdir(recording):
-        os.symlink(os.path.join(recording, name), os.path.join(folder, name))
-    os.remove(os.path.join(folder, "groundtruth.tum"))
-    synthetic.write_incident(folder, t0_s=100.0, rows=DURATION_S + 1, gap=(3, 2))
+        if name not in ("groundtruth.tum", "lidar.pcap"):
+            os.symlink(os.path.join(recording, name), os.path.join(folder, name))
+    copy_pcap_without(os.path.join(recording, "lidar.pcap"), os.path.join(folder, "lidar.pcap"),
+                      100.0 + GAP[0] - 1, 100.0 + GAP[0] - 1 + GAP[1])
+    synthetic.write_incident(folder, t0_s=100.0, rows=DURATION_S + 1, gap=GAP)
     with open(os.path.join(recording, "groundtruth.tum")) as f:
         rows = [line for line in f if line.strip() and not line.startswith("#")]
     with open(os.path.join(folder, "odometry.tum"), "w") as f:
@@ -139,6 +156,7 @@ class Render(unittest.TestCase):
                               r"<td>LiDAR silent ≥ 2.0 s")
         self.assertIn("lidar: no datagram for 1.0 s", dom)  # the log line near the event
         self.assertNotIn("replayed with defaults", dom)  # the incident's config.yaml was used
+        self.assertIn("sweeps (replay) silent 2.", dom)  # the replay saw the outage too
 
 
 if __name__ == "__main__":

@@ -8,9 +8,21 @@ WIDTH, MIN_H, MAX_H = 880, 320, 760
 PADS = (52, 14, 26, 30)
 
 
+CLOUD_MARGIN_M = 25.0  # the map cloud is drawn this far around the trajectories, no further
+
+
 def _bounds(paths, points):
-    xs = [p[0] for path in paths for p in path["points"]] + [p[0] for p in points]
-    ys = [p[1] for path in paths for p in path["points"]] + [p[1] for p in points]
+    """The trajectories' extent plus a margin of the cloud around them (the cloud's alone when
+    there is no trajectory)."""
+    xs = [p[0] for path in paths for p in path["points"]]
+    ys = [p[1] for path in paths for p in path["points"]]
+    if xs:
+        m = CLOUD_MARGIN_M
+        box = (min(xs) - m, max(xs) + m, min(ys) - m, max(ys) + m)
+        near = [p for p in points if box[0] <= p[0] <= box[1] and box[2] <= p[1] <= box[3]]
+        xs, ys = xs + [p[0] for p in near], ys + [p[1] for p in near]
+    else:
+        xs, ys = [p[0] for p in points], [p[1] for p in points]
     if not xs:
         return (0.0, 1.0), (0.0, 1.0)
     return (min(xs), max(xs)), (min(ys), max(ys))
@@ -110,7 +122,8 @@ def top_view(paths, cloud, marks, title, links=()):
     """paths: [{"label", "points": [(x, y)], "color"?, "dashed"?}]; cloud: [(x, y)];
     marks: [(x, y, label, level)]; links: [((x, y), (x, y))]."""
     frame = _equal_frame(paths, cloud)
-    body = _grid(frame) + _cloud(frame, cloud)
+    inside = [p for p in cloud if frame.x0 <= p[0] <= frame.x1 and frame.y0 <= p[1] <= frame.y1]
+    body = _grid(frame) + _cloud(frame, inside)
     for i, path in enumerate(paths):
         body += _path(frame, path, path.get("color", COLORS[i % len(COLORS)]))
     body += _links(frame, links) + _marks(frame, marks) + _legend(paths, bool(cloud), bool(links))
