@@ -123,6 +123,13 @@ class PointCloud(TempDir):
         self.assertEqual(points[1], (100.0, -100.0))
         self.assertEqual(notes, [])
 
+    def test_what_stands_up(self):
+        ground = [(x * 0.25, y * 0.25, 0.01 * (x % 3)) for x in range(200) for y in range(200)]
+        walls = [(20.1, y * 0.5, z * 0.2) for y in range(400) for z in range(10)]  # x = 20 m, 200 m long
+        drawn = pointcloud.standing(ground + walls)
+        self.assertEqual(len(drawn), 400)
+        self.assertTrue(all(x == 20.25 for x, _ in drawn))
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -127,13 +127,20 @@ def loop_plots(f):
     counts = f.plot([{"label": "loops accepted", "points": f.grown("loop_accepted"), "step": True},
                      {"label": "loops rejected", "points": f.grown("loop_rejected"), "step": True},
                      {"label": "relocalizations (hints)", "points": f.grown("loc_hints"), "step": True},
-                     {"label": "localization lost", "points": f.grown("loc_lost"), "step": True}],
+                     {"label": "localization lost", "points": f.grown("loc_lost"), "step": True},
+                     {"label": "loops accepted (replay)", "points": _replay_loop_count(f), "step": True}],
                     "Loop closures and relocalizations (daemon)", "count")
     correction = f.plot([{"label": "loop correction (daemon)", "points": f.column("loop_correction_m")},
                          {"label": "accepted loops' correction (replay)", "points": _replay_loops(f),
                           "marker": True}],
                         "Loop-closure correction", "m")
     return [counts, correction]
+
+
+def _replay_loop_count(f):
+    """Accepted loops of the replay, cumulative at each accepting node's time."""
+    times = sorted(t for t, _ in _replay_loops(f))
+    return [(t, float(i + 1)) for i, t in enumerate(times)]
 
 
 def _replay_loops(f):

@@ -29,7 +29,8 @@ def trajectory_section(ctx):
     elif not replay.map_points:
         notes.append("the replay wrote no map cloud")
     else:
-        notes.append(f"map cloud: {len(replay.map_points):,} of {replay.map_total:,} points drawn")
+        notes.append(f"map: {len(replay.map_points):,} points drawn for the {replay.map_total:,} of the "
+                     "replay's merged cloud (0.5 m cells whose points span ≥ 0.4 m in height)")
     text = "".join(f"<p><small>{escape(n)}</small></p>" for n in notes)
     body = svg or absent("No trajectory: neither odometry.tum nor a replay.")
     return f'<section id="trajectory"><h2>Trajectory over the map</h2>{body}{text}</section>'

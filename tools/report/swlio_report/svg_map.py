@@ -109,7 +109,7 @@ def _legend(paths, has_cloud, has_links):
     if has_links:
         items.append(("#27ae60", "loop closures (replay)"))
     if has_cloud:
-        items.append(("#9aa5b1", "map cloud (subsampled)"))
+        items.append(("#9aa5b1", "map: what stands up (replay's cloud)"))
     out, x = [], PADS[0]
     for color, label in items:
         out.append(f'<rect x="{x}" y="6" width="10" height="10" fill="{color}"/>')
