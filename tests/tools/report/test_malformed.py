@@ -44,7 +44,7 @@ class Malformed(unittest.TestCase):
         for name in FILES:
             for _ in range(8):
                 self.fresh()
-                self.mutate(name, lambda d: d[:rng.randrange(len(d) + 1)])
+                self.mutate(name, lambda d: d[: rng.randrange(len(d) + 1)])
                 html = page_of(self.dir)
                 self.assertIn("Verdict per subsystem", html, name)
 
@@ -53,11 +53,13 @@ class Malformed(unittest.TestCase):
         for name in FILES:
             for _ in range(8):
                 self.fresh()
+
                 def scramble(d):
                     b = bytearray(d)
                     for _ in range(1 + len(b) // 50):
                         b[rng.randrange(len(b))] = rng.randrange(256)
                     return bytes(b)
+
                 self.mutate(name, scramble)
                 html = page_of(self.dir)
                 self.assertIn("Notes on the input", html, name)
@@ -98,8 +100,9 @@ class Malformed(unittest.TestCase):
         empty = os.path.join(self._tmp.name, "empty")
         os.makedirs(empty)
         for path in (empty, os.path.join(self.good, "health.csv"), "/nonexistent/swlio"):
-            done = subprocess.run([sys.executable, REPORT, path, "-o", os.devnull],
-                                  capture_output=True, text=True)
+            done = subprocess.run(
+                [sys.executable, REPORT, path, "-o", os.devnull], capture_output=True, text=True
+            )
             self.assertEqual(done.returncode, 2, path)
             self.assertIn("swlio-report:", done.stderr)
             self.assertNotIn("Traceback", done.stderr)

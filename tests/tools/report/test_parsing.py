@@ -36,7 +36,9 @@ class HealthCsv(TempDir):
         self.assertEqual(table.col("no_such_column"), [None] * 10)
 
     def test_rates_and_silences_from_counters(self):
-        table = tables.read_csv(self.write("health.csv", synthetic.health_rows(rows=10, gap=(4, 3))), [])
+        table = tables.read_csv(
+            self.write("health.csv", synthetic.health_rows(rows=10, gap=(4, 3))), []
+        )
         ts = series.seconds(table.numbers("t_ns"))
         rates = series.rate(ts, table.numbers("lidar_datagrams"))
         self.assertEqual(rates[0], (101.0, 750.0))
@@ -85,8 +87,10 @@ class LogLines(unittest.TestCase):
         with tempfile.TemporaryDirectory() as d:
             for name in ("swliod.log", "swliod.2.log", "swliod.1.log"):
                 open(os.path.join(d, name), "w").close()
-            self.assertEqual([os.path.basename(p) for p in logs.log_files(d)],
-                             ["swliod.2.log", "swliod.1.log", "swliod.log"])
+            self.assertEqual(
+                [os.path.basename(p) for p in logs.log_files(d)],
+                ["swliod.2.log", "swliod.1.log", "swliod.log"],
+            )
 
 
 class IncidentYaml(TempDir):
@@ -98,8 +102,10 @@ class IncidentYaml(TempDir):
         self.assertEqual(inc.t_event_ns, 121_000_000_000)
         self.assertEqual(inc.span["start_ns"], 100_000_000_000)
         self.assertFalse(inc.span["cut_short"])
-        self.assertEqual([(e.reason, e.detail) for e in inc.events],
-                         [("lidar_silent", "no LiDAR datagram for 1.0 s")])
+        self.assertEqual(
+            [(e.reason, e.detail) for e in inc.events],
+            [("lidar_silent", "no LiDAR datagram for 1.0 s")],
+        )
 
     def test_kinds(self):
         synthetic.write_incident(os.path.join(self.dir, "inc"))
@@ -112,8 +118,10 @@ class IncidentYaml(TempDir):
 class PointCloud(TempDir):
     def test_binary_pcd_subsampled(self):
         n = 10000
-        header = ("# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
-                  f"WIDTH {n}\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {n}\nDATA binary\n")
+        header = (
+            "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+            f"WIDTH {n}\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {n}\nDATA binary\n"
+        )
         data = b"".join(struct.pack("<fff", i, -i, 1.0) for i in range(n))
         path = self.write("map.pcd", header.encode() + data, "wb")
         notes = []
@@ -125,7 +133,9 @@ class PointCloud(TempDir):
 
     def test_what_stands_up(self):
         ground = [(x * 0.25, y * 0.25, 0.01 * (x % 3)) for x in range(200) for y in range(200)]
-        walls = [(20.1, y * 0.5, z * 0.2) for y in range(400) for z in range(10)]  # x = 20 m, 200 m long
+        walls = [
+            (20.1, y * 0.5, z * 0.2) for y in range(400) for z in range(10)
+        ]  # x = 20 m, 200 m long
         drawn = pointcloud.standing(ground + walls)
         self.assertEqual(len(drawn), 400)
         self.assertTrue(all(x == 20.25 for x, _ in drawn))

@@ -28,15 +28,24 @@ CONSOLE_ERROR = re.compile(r"Uncaught|ERROR:CONSOLE|:CONSOLE\(\d+\)\].*\berror\b
 
 
 def chromium(*args, timeout=60):
-    cmd = [CHROMIUM, "--headless", "--disable-gpu", "--no-sandbox", "--no-first-run",
-           "--disable-extensions", "--user-data-dir=" + tempfile.mkdtemp(prefix="swlio-chromium-")]
-    return subprocess.run(cmd + list(args), capture_output=True, text=True, errors="replace",
-                          timeout=timeout)
+    cmd = [
+        CHROMIUM,
+        "--headless",
+        "--disable-gpu",
+        "--no-sandbox",
+        "--no-first-run",
+        "--disable-extensions",
+        "--user-data-dir=" + tempfile.mkdtemp(prefix="swlio-chromium-"),
+    ]
+    return subprocess.run(
+        cmd + list(args), capture_output=True, text=True, errors="replace", timeout=timeout
+    )
 
 
 def png_is_not_blank(path):
     """Share of pixels that are not the page's background (near-white)."""
     import matplotlib.image
+
     img = matplotlib.image.imread(path)[..., :3]
     dark = (img.sum(axis=2) < 2.7).mean()
     return dark
@@ -55,8 +64,8 @@ def odometry_from_truth(rows):
     out = []
     for row in rows[::20]:
         v = [float(x) for x in row.split()]
-        dx, dy = v[1] - first[1], v[2] - first[2]
-        out.append(f"{v[0]:.6f} {c * dx - s * dy:.4f} {s * dx + c * dy:.4f} {v[3] - first[3]:.4f} 0 0 0 1\n")
+        dx, dy, dz = v[1] - first[1], v[2] - first[2], v[3] - first[3]
+        out.append(f"{v[0]:.6f} {c * dx - s * dy:.4f} {s * dx + c * dy:.4f} {dz:.4f} 0 0 0 1\n")
     return out
 
 
@@ -81,8 +90,12 @@ def write_incident_from(recording, folder):
     for name in os.listdir(recording):
         if name not in ("groundtruth.tum", "lidar.pcap"):
             os.symlink(os.path.join(recording, name), os.path.join(folder, name))
-    copy_pcap_without(os.path.join(recording, "lidar.pcap"), os.path.join(folder, "lidar.pcap"),
-                      100.0 + GAP[0] - 1, 100.0 + GAP[0] - 1 + GAP[1])
+    copy_pcap_without(
+        os.path.join(recording, "lidar.pcap"),
+        os.path.join(folder, "lidar.pcap"),
+        100.0 + GAP[0] - 1,
+        100.0 + GAP[0] - 1 + GAP[1],
+    )
     synthetic.write_incident(folder, t0_s=100.0, rows=DURATION_S + 1, gap=GAP)
     with open(os.path.join(recording, "groundtruth.tum")) as f:
         rows = [line for line in f if line.strip() and not line.startswith("#")]
@@ -92,8 +105,10 @@ def write_incident_from(recording, folder):
     shutil.copy(os.path.join(SOURCE, "config/swlio.yaml"), os.path.join(folder, "config.yaml"))
 
 
-@unittest.skipIf(CHROMIUM is None, "chromium is not installed (Debian package chromium; "
-                                   "scripts/install-deps installs it)")
+@unittest.skipIf(
+    CHROMIUM is None,
+    "chromium is not installed (Debian package chromium; " "scripts/install-deps installs it)",
+)
 class Render(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -103,15 +118,31 @@ class Render(unittest.TestCase):
         cls._tmp = tempfile.TemporaryDirectory(prefix="swlio-report-render-")
         cls.dir = cls._tmp.name
         rec = os.path.join(cls.dir, "rec")
-        subprocess.run([os.path.join(BIN, "swlio-sim"), "--scenario", "short", "--seed", "1",
-                        "--duration", str(DURATION_S), "--out", rec], check=True, capture_output=True)
+        subprocess.run(
+            [
+                os.path.join(BIN, "swlio-sim"),
+                "--scenario",
+                "short",
+                "--seed",
+                "1",
+                "--duration",
+                str(DURATION_S),
+                "--out",
+                rec,
+            ],
+            check=True,
+            capture_output=True,
+        )
         write_incident_from(rec, os.path.join(cls.dir, "incident"))
         cls.pages, cls.seconds = {}, {}
         for name in ("rec", "incident"):
             start = time.monotonic()
             out = os.path.join(cls.dir, name + ".html")
-            done = subprocess.run([os.path.join(BIN, "swlio-report"), os.path.join(cls.dir, name), "-o", out],
-                                  capture_output=True, text=True)
+            done = subprocess.run(
+                [os.path.join(BIN, "swlio-report"), os.path.join(cls.dir, name), "-o", out],
+                capture_output=True,
+                text=True,
+            )
             cls.seconds[name] = time.monotonic() - start
             assert done.returncode == 0, done.stderr
             cls.pages[name] = out
@@ -140,8 +171,10 @@ class Render(unittest.TestCase):
         self.assertIn("Verdict per subsystem", dom.stdout)
         bad = [line for line in dom.stderr.splitlines() if CONSOLE_ERROR.search(line)]
         self.assertEqual(bad, [], "console errors")
-        print(f"{name}: {os.path.getsize(page) / 1024:.0f} KB, built in {self.seconds[name]:.1f} s, "
-              f"{dom.stdout.count('<svg')} SVG plots")
+        print(
+            f"{name}: {os.path.getsize(page) / 1024:.0f} KB, built in {self.seconds[name]:.1f} s, "
+            f"{dom.stdout.count('<svg')} SVG plots"
+        )
         return dom.stdout
 
     def test_recording(self):
@@ -152,8 +185,11 @@ class Render(unittest.TestCase):
     def test_incident(self):
         dom = self.check_page("incident", min_svgs=12)
         self.assertIn("daemon odometry (odometry.tum)", dom)
-        self.assertRegex(dom, r"LiDAR</td><td><span class=\"badge failed\">failed</span></td>"
-                              r"<td>LiDAR silent ≥ 2.0 s")
+        self.assertRegex(
+            dom,
+            r"LiDAR</td><td><span class=\"badge failed\">failed</span></td>"
+            r"<td>LiDAR silent ≥ 2.0 s",
+        )
         self.assertIn("lidar: no datagram for 1.0 s", dom)  # the log line near the event
         self.assertNotIn("replayed with defaults", dom)  # the incident's config.yaml was used
         self.assertIn("sweeps (replay) silent 2.", dom)  # the replay saw the outage too

@@ -7,8 +7,12 @@ from swlio_report import svg_map, svg_plot
 
 class Svg(unittest.TestCase):
     def test_time_plot_is_well_formed_with_odd_labels(self):
-        svg = svg_plot.time_plot([{"label": "a <b> & \"c\"", "points": [(0, 1), (1, None), (2, 3)]}],
-                                 "t<i>tle", "ms", events=[(1.0, "x < y & z", "failed")])
+        svg = svg_plot.time_plot(
+            [{"label": 'a <b> & "c"', "points": [(0, 1), (1, None), (2, 3)]}],
+            "t<i>tle",
+            "ms",
+            events=[(1.0, "x < y & z", "failed")],
+        )
         root = ET.fromstring(svg)
         self.assertEqual(root.tag, "svg")
         self.assertIn("t&lt;i&gt;tle", svg)
@@ -26,9 +30,12 @@ class Svg(unittest.TestCase):
         self.assertEqual(thin, sorted(thin))
 
     def test_top_view_is_well_formed(self):
-        svg = svg_map.top_view([{"label": "path", "points": [(0, 0), (10, 5), (20, 0)]}],
-                               [(1.0, 1.0), (2.0, -3.0)], [(10, 5, "14:32:07 lidar_silent & co", "failed")],
-                               "top")
+        svg = svg_map.top_view(
+            [{"label": "path", "points": [(0, 0), (10, 5), (20, 0)]}],
+            [(1.0, 1.0), (2.0, -3.0)],
+            [(10, 5, "14:32:07 lidar_silent & co", "failed")],
+            "top",
+        )
         ET.fromstring(svg)
         self.assertIn("lidar_silent &amp; co", svg)
 

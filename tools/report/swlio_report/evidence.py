@@ -20,11 +20,11 @@ STATUS_OF = {
 
 class Evidence:
     def __init__(self, source):
-        self.source = source        # "health.csv", "status lines" or ""
-        self.columns = {}           # name -> (times_s, values)
-        self.states = ([], [])      # estimator tracking state over time
+        self.source = source  # "health.csv", "status lines" or ""
+        self.columns = {}  # name -> (times_s, values)
+        self.states = ([], [])  # estimator tracking state over time
         self.loc_states = ([], [])  # localization state over time
-        self.since_start = False    # counters count from the daemon's start (status lines)
+        self.since_start = False  # counters count from the daemon's start (status lines)
 
     def has(self, name):
         return name in self.columns and any(v is not None for v in self.columns[name][1])
@@ -73,8 +73,15 @@ def from_status(rows):
     ts = [t for t, _ in rows]
     for column, field in STATUS_OF.items():
         ev.columns[column] = (ts, [f.get(field) for _, f in rows])
-    for field in ("lidar_pkt_hz", "sweeps_hz", "imu_hz", "pose_hz", "lag_imu_ms", "lag_lidar_ms",
-                  "lag_pose_ms"):
+    for field in (
+        "lidar_pkt_hz",
+        "sweeps_hz",
+        "imu_hz",
+        "pose_hz",
+        "lag_imu_ms",
+        "lag_lidar_ms",
+        "lag_pose_ms",
+    ):
         ev.columns["status_" + field] = (ts, [f.get(field) for _, f in rows])
     ev.states = (ts, [f.get("state", "") for _, f in rows])
     return ev

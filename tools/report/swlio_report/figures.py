@@ -39,15 +39,24 @@ class Figures:
         series_list = [s for s in series_list if s["points"]]
         if not series_list:
             return None
-        return time_plot(series_list, title, ylabel, self.xlabel, self.x_range, self.events,
-                         floor_zero=floor_zero)
+        return time_plot(
+            series_list,
+            title,
+            ylabel,
+            self.xlabel,
+            self.x_range,
+            self.events,
+            floor_zero=floor_zero,
+        )
 
     def replay_column(self, table_name, column, scale=1.0):
         table = getattr(self.ctx.replay, table_name, None) if self.ctx.replay else None
         if table is None:
             return []
         ts = series.seconds(table.numbers("t_ns"))
-        return self.rel((t, None if v is None else v * scale) for t, v in zip(ts, table.numbers(column)))
+        return self.rel(
+            (t, None if v is None else v * scale) for t, v in zip(ts, table.numbers(column))
+        )
 
 
 def sensor_rates(f):
@@ -65,29 +74,57 @@ def sensor_rates(f):
     return [
         f.plot([{"label": "LiDAR packets/s", "points": lidar}], "LiDAR packet rate", "packets/s"),
         f.plot([{"label": imu_label, "points": imu, "color": "#2ca02c"}], "IMU rate", "per s"),
-        f.plot([{"label": "sweeps/s", "points": sweeps, "color": "#9467bd"}], "LiDAR sweep rate", "sweeps/s"),
+        f.plot(
+            [{"label": "sweeps/s", "points": sweeps, "color": "#9467bd"}],
+            "LiDAR sweep rate",
+            "sweeps/s",
+        ),
     ]
 
 
 def sensor_errors(f):
-    names = [("lidar_missing_packets", "LiDAR missing"), ("lidar_bad_packets", "LiDAR bad"),
-             ("imu_checksum_errors", "IMU checksum errors"), ("imu_skipped_bytes", "IMU skipped bytes"),
-             ("imu_disconnects", "IMU disconnects")]
-    return f.plot([{"label": label, "points": f.grown(n), "step": True} for n, label in names],
-                  "Sensor errors (increase over the span)", "count")
+    names = [
+        ("lidar_missing_packets", "LiDAR missing"),
+        ("lidar_bad_packets", "LiDAR bad"),
+        ("imu_checksum_errors", "IMU checksum errors"),
+        ("imu_skipped_bytes", "IMU skipped bytes"),
+        ("imu_disconnects", "IMU disconnects"),
+    ]
+    return f.plot(
+        [{"label": label, "points": f.grown(n), "step": True} for n, label in names],
+        "Sensor errors (increase over the span)",
+        "count",
+    )
 
 
 def clock_plots(f):
-    offsets = f.plot([{"label": "LiDAR offset", "points": f.column("lidar_clock_offset_ms")},
-                      {"label": "IMU offset", "points": f.column("imu_clock_offset_ms")}],
-                     "Sensor clock offset to host", "ms", floor_zero=False)
-    drift = f.plot([{"label": "LiDAR drift", "points": f.column("lidar_clock_drift_ppm")},
-                    {"label": "IMU drift", "points": f.column("imu_clock_drift_ppm")}],
-                   "Sensor clock drift", "ppm", floor_zero=False)
-    jumps = f.plot([{"label": "LiDAR clock jumps", "points": f.grown("lidar_clock_jumps"), "step": True},
-                    {"label": "IMU clock jumps", "points": f.grown("imu_clock_jumps"), "step": True},
-                    {"label": "wall-clock steps", "points": f.grown("wall_clock_steps"), "step": True}],
-                   "Clock jumps (increase over the span)", "count")
+    offsets = f.plot(
+        [
+            {"label": "LiDAR offset", "points": f.column("lidar_clock_offset_ms")},
+            {"label": "IMU offset", "points": f.column("imu_clock_offset_ms")},
+        ],
+        "Sensor clock offset to host",
+        "ms",
+        floor_zero=False,
+    )
+    drift = f.plot(
+        [
+            {"label": "LiDAR drift", "points": f.column("lidar_clock_drift_ppm")},
+            {"label": "IMU drift", "points": f.column("imu_clock_drift_ppm")},
+        ],
+        "Sensor clock drift",
+        "ppm",
+        floor_zero=False,
+    )
+    jumps = f.plot(
+        [
+            {"label": "LiDAR clock jumps", "points": f.grown("lidar_clock_jumps"), "step": True},
+            {"label": "IMU clock jumps", "points": f.grown("imu_clock_jumps"), "step": True},
+            {"label": "wall-clock steps", "points": f.grown("wall_clock_steps"), "step": True},
+        ],
+        "Clock jumps (increase over the span)",
+        "count",
+    )
     return [offsets, drift, jumps]
 
 
@@ -106,34 +143,80 @@ def _sigma(f, indices, scale=1.0):
 
 
 def estimator_plots(f):
-    update = f.plot([{"label": "replay total (thread CPU)", "points": f.replay_column("timings", "total_ms")},
-                     {"label": "daemon update", "points": f.column("estimator_update_ms")},
-                     {"label": "daemon max update", "points": f.column("estimator_max_update_ms")}],
-                    "Per-sweep update time", "ms")
-    iterations = f.plot([{"label": "solver iterations", "points": f.replay_column("diagnostics", "iterations"),
-                          "marker": True}], "Solver iterations per sweep (replay)", "iterations")
-    degenerate = f.plot([{"label": "degenerate directions (replay)",
-                          "points": f.replay_column("diagnostics", "degenerate_directions"), "step": True},
-                         {"label": "degenerate directions (daemon)",
-                          "points": f.column("estimator_degenerate_directions"), "step": True}],
-                        "Degeneracy", "directions")
-    sigma = f.plot([{"label": "position σ (m)", "points": _sigma(f, (0, 1, 2))},
-                    {"label": "yaw σ (deg)", "points": _sigma(f, (5,), 180.0 / math.pi)}],
-                   "Marginal covariance of the newest state (replay)", "σ")
+    update = f.plot(
+        [
+            {
+                "label": "replay total (thread CPU)",
+                "points": f.replay_column("timings", "total_ms"),
+            },
+            {"label": "daemon update", "points": f.column("estimator_update_ms")},
+            {"label": "daemon max update", "points": f.column("estimator_max_update_ms")},
+        ],
+        "Per-sweep update time",
+        "ms",
+    )
+    iterations = f.plot(
+        [
+            {
+                "label": "solver iterations",
+                "points": f.replay_column("diagnostics", "iterations"),
+                "marker": True,
+            }
+        ],
+        "Solver iterations per sweep (replay)",
+        "iterations",
+    )
+    degenerate = f.plot(
+        [
+            {
+                "label": "degenerate directions (replay)",
+                "points": f.replay_column("diagnostics", "degenerate_directions"),
+                "step": True,
+            },
+            {
+                "label": "degenerate directions (daemon)",
+                "points": f.column("estimator_degenerate_directions"),
+                "step": True,
+            },
+        ],
+        "Degeneracy",
+        "directions",
+    )
+    sigma = f.plot(
+        [
+            {"label": "position σ (m)", "points": _sigma(f, (0, 1, 2))},
+            {"label": "yaw σ (deg)", "points": _sigma(f, (5,), 180.0 / math.pi)},
+        ],
+        "Marginal covariance of the newest state (replay)",
+        "σ",
+    )
     return [update, iterations, degenerate, sigma]
 
 
 def loop_plots(f):
-    counts = f.plot([{"label": "loops accepted", "points": f.grown("loop_accepted"), "step": True},
-                     {"label": "loops rejected", "points": f.grown("loop_rejected"), "step": True},
-                     {"label": "relocalizations (hints)", "points": f.grown("loc_hints"), "step": True},
-                     {"label": "localization lost", "points": f.grown("loc_lost"), "step": True},
-                     {"label": "loops accepted (replay)", "points": _replay_loop_count(f), "step": True}],
-                    "Loop closures and relocalizations (daemon)", "count")
-    correction = f.plot([{"label": "loop correction (daemon)", "points": f.column("loop_correction_m")},
-                         {"label": "accepted loops' correction (replay)", "points": _replay_loops(f),
-                          "marker": True}],
-                        "Loop-closure correction", "m")
+    counts = f.plot(
+        [
+            {"label": "loops accepted", "points": f.grown("loop_accepted"), "step": True},
+            {"label": "loops rejected", "points": f.grown("loop_rejected"), "step": True},
+            {"label": "relocalizations (hints)", "points": f.grown("loc_hints"), "step": True},
+            {"label": "localization lost", "points": f.grown("loc_lost"), "step": True},
+            {"label": "loops accepted (replay)", "points": _replay_loop_count(f), "step": True},
+        ],
+        "Loop closures and relocalizations (daemon)",
+        "count",
+    )
+    correction = f.plot(
+        [
+            {"label": "loop correction (daemon)", "points": f.column("loop_correction_m")},
+            {
+                "label": "accepted loops' correction (replay)",
+                "points": _replay_loops(f),
+                "marker": True,
+            },
+        ],
+        "Loop-closure correction",
+        "m",
+    )
     return [counts, correction]
 
 
@@ -147,20 +230,41 @@ def _replay_loops(f):
     loops = f.ctx.replay.loops if f.ctx.replay else None
     if loops is None:
         return []
-    pts = [(t * 1e-9, c) for t, c, v in zip(loops.numbers("node_t_ns"), loops.numbers("correction_m"),
-                                            loops.col("verdict")) if v == "accepted" and t is not None]
+    pts = [
+        (t * 1e-9, c)
+        for t, c, v in zip(
+            loops.numbers("node_t_ns"), loops.numbers("correction_m"), loops.col("verdict")
+        )
+        if v == "accepted" and t is not None
+    ]
     return f.rel(pts)
 
 
 def system_plots(f):
     cpu = f.plot([{"label": "CPU % of a core", "points": f.rel(cpu_percent(f.ctx.ev))}], "CPU", "%")
-    rss = f.plot([{"label": "RSS", "points": f.column("rss_mb"), "color": "#8c564b"}], "Memory", "MB")
-    queues = f.plot([{"label": "fullest queue (%)", "points": f.column("queue_max_fill", 100.0)},
-                     {"label": "queue drops", "points": f.grown("queue_dropped"), "step": True},
-                     {"label": "skipped behind", "points": f.grown("estimator_skipped_behind"), "step": True}],
-                    "Queues", "% / count")
-    lag = f.plot([{"label": "IMU read lag p99", "points": f.column("status_lag_imu_ms")},
-                  {"label": "LiDAR read lag p99", "points": f.column("status_lag_lidar_ms")},
-                  {"label": "read to pose p99", "points": f.column("status_lag_pose_ms")}],
-                 "Latency (status lines)", "ms")
+    rss = f.plot(
+        [{"label": "RSS", "points": f.column("rss_mb"), "color": "#8c564b"}], "Memory", "MB"
+    )
+    queues = f.plot(
+        [
+            {"label": "fullest queue (%)", "points": f.column("queue_max_fill", 100.0)},
+            {"label": "queue drops", "points": f.grown("queue_dropped"), "step": True},
+            {
+                "label": "skipped behind",
+                "points": f.grown("estimator_skipped_behind"),
+                "step": True,
+            },
+        ],
+        "Queues",
+        "% / count",
+    )
+    lag = f.plot(
+        [
+            {"label": "IMU read lag p99", "points": f.column("status_lag_imu_ms")},
+            {"label": "LiDAR read lag p99", "points": f.column("status_lag_lidar_ms")},
+            {"label": "read to pose p99", "points": f.column("status_lag_pose_ms")},
+        ],
+        "Latency (status lines)",
+        "ms",
+    )
     return [cpu, rss, queues, lag]

@@ -25,8 +25,11 @@ svg.plot{display:block;max-width:100%;height:auto;margin:4px 0}
 small{color:#666}
 """
 
-KIND_TEXT = {"incident": "an incident kept by the black box",
-             "recording": "a recording folder", "logdir": "the daemon's log directory"}
+KIND_TEXT = {
+    "incident": "an incident kept by the black box",
+    "recording": "a recording folder",
+    "logdir": "the daemon's log directory",
+}
 
 
 def badge(level):
@@ -39,47 +42,90 @@ def absent(text):
 
 
 def _facts(inputs, timeline, replay):
-    utc = "" if timeline.utc_offset is not None else (
-        "; UTC unknown: no health.csv, incident.yaml or realtime offset in the manifest")
-    rows = [("input", f"{KIND_TEXT[inputs.kind]}: {inputs.path}"),
-            ("span (UTC)", f"{timeline.utc_full(timeline.start)} → {timeline.utc_full(timeline.end)} "
-                           f"({timeline.end - timeline.start:.1f} s{utc})")]
+    utc = (
+        ""
+        if timeline.utc_offset is not None
+        else ("; UTC unknown: no health.csv, incident.yaml or realtime offset in the manifest")
+    )
+    rows = [
+        ("input", f"{KIND_TEXT[inputs.kind]}: {inputs.path}"),
+        (
+            "span (UTC)",
+            f"{timeline.utc_full(timeline.start)} → {timeline.utc_full(timeline.end)} "
+            f"({timeline.end - timeline.start:.1f} s{utc})",
+        ),
+    ]
     inc = inputs.incident
     if inc is not None:
-        rows.append(("incident", f"{inc.reason} at {inc.opened_utc or '?'}"
-                                 + (f" (swlio {inc.version})" if inc.version else "")))
+        rows.append(
+            (
+                "incident",
+                f"{inc.reason} at {inc.opened_utc or '?'}"
+                + (f" (swlio {inc.version})" if inc.version else ""),
+            )
+        )
     if replay is not None:
-        rows.append(("replay", f"{replay.error}" if replay.error else
-                     f"swlio-run in {replay.seconds:.1f} s (command under Configuration)"))
-    files = ", ".join(f"{n} ({s / 1024:.0f} KB)" for n, s in sorted(inputs.present.items()) if s is not None)
+        rows.append(
+            (
+                "replay",
+                f"{replay.error}"
+                if replay.error
+                else f"swlio-run in {replay.seconds:.1f} s (command under Configuration)",
+            )
+        )
+    files = ", ".join(
+        f"{n} ({s / 1024:.0f} KB)" for n, s in sorted(inputs.present.items()) if s is not None
+    )
     rows.append(("files", files or "none"))
-    return "<table>" + "".join(f"<tr><th>{escape(k)}</th><td>{escape(v)}</td></tr>" for k, v in rows) + "</table>"
+    return (
+        "<table>"
+        + "".join(f"<tr><th>{escape(k)}</th><td>{escape(v)}</td></tr>" for k, v in rows)
+        + "</table>"
+    )
 
 
 def _events(inputs, timeline):
     inc = inputs.incident
     if inc is None or not inc.events:
         return ""
-    rows = "".join(f"<tr><td>{escape(e.utc or timeline.utc(e.t_ns * 1e-9 if e.t_ns else None))}</td>"
-                   f"<td>{escape(e.reason)}</td><td>{escape(e.detail)}</td></tr>" for e in inc.events)
-    return f"<h3>Incident events</h3><table><tr><th>UTC</th><th>reason</th><th>detail</th></tr>{rows}</table>"
+    rows = "".join(
+        f"<tr><td>{escape(e.utc or timeline.utc(e.t_ns * 1e-9 if e.t_ns else None))}</td>"
+        f"<td>{escape(e.reason)}</td><td>{escape(e.detail)}</td></tr>"
+        for e in inc.events
+    )
+    head = "<tr><th>UTC</th><th>reason</th><th>detail</th></tr>"
+    return f"<h3>Incident events</h3><table>{head}{rows}</table>"
 
 
 def _verdicts(verdicts):
-    rows = "".join(f"<tr><td>{escape(v.subsystem)}</td><td>{badge(v.label())}</td>"
-                   f"<td>{escape(v.reason())}</td></tr>" for v in verdicts)
+    rows = "".join(
+        f"<tr><td>{escape(v.subsystem)}</td><td>{badge(v.label())}</td>"
+        f"<td>{escape(v.reason())}</td></tr>"
+        for v in verdicts
+    )
     rules = "".join(f"<li><b>{escape(n)}</b>: {escape(t)}</li>" for n, t in THRESHOLDS)
-    return (f"<h3>Verdict per subsystem</h3><table><tr><th>subsystem</th><th>verdict</th><th>why</th></tr>"
-            f"{rows}</table><details><summary>thresholds</summary><ul>{rules}</ul></details>")
+    return (
+        "<h3>Verdict per subsystem</h3><table>"
+        "<tr><th>subsystem</th><th>verdict</th><th>why</th></tr>"
+        f"{rows}</table><details><summary>thresholds</summary><ul>{rules}</ul></details>"
+    )
 
 
 def summary(inputs, timeline, replay, verdicts):
-    return ('<section id="summary"><h2>Summary</h2>' + _facts(inputs, timeline, replay)
-            + _verdicts(verdicts) + _events(inputs, timeline) + "</section>")
+    return (
+        '<section id="summary"><h2>Summary</h2>'
+        + _facts(inputs, timeline, replay)
+        + _verdicts(verdicts)
+        + _events(inputs, timeline)
+        + "</section>"
+    )
 
 
 def page(title, sections):
-    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-            f"<meta name=\"viewport\" content=\"width=device-width\"><title>{escape(title)}</title>"
-            f"<style>{CSS}</style></head><body><h1>{escape(title)}</h1>" + "".join(sections)
-            + "</body></html>\n")
+    return (
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+        f'<meta name="viewport" content="width=device-width"><title>{escape(title)}</title>'
+        f"<style>{CSS}</style></head><body><h1>{escape(title)}</h1>"
+        + "".join(sections)
+        + "</body></html>\n"
+    )

@@ -42,8 +42,12 @@ def _int(value):
 def _event(entry):
     if not isinstance(entry, dict):
         return None
-    return Event(_int(entry.get("t_ns")), str(entry.get("utc", "")),
-                 str(entry.get("reason", "unknown")), str(entry.get("detail", "")))
+    return Event(
+        _int(entry.get("t_ns")),
+        str(entry.get("utc", "")),
+        str(entry.get("reason", "unknown")),
+        str(entry.get("detail", "")),
+    )
 
 
 def from_mapping(doc, notes):

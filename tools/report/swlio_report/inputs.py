@@ -20,14 +20,14 @@ class Inputs:
 
     def __init__(self, path, kind):
         self.path, self.kind = path, kind
-        self.notes = []          # one line per problem with the input
-        self.present = {}        # file name -> size in bytes
-        self.health = None       # tables.Table of health.csv
-        self.log_lines = []      # logs.LogLine, time order
-        self.odometry = None     # [(t_s, x, y, z)] of odometry.tum
+        self.notes = []  # one line per problem with the input
+        self.present = {}  # file name -> size in bytes
+        self.health = None  # tables.Table of health.csv
+        self.log_lines = []  # logs.LogLine, time order
+        self.odometry = None  # [(t_s, x, y, z)] of odometry.tum
         self.config_text = None
         self.manifest_text = None
-        self.incident = None     # incident.Incident
+        self.incident = None  # incident.Incident
         self.clock_offsets = None
 
 
@@ -42,8 +42,10 @@ def detect_kind(path):
         return "recording", ""
     if logs.log_files(path):
         return "logdir", ""
-    return None, (f"{path} holds no recording ({', '.join(RECORDING_FILES)}), no incident.yaml "
-                  "and no swliod log files")
+    return None, (
+        f"{path} holds no recording ({', '.join(RECORDING_FILES)}), no incident.yaml "
+        "and no swliod log files"
+    )
 
 
 def _size(path):
@@ -55,7 +57,9 @@ def _size(path):
 
 def _read_folder(inputs):
     p, notes = inputs.path, inputs.notes
-    for name in RECORDING_FILES + BLACKBOX_FILES + ("incident.yaml", "can.log", "clock_offsets.csv"):
+    for name in (
+        RECORDING_FILES + BLACKBOX_FILES + ("incident.yaml", "can.log", "clock_offsets.csv")
+    ):
         size = _size(os.path.join(p, name))
         if size is not None:
             inputs.present[name] = size
@@ -63,8 +67,9 @@ def _read_folder(inputs):
     inputs.odometry = read_tum(os.path.join(p, "odometry.tum"), notes)
     inputs.config_text = read_text(os.path.join(p, "config.yaml"), notes)
     inputs.manifest_text = read_text(os.path.join(p, "manifest.yaml"), notes)
-    inputs.clock_offsets = read_csv(os.path.join(p, "clock_offsets.csv"), notes,
-                                    required=("t_monotonic_ns",))
+    inputs.clock_offsets = read_csv(
+        os.path.join(p, "clock_offsets.csv"), notes, required=("t_monotonic_ns",)
+    )
     text = read_text(os.path.join(p, "log.txt"), notes)
     if text is not None:
         inputs.log_lines = logs.parse_lines(text, "log.txt", notes)

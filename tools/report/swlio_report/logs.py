@@ -10,10 +10,18 @@ import os
 import re
 import time
 
-_LINE = re.compile(
-    r"^(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d)(\.\d+)?(Z|[+-]\d\d:?\d\d)?\s+([A-Za-z]+)\s+\[(\d+)\]\s?(.*)$")
-_LEVELS = {"trace": "trace", "debug": "debug", "info": "info", "warn": "warn", "warning": "warn",
-           "error": "error", "err": "error", "critical": "critical"}
+_TIME = r"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d)(\.\d+)?(Z|[+-]\d\d:?\d\d)?"
+_LINE = re.compile(r"^" + _TIME + r"\s+([A-Za-z]+)\s+\[(\d+)\]\s?(.*)$")
+_LEVELS = {
+    "trace": "trace",
+    "debug": "debug",
+    "info": "info",
+    "warn": "warn",
+    "warning": "warn",
+    "error": "error",
+    "err": "error",
+    "critical": "critical",
+}
 
 # Status line fields: name -> regex of the number (cumulative counters and rates alike).
 STATUS_FIELDS = {
@@ -60,7 +68,7 @@ def _offset_s(zone):
 
 def parse_utc(text):
     """ISO 8601 time (`2026-12-04T14:32:07.120Z` or `+0000`) to UTC epoch seconds, or None."""
-    m = re.match(r"^(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d)(\.\d+)?(Z|[+-]\d\d:?\d\d)?$", text.strip())
+    m = re.match(r"^" + _TIME + r"$", text.strip())
     if not m:
         return None
     return _epoch(m.group(1), m.group(2), m.group(3))
@@ -103,10 +111,14 @@ def parse_lines(text, source, notes):
 
 def log_files(directory):
     """swliod.log and its rotated files (swliod.1.log, ...), oldest first."""
+
     def rank(path):
         m = re.search(r"\.(\d+)\.log$", path)
         return -(int(m.group(1)) if m else 0)
-    files = glob.glob(os.path.join(directory, "*.log")) + glob.glob(os.path.join(directory, "*.log.*"))
+
+    files = glob.glob(os.path.join(directory, "*.log")) + glob.glob(
+        os.path.join(directory, "*.log.*")
+    )
     return sorted(set(files), key=rank)
 
 

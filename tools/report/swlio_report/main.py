@@ -13,12 +13,17 @@ def parse_args(argv):
     p = argparse.ArgumentParser(
         prog="swlio-report",
         description="One self-contained HTML page that says what happened: an incident folder, a "
-                    "recording folder or the daemon's log directory (docs/report.md).")
+        "recording folder or the daemon's log directory (docs/report.md).",
+    )
     p.add_argument("path", help="incident folder, recording folder or swliod log directory")
     p.add_argument("-o", "--out", help="the HTML file (default: <PATH's name>.report.html here)")
     p.add_argument("--no-replay", action="store_true", help="do not run swlio-run on the recording")
-    p.add_argument("--swlio-run", help="the swlio-run program (default: beside this script, then PATH)")
-    p.add_argument("--keep-replay", metavar="DIR", help="write swlio-run's outputs here and keep them")
+    p.add_argument(
+        "--swlio-run", help="the swlio-run program (default: beside this script, then PATH)"
+    )
+    p.add_argument(
+        "--keep-replay", metavar="DIR", help="write swlio-run's outputs here and keep them"
+    )
     return p.parse_args(argv)
 
 
@@ -69,6 +74,8 @@ def main(argv=None, script_dir=None):
     with open(out, "w", encoding="utf-8") as f:
         f.write(html)
     page_s = time.monotonic() - start - replay_s
-    print(f"swlio-report: {out} ({len(html.encode()) / 1024:.0f} KB; replay {replay_s:.1f} s, "
-          f"page {page_s:.1f} s)")
+    print(
+        f"swlio-report: {out} ({len(html.encode()) / 1024:.0f} KB; replay {replay_s:.1f} s, "
+        f"page {page_s:.1f} s)"
+    )
     return 0

@@ -8,9 +8,9 @@ import os
 import struct
 
 MAX_POINTS = 5000  # drawn under the trajectory: enough to see the yard, small in SVG
-CELL_M = 0.5       # grid cell of the top view
+CELL_M = 0.5  # grid cell of the top view
 STRUCTURE_M = 0.4  # a cell whose points span this much height holds something standing
-MIN_CELLS = 200    # fewer standing cells than this: an even subsample of the points instead
+MIN_CELLS = 200  # fewer standing cells than this: an even subsample of the points instead
 
 
 def _header(f):
@@ -46,8 +46,10 @@ def _binary(f, count, layout):
     ix, iy, iz, size, fmt = layout
     data = f.read(count * size)
     count = min(count, len(data) // size)
-    return [(v[ix], v[iy], v[iz] if iz is not None else 0.0)
-            for v in struct.iter_unpack(fmt, data[:count * size])]
+    return [
+        (v[ix], v[iy], v[iz] if iz is not None else 0.0)
+        for v in struct.iter_unpack(fmt, data[: count * size])
+    ]
 
 
 def _ascii(f, layout):
@@ -56,7 +58,9 @@ def _ascii(f, layout):
     for line in f.read().decode("ascii", errors="replace").splitlines():
         parts = line.split()
         try:
-            rows.append((float(parts[ix]), float(parts[iy]), float(parts[iz]) if iz is not None else 0.0))
+            rows.append(
+                (float(parts[ix]), float(parts[iy]), float(parts[iz]) if iz is not None else 0.0)
+            )
         except (ValueError, IndexError):
             continue
     return rows
@@ -91,7 +95,11 @@ def read_xy(path, notes, max_points=MAX_POINTS):
         if layout is None:
             notes.append(f"{os.path.basename(path)}: not a PCD of float x y z")
             return [], 0
-        count = int((fields.get("POINTS") or ["0"])[0]) if (fields.get("POINTS") or ["x"])[0].isdigit() else 0
+        count = (
+            int((fields.get("POINTS") or ["0"])[0])
+            if (fields.get("POINTS") or ["x"])[0].isdigit()
+            else 0
+        )
         if fields["DATA"][:1] == ["binary"]:
             points = _binary(f, count, layout)
             return standing(points, max_points), len(points)

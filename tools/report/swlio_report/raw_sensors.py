@@ -7,8 +7,12 @@ import struct
 
 from .tables import read_csv
 
-_PCAP_MAGIC = {b"\xd4\xc3\xb2\xa1": ("<", 1e-6), b"\xa1\xb2\xc3\xd4": (">", 1e-6),
-               b"\x4d\x3c\xb2\xa1": ("<", 1e-9), b"\xa1\xb2\x3c\x4d": (">", 1e-9)}
+_PCAP_MAGIC = {
+    b"\xd4\xc3\xb2\xa1": ("<", 1e-6),
+    b"\xa1\xb2\xc3\xd4": (">", 1e-6),
+    b"\x4d\x3c\xb2\xa1": ("<", 1e-9),
+    b"\xa1\xb2\x3c\x4d": (">", 1e-9),
+}
 
 
 def pcap_times(path, notes):
@@ -40,8 +44,11 @@ def imu_bursts(path, notes):
     table = read_csv(path, notes, required=("t_rx_ns", "bytes"))
     if table is None:
         return None
-    return [(t * 1e-9, b) for t, b in zip(table.numbers("t_rx_ns"), table.numbers("bytes"))
-            if t is not None and b is not None]
+    return [
+        (t * 1e-9, b)
+        for t, b in zip(table.numbers("t_rx_ns"), table.numbers("bytes"))
+        if t is not None and b is not None
+    ]
 
 
 def per_second(times, weights=None):
@@ -59,8 +66,8 @@ def per_second(times, weights=None):
 
 class RawSensors:
     def __init__(self):
-        self.lidar_times = None   # packet receive times (s)
-        self.imu = None           # [(t, bytes)]
+        self.lidar_times = None  # packet receive times (s)
+        self.imu = None  # [(t, bytes)]
 
 
 def read(folder, notes):

@@ -23,11 +23,11 @@ class Replay:
         self.seconds = 0.0
         self.trajectory = self.timings = self.diagnostics = self.covariance = None
         self.loops = None
-        self.map_points = []   # [(x, y)] subsampled
-        self.map_total = 0     # points in the PCD
-        self.summary = {}      # swlio-run's JSON summary line(s)
+        self.map_points = []  # [(x, y)] subsampled
+        self.map_total = 0  # points in the PCD
+        self.summary = {}  # swlio-run's JSON summary line(s)
         self.stderr_tail = []
-        self.notes = []        # problems with the replay (not with the input)
+        self.notes = []  # problems with the replay (not with the input)
         self.divergences = []  # [(host s, reason)] of the sweeps where the replay re-initialized
 
 
@@ -41,10 +41,26 @@ def find_swlio_run(explicit, script_dir):
 
 
 def _command(program, path, out, config):
-    cmd = [program, path, "--out", f"{out}/traj.tum", "--timings", f"{out}/timings.csv",
-           "--diagnostics", f"{out}/diagnostics.csv", "--covariance", f"{out}/covariance.csv",
-           "--loop-closure", "on", "--loops", f"{out}/loops.csv",
-           "--save-map", f"{out}/map.swlmap", "--map-pcd", f"{out}/map.pcd"]
+    cmd = [
+        program,
+        path,
+        "--out",
+        f"{out}/traj.tum",
+        "--timings",
+        f"{out}/timings.csv",
+        "--diagnostics",
+        f"{out}/diagnostics.csv",
+        "--covariance",
+        f"{out}/covariance.csv",
+        "--loop-closure",
+        "on",
+        "--loops",
+        f"{out}/loops.csv",
+        "--save-map",
+        f"{out}/map.swlmap",
+        "--map-pcd",
+        f"{out}/map.pcd",
+    ]
     return cmd + (["--config", config] if config else [])
 
 
@@ -75,7 +91,9 @@ def _run(cmd, replay):
     replay.stderr_tail = done.stderr.splitlines()[-8:]
     replay.divergences = [(float(m.group(1)), m.group(2)) for m in _DIVERGED.finditer(done.stderr)]
     if done.returncode != 0:
-        replay.error = f"swlio-run exited with {done.returncode}: " + " / ".join(replay.stderr_tail[-3:])
+        replay.error = f"swlio-run exited with {done.returncode}: " + " / ".join(
+            replay.stderr_tail[-3:]
+        )
         return False
     replay.summary = _summary(done.stdout)
     replay.error = None

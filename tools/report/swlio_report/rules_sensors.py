@@ -1,7 +1,16 @@
 """Verdict rules for the sensors and their clocks (thresholds in verdicts.py)."""
 from . import series
-from .verdicts import (CLOCK_JUMPS, IMU_CHECKSUM_ERRORS, IMU_SILENT_S, LIDAR_MISSING_FRACTION,
-                       LIDAR_SILENT_S, _events, _gap, _silence, count)
+from .verdicts import (
+    CLOCK_JUMPS,
+    IMU_CHECKSUM_ERRORS,
+    IMU_SILENT_S,
+    LIDAR_MISSING_FRACTION,
+    LIDAR_SILENT_S,
+    _events,
+    _gap,
+    _silence,
+    count,
+)
 
 
 def _lidar_counts(v, ctx):
@@ -27,19 +36,29 @@ def lidar(v, ctx):
         ts, hz = ev.get("status_sweeps_hz")
         zero = [t for t, h in zip(ts, hz) if h == 0]
         if zero:
-            v.add("failed", f"0 sweeps/s in {len(zero)} status line(s), first at {ctx.tl.utc(zero[0])}")
+            v.add(
+                "failed",
+                f"0 sweeps/s in {len(zero)} status line(s), first at {ctx.tl.utc(zero[0])}",
+            )
     _lidar_counts(v, ctx)
     _events(v, ctx, ("lidar_silent",), "failed")
     _events(v, ctx, ("lidar_lossy",), "degraded")
     raw = ctx.raw
     if raw is not None and raw.lidar_times:
         if not _gap(v, ctx, raw.lidar_times, LIDAR_SILENT_S, "LiDAR (pcap)"):
-            v.add("ok", f"{count(len(raw.lidar_times))} packets in lidar.pcap, no gap ≥ {LIDAR_SILENT_S:g} s")
+            v.add(
+                "ok",
+                f"{count(len(raw.lidar_times))} packets in lidar.pcap, "
+                f"no gap ≥ {LIDAR_SILENT_S:g} s",
+            )
     timings = ctx.replay.timings if ctx.replay else None
     if timings is not None and timings.rows:
         times = series.seconds(timings.numbers("t_ns"))
         if not _gap(v, ctx, times, LIDAR_SILENT_S, "sweeps (replay)"):
-            v.add("ok", f"{count(timings.rows)} sweeps replayed, none more than {LIDAR_SILENT_S:g} s apart")
+            v.add(
+                "ok",
+                f"{count(timings.rows)} sweeps replayed, none more than {LIDAR_SILENT_S:g} s apart",
+            )
 
 
 def imu(v, ctx):
@@ -57,7 +76,9 @@ def imu(v, ctx):
         v.add("failed", f"{count(unplugged)} disconnect(s)")
     if ev.has("imu_checksum_errors"):
         errors = ev.grew("imu_checksum_errors")
-        v.add("degraded" if errors > IMU_CHECKSUM_ERRORS else "ok", f"{count(errors)} checksum errors")
+        v.add(
+            "degraded" if errors > IMU_CHECKSUM_ERRORS else "ok", f"{count(errors)} checksum errors"
+        )
     _events(v, ctx, ("imu_silent",), "failed")
     _events(v, ctx, ("imu_lossy",), "degraded")
     raw = ctx.raw
@@ -74,7 +95,10 @@ def clocks(v, ctx):
             jumps = ev.grew(name)
             first = series.first_increase(*ev.get(name))
             where = f", first at {ctx.tl.utc(first)}" if first is not None else ""
-            v.add("degraded" if jumps > CLOCK_JUMPS else "ok", f"{count(jumps)} {sensor} clock jumps{where}")
+            v.add(
+                "degraded" if jumps > CLOCK_JUMPS else "ok",
+                f"{count(jumps)} {sensor} clock jumps{where}",
+            )
     steps = ev.grew("wall_clock_steps")
     if steps > 0:
         v.add("degraded", f"wall clock stepped {count(steps)} time(s)")
@@ -82,7 +106,9 @@ def clocks(v, ctx):
     jumps = (ctx.replay.summary.get("clock_jumps") if ctx.replay else None) or {}
     if isinstance(jumps, dict) and jumps:
         total = sum(int(j) for j in jumps.values() if isinstance(j, (int, float)))
-        v.add("degraded" if total > CLOCK_JUMPS else "ok",
-              f"replay: {jumps.get('lidar', 0)} LiDAR / {jumps.get('imu', 0)} IMU clock jumps")
+        v.add(
+            "degraded" if total > CLOCK_JUMPS else "ok",
+            f"replay: {jumps.get('lidar', 0)} LiDAR / {jumps.get('imu', 0)} IMU clock jumps",
+        )
     for line in ctx.logged("clock: jumped", "wall clock stepped")[:1]:
         v.add("degraded", "log: " + line.message[:80])

@@ -2,8 +2,16 @@
 box itself (thresholds in verdicts.py)."""
 from . import series
 from .inputs import BLACKBOX_FILES
-from .verdicts import (HEALTH_GAP_S, QUEUE_DROPS, QUEUE_FILL, REINITIALIZATIONS, SKIPPED_BEHIND,
-                       UPDATE_MS, _events, count)
+from .verdicts import (
+    HEALTH_GAP_S,
+    QUEUE_DROPS,
+    QUEUE_FILL,
+    REINITIALIZATIONS,
+    SKIPPED_BEHIND,
+    UPDATE_MS,
+    _events,
+    count,
+)
 
 
 def _first_state(ctx, states, wanted):
@@ -22,8 +30,11 @@ def _replay_estimator(v, ctx):
         v.add("failed", f"replay: {reinit} re-initialization(s)")
     if failed:
         v.add("degraded", f"replay: {failed} sweeps whose match failed")
-    v.add("ok", f"replay: {summary.get('tracked', 0)} of {summary.get('scans', 0)} sweeps tracked, "
-                f"mean {summary.get('mean_scan_ms', 0):.1f} ms")
+    v.add(
+        "ok",
+        f"replay: {summary.get('tracked', 0)} of {summary.get('scans', 0)} sweeps tracked, "
+        f"mean {summary.get('mean_scan_ms', 0):.1f} ms",
+    )
 
 
 def estimator(v, ctx):
@@ -58,7 +69,9 @@ def _loop_counts(v, ctx):
     loops = ctx.replay.loops if ctx.replay else None
     if loops is not None:
         verdicts = loops.col("verdict")
-        v.add("ok", f"replay: {verdicts.count('accepted')} of {loops.rows} loop candidates accepted")
+        v.add(
+            "ok", f"replay: {verdicts.count('accepted')} of {loops.rows} loop candidates accepted"
+        )
 
 
 def localization(v, ctx):
@@ -90,8 +103,10 @@ def cpu_percent(ev):
 
 def cpu_queues(v, ctx):
     ev = ctx.ev
-    for name, limit, what in (("estimator_skipped_behind", SKIPPED_BEHIND, "sweeps skipped behind"),
-                              ("queue_dropped", QUEUE_DROPS, "queue drops")):
+    for name, limit, what in (
+        ("estimator_skipped_behind", SKIPPED_BEHIND, "sweeps skipped behind"),
+        ("queue_dropped", QUEUE_DROPS, "queue drops"),
+    ):
         if ev.has(name):
             n = ev.grew(name)
             v.add("degraded" if n > limit else "ok", f"{count(n)} {what}")
@@ -121,8 +136,15 @@ def black_box(v, ctx):
     ts = series.seconds(inputs.health.numbers("t_ns")) if inputs.health else []
     holes = series.gaps(ts, HEALTH_GAP_S)
     if holes:
-        v.add("degraded", f"{len(holes)} hole(s) in health.csv, longest {max(h[1] for h in holes):.1f} s")
+        v.add(
+            "degraded",
+            f"{len(holes)} hole(s) in health.csv, longest {max(h[1] for h in holes):.1f} s",
+        )
     if inputs.notes:
         v.add("degraded", f"{len(inputs.notes)} problem(s) reading the files (see Notes)")
     span = ctx.tl.end - ctx.tl.start
-    v.add("ok", f"{span:.0f} s kept: {count(len(ts))} health rows, {count(len(inputs.log_lines))} log lines")
+    v.add(
+        "ok",
+        f"{span:.0f} s kept: {count(len(ts))} health rows, "
+        f"{count(len(inputs.log_lines))} log lines",
+    )

@@ -2,7 +2,7 @@
 axes, as inline SVG."""
 from html import escape
 
-from .svg_plot import COLORS, EVENT_COLOR, Frame, _fmt, _svg, nice_ticks
+from .svg_plot import COLORS, EVENT_COLOR, Frame, _fmt, _svg, nice_ticks, plot_area, text
 
 WIDTH, MIN_H, MAX_H = 880, 320, 760
 PADS = (52, 14, 26, 30)
@@ -47,16 +47,12 @@ def _equal_frame(paths, points):
 
 
 def _grid(frame):
-    out = [f'<rect x="{frame.left}" y="{frame.top}" width="{frame.width - frame.left - frame.right}" '
-           f'height="{frame.height - frame.top - frame.bottom}" fill="#fff" stroke="#bbb"/>']
-    for v in nice_ticks(frame.x0, frame.x1, 8):
-        x = frame.px(v)
-        out.append(f'<text x="{x:.1f}" y="{frame.height - frame.bottom + 15}" text-anchor="middle">{_fmt(v)}</text>')
+    out = plot_area(frame)
     for v in nice_ticks(frame.y0, frame.y1, 6):
         y = frame.py(v)
-        out.append(f'<text x="{frame.left - 4}" y="{y + 4:.1f}" text-anchor="end">{_fmt(v)}</text>')
-    out.append(f'<text x="{frame.width - frame.right}" y="{frame.height - 3}" text-anchor="end">x (m)</text>')
-    out.append(f'<text x="8" y="{frame.top - 8}">y (m)</text>')
+        out.append(text(frame.left - 4, y + 4, _fmt(v), "end"))
+    out.append(text(frame.width - frame.right, frame.height - 3, "x (m)", "end"))
+    out.append(text(8, frame.top - 8, "y (m)"))
     return out
 
 
@@ -64,7 +60,9 @@ def _cloud(frame, points):
     if not points:
         return []
     d = "".join(f"M{frame.px(x):.1f} {frame.py(y):.1f}h0" for x, y in points)
-    return [f'<path d="{d}" stroke="#9aa5b1" stroke-width="1.6" stroke-linecap="round" fill="none"/>']
+    return [
+        f'<path d="{d}" stroke="#9aa5b1" stroke-width="1.6" stroke-linecap="round" fill="none"/>'
+    ]
 
 
 def _path(frame, path, color):
@@ -75,19 +73,25 @@ def _path(frame, path, color):
     sampled = pts[::step] + [pts[-1]]
     d = "M" + " L".join(f"{frame.px(x):.1f},{frame.py(y):.1f}" for x, y in sampled)
     dash = ' stroke-dasharray="6,4"' if path.get("dashed") else ""
-    return [f'<path d="{d}" fill="none" stroke="{color}" stroke-width="1.8"{dash}/>',
-            f'<circle cx="{frame.px(pts[0][0]):.1f}" cy="{frame.py(pts[0][1]):.1f}" r="4" fill="{color}">'
-            f"<title>start of {escape(path['label'])}</title></circle>"]
+    return [
+        f'<path d="{d}" fill="none" stroke="{color}" stroke-width="1.8"{dash}/>',
+        f'<circle cx="{frame.px(pts[0][0]):.1f}" cy="{frame.py(pts[0][1]):.1f}" r="4" '
+        f"fill=\"{color}\"><title>start of {escape(path['label'])}</title></circle>",
+    ]
 
 
 def _links(frame, links):
     """Thin green lines between the two ends of each accepted loop closure."""
     if not links:
         return []
-    d = "".join(f"M{frame.px(a[0]):.1f},{frame.py(a[1]):.1f}L{frame.px(b[0]):.1f},{frame.py(b[1]):.1f}"
-                for a, b in links)
-    return [f'<path d="{d}" stroke="#27ae60" stroke-width="1.2" fill="none"><title>{len(links)} '
-            f"accepted loop closure(s)</title></path>"]
+    d = "".join(
+        f"M{frame.px(a[0]):.1f},{frame.py(a[1]):.1f}L{frame.px(b[0]):.1f},{frame.py(b[1]):.1f}"
+        for a, b in links
+    )
+    return [
+        f'<path d="{d}" stroke="#27ae60" stroke-width="1.2" fill="none"><title>{len(links)} '
+        f"accepted loop closure(s)</title></path>"
+    ]
 
 
 def _marks(frame, marks):
@@ -95,12 +99,16 @@ def _marks(frame, marks):
     for i, (x, y, label, level) in enumerate(marks):
         color = EVENT_COLOR.get(level, EVENT_COLOR["info"])
         px, py = frame.px(x), frame.py(y)
-        out.append(f'<circle cx="{px:.1f}" cy="{py:.1f}" r="6" fill="none" stroke="{color}" stroke-width="2.5">'
-                   f"<title>{escape(label)}</title></circle>")
+        out.append(
+            f'<circle cx="{px:.1f}" cy="{py:.1f}" r="6" fill="none" stroke="{color}" '
+            f'stroke-width="2.5"><title>{escape(label)}</title></circle>'
+        )
         right = px > frame.width * 0.6  # labels right of a mark near the right edge would be cut
         tx, anchor = (px - 8, "end") if right else (px + 8, "start")
-        out.append(f'<text x="{tx:.1f}" y="{py - 6 - 11 * (i % 3):.1f}" fill="{color}" '
-                   f'text-anchor="{anchor}" font-weight="bold">{escape(label[:48])}</text>')
+        out.append(
+            f'<text x="{tx:.1f}" y="{py - 6 - 11 * (i % 3):.1f}" fill="{color}" '
+            f'text-anchor="{anchor}" font-weight="bold">{escape(label[:48])}</text>'
+        )
     return out
 
 

@@ -6,8 +6,8 @@ from html import escape
 
 COLORS = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#17becf"]
 EVENT_COLOR = {"failed": "#c0392b", "degraded": "#d68910", "info": "#7f8c8d"}
-W, H = 880, 180          # a time plot's size (px)
-MAX_POINTS = 1600        # per series: longer ones keep each pixel column's min and max
+W, H = 880, 180  # a time plot's size (px)
+MAX_POINTS = 1600  # per series: longer ones keep each pixel column's min and max
 PAD_L, PAD_R, PAD_T, PAD_B = 62, 14, 24, 30
 
 
@@ -45,7 +45,11 @@ class Frame:
 
     def py(self, y):
         span = (self.y1 - self.y0) or 1.0
-        return self.height - self.bottom - (y - self.y0) / span * (self.height - self.top - self.bottom)
+        return (
+            self.height
+            - self.bottom
+            - (y - self.y0) / span * (self.height - self.top - self.bottom)
+        )
 
 
 def _range(values, pad=0.05, floor_zero=False):
@@ -96,7 +100,9 @@ def _polyline(frame, pts, color, width=1.4, step=False):
     for x, y in list(pts) + [(None, None)]:
         if x is None or y is None or not math.isfinite(y):
             if run:
-                d = "M" + " L".join(f"{frame.px(a):.1f},{frame.py(b):.1f}" for a, b in _steps(run, step))
+                d = "M" + " L".join(
+                    f"{frame.px(a):.1f},{frame.py(b):.1f}" for a, b in _steps(run, step)
+                )
                 out.append(f'<path d="{d}" fill="none" stroke="{color}" stroke-width="{width}"/>')
             run = []
         else:
@@ -113,20 +119,38 @@ def _steps(run, step):
     return out
 
 
-def _axes(frame, xlabel, ylabel, title=""):
-    out = [f'<rect x="{frame.left}" y="{frame.top}" width="{frame.width - frame.left - frame.right}" '
-           f'height="{frame.height - frame.top - frame.bottom}" fill="#fff" stroke="#bbb"/>']
-    for v in nice_ticks(frame.y0, frame.y1, 4):
-        y = frame.py(v)
-        out.append(f'<line x1="{frame.left}" y1="{y:.1f}" x2="{frame.width - frame.right}" y2="{y:.1f}" stroke="#eee"/>')
-        out.append(f'<text x="{frame.left - 4}" y="{y + 4:.1f}" text-anchor="end">{_fmt(v)}</text>')
+def text(x, y, content, anchor="start", bold=False):
+    """An SVG <text> at (x, y) px, content escaped."""
+    weight = ' font-weight="bold"' if bold else ""
+    return f'<text x="{x:.1f}" y="{y:.1f}" text-anchor="{anchor}"{weight}>{escape(content)}</text>'
+
+
+def line(x1, y1, x2, y2, stroke):
+    return f'<line x1="{x1:.1f}" y1="{y1:.1f}" x2="{x2:.1f}" y2="{y2:.1f}" stroke="{stroke}"/>'
+
+
+def plot_area(frame):
+    """The white plot area, with its tick labels along x below it."""
+    right, bottom = frame.width - frame.right, frame.height - frame.bottom
+    out = [
+        f'<rect x="{frame.left}" y="{frame.top}" width="{right - frame.left}" '
+        f'height="{bottom - frame.top}" fill="#fff" stroke="#bbb"/>'
+    ]
     for v in nice_ticks(frame.x0, frame.x1, 8):
         x = frame.px(v)
-        out.append(f'<line x1="{x:.1f}" y1="{frame.height - frame.bottom}" x2="{x:.1f}" y2="{frame.height - frame.bottom + 4}" stroke="#888"/>')
-        out.append(f'<text x="{x:.1f}" y="{frame.height - frame.bottom + 15}" text-anchor="middle">{_fmt(v)}</text>')
-    out.append(f'<text x="{frame.width - frame.right}" y="{frame.height - 3}" text-anchor="end">{escape(xlabel)}</text>')
+        out += [line(x, bottom, x, bottom + 4, "#888"), text(x, bottom + 15, _fmt(v), "middle")]
+    return out
+
+
+def _axes(frame, xlabel, ylabel, title=""):
+    right = frame.width - frame.right
+    out = plot_area(frame)
+    for v in nice_ticks(frame.y0, frame.y1, 4):
+        y = frame.py(v)
+        out += [line(frame.left, y, right, y, "#eee"), text(frame.left - 4, y + 4, _fmt(v), "end")]
+    out.append(text(right, frame.height - 3, xlabel, "end"))
     heading = f"{title} ({ylabel})" if title else ylabel
-    out.append(f'<text x="12" y="{frame.top - 8}" font-weight="bold">{escape(heading)}</text>')
+    out.append(text(12, frame.top - 8, heading, bold=True))
     return out
 
 
@@ -137,8 +161,10 @@ def _event_lines(frame, events):
             continue
         x = frame.px(t)
         color = EVENT_COLOR.get(level, EVENT_COLOR["info"])
-        out.append(f'<line x1="{x:.1f}" y1="{frame.top}" x2="{x:.1f}" y2="{frame.height - frame.bottom}" '
-                   f'stroke="{color}" stroke-dasharray="4,3"><title>{escape(label)}</title></line>')
+        out.append(
+            f'<line x1="{x:.1f}" y1="{frame.top}" x2="{x:.1f}" y2="{frame.height - frame.bottom}" '
+            f'stroke="{color}" stroke-dasharray="4,3"><title>{escape(label)}</title></line>'
+        )
     return out
 
 
@@ -154,9 +180,11 @@ def _legend(series, width):
 
 
 def _svg(width, height, body, title):
-    return (f'<svg class="plot" viewBox="0 0 {width} {height}" '
-            f'width="{width}" height="{height}" role="img" font-family="sans-serif" font-size="11">'
-            f"<title>{escape(title)}</title>" + "".join(body) + "</svg>")
+    return (
+        f'<svg class="plot" viewBox="0 0 {width} {height}" '
+        f'width="{width}" height="{height}" role="img" font-family="sans-serif" font-size="11">'
+        f"<title>{escape(title)}</title>" + "".join(body) + "</svg>"
+    )
 
 
 def time_plot(series, title, ylabel, xlabel="s", x_range=None, events=(), floor_zero=True):
@@ -173,8 +201,11 @@ def time_plot(series, title, ylabel, xlabel="s", x_range=None, events=(), floor_
         inside = [(x, y) for x, y in s["points"] if x0 <= x <= x1]  # inside the frame
         s = dict(s, points=decimate(sorted(inside, key=lambda p: p[0])))
         if s.get("marker"):
-            body += [f'<circle cx="{frame.px(x):.1f}" cy="{frame.py(y):.1f}" r="2.5" fill="{color}"/>'
-                     for x, y in s["points"] if y is not None]
+            body += [
+                f'<circle cx="{frame.px(x):.1f}" cy="{frame.py(y):.1f}" r="2.5" fill="{color}"/>'
+                for x, y in s["points"]
+                if y is not None
+            ]
         else:
             body += _polyline(frame, s["points"], color, step=s.get("step", False))
     return _svg(W, H, body + _legend(series, W), title)

@@ -20,7 +20,7 @@ class Mark:
 
 class Timeline:
     def __init__(self, utc_offset, start, end):
-        self.utc_offset = utc_offset   # UTC minus host (s), or None
+        self.utc_offset = utc_offset  # UTC minus host (s), or None
         self.start, self.end = start, end
         self.marks = []
 
@@ -58,8 +58,10 @@ def utc_offset(inputs):
         return 0.0
     h = inputs.health
     if h is not None and h.has("utc"):
-        found = series.utc_offset(series.seconds(h.numbers("t_ns")),
-                                  [logs.parse_utc(u) if isinstance(u, str) else None for u in h.col("utc")])
+        found = series.utc_offset(
+            series.seconds(h.numbers("t_ns")),
+            [logs.parse_utc(u) if isinstance(u, str) else None for u in h.col("utc")],
+        )
         if found is not None:
             return found
     inc = inputs.incident
@@ -99,8 +101,14 @@ def build(inputs, replay, raw=None):
     return tl
 
 
-DEGRADING = ("lidar_lossy", "imu_lossy", "clock_jump", "estimator_behind", "queue_drops",
-             "localization_ambiguous")
+DEGRADING = (
+    "lidar_lossy",
+    "imu_lossy",
+    "clock_jump",
+    "estimator_behind",
+    "queue_drops",
+    "localization_ambiguous",
+)
 
 
 def event_level(reason):
@@ -115,8 +123,12 @@ def _incident_marks(inputs):
     inc = inputs.incident
     if inc is None:
         return []
-    return [Mark(e.t_ns * 1e-9 if e.t_ns is not None else None, e.reason, event_level(e.reason),
-                 e.detail) for e in inc.events]
+    return [
+        Mark(
+            e.t_ns * 1e-9 if e.t_ns is not None else None, e.reason, event_level(e.reason), e.detail
+        )
+        for e in inc.events
+    ]
 
 
 def _log_marks(inputs, tl):
@@ -137,8 +149,10 @@ def _log_marks(inputs, tl):
 def _replay_marks(replay):
     if replay is None:
         return []
-    return [Mark(t, f"replay: {reason}", "failed", f"the replay diverged ({reason}) and re-initialized")
-            for t, reason in replay.divergences]
+    return [
+        Mark(t, f"replay: {reason}", "failed", f"the replay diverged ({reason}) and re-initialized")
+        for t, reason in replay.divergences
+    ]
 
 
 def _marks(inputs, tl, replay):

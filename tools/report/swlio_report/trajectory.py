@@ -26,11 +26,22 @@ def figure(inputs, replay, timeline):
     daemon = inputs.odometry or []
     replayed = replay.trajectory if replay and replay.trajectory else []
     if daemon:
-        paths.append({"label": "daemon odometry (odometry.tum)", "points": [p[1:3] for p in daemon],
-                      "color": "#1f77b4"})
+        paths.append(
+            {
+                "label": "daemon odometry (odometry.tum)",
+                "points": [p[1:3] for p in daemon],
+                "color": "#1f77b4",
+            }
+        )
     if replayed:
-        paths.append({"label": "replay (swlio-run)", "points": [p[1:3] for p in replayed],
-                      "color": "#ff7f0e", "dashed": bool(daemon)})
+        paths.append(
+            {
+                "label": "replay (swlio-run)",
+                "points": [p[1:3] for p in replayed],
+                "color": "#ff7f0e",
+                "dashed": bool(daemon),
+            }
+        )
     if not paths:
         return None
     reference = daemon or replayed
@@ -40,8 +51,9 @@ def figure(inputs, replay, timeline):
         if xy is not None:
             marks.append((xy[0], xy[1], f"{timeline.utc(m.t)} {m.label}", m.level))
     cloud = replay.map_points if replay else []
-    return top_view(paths, cloud, marks[:12], "Trajectory over the map, top view",
-                    _loop_links(replay, replayed))
+    return top_view(
+        paths, cloud, marks[:12], "Trajectory over the map, top view", _loop_links(replay, replayed)
+    )
 
 
 def _loop_links(replay, poses):
@@ -50,8 +62,9 @@ def _loop_links(replay, poses):
     if loops is None or not poses:
         return []
     links = []
-    for a, b, verdict in zip(loops.numbers("candidate_t_ns"), loops.numbers("node_t_ns"),
-                             loops.col("verdict")):
+    for a, b, verdict in zip(
+        loops.numbers("candidate_t_ns"), loops.numbers("node_t_ns"), loops.col("verdict")
+    ):
         ends = [position_at(poses, t * 1e-9) if t is not None else None for t in (a, b)]
         if verdict == "accepted" and None not in ends:
             links.append(tuple(ends))
