@@ -108,5 +108,28 @@ class Malformed(unittest.TestCase):
             self.assertNotIn("Traceback", done.stderr)
 
 
+class InstalledLayout(unittest.TestCase):
+    def test_script_finds_its_package_under_share(self):
+        """<prefix>/bin/swlio-report with <prefix>/share/swlio/report/swlio_report (the install
+        and build/bin layouts)."""
+        with tempfile.TemporaryDirectory() as prefix:
+            os.makedirs(os.path.join(prefix, "bin"))
+            shutil.copy(REPORT, os.path.join(prefix, "bin", "swlio-report"))
+            shutil.copytree(
+                os.path.dirname(main.__file__),
+                os.path.join(prefix, "share", "swlio", "report", "swlio_report"),
+            )
+            incident = synthetic.write_incident(os.path.join(prefix, "inc"))
+            out = os.path.join(prefix, "page.html")
+            done = subprocess.run(
+                [os.path.join(prefix, "bin", "swlio-report"), incident, "-o", out],
+                capture_output=True,
+                text=True,
+                env={"PATH": "/usr/bin:/bin"},
+            )
+            self.assertEqual(done.returncode, 0, done.stderr)
+            self.assertTrue(os.path.getsize(out) > 10000)
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -1,6 +1,7 @@
-"""End to end: a simulated recording (swlio-sim, 6 s of the `short` drive) and an incident built
-from it (the recording's files plus the black-box files of synthetic.py), each through
-swlio-report (with the swlio-run replay), then rendered in headless Chromium: it renders (a
+"""End to end: a simulated recording (swlio-sim, 8 s of the `short` drive), an incident built
+from it (the recording's files, its lidar.pcap without 2 s of packets, plus the black-box files
+of synthetic.py) and a log directory (synthetic.py), each through swlio-report (with the
+swlio-run replay for the first two), then rendered in headless Chromium: it renders (a
 screenshot that is not blank), the SVG plots are in the DOM, no console errors, nothing loaded
 from the network.
 
@@ -24,7 +25,10 @@ CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 DURATION_S = 8
 GAP = (4, 2)  # health rows 4 and 5 see no LiDAR datagram: none in (103, 105] s host time
 REMOTE = re.compile(r"https?://|<script|<link|<img|<iframe|\bsrc=|url\(", re.I)
-CONSOLE_ERROR = re.compile(r"Uncaught|ERROR:CONSOLE|:CONSOLE\(\d+\)\].*\berror\b", re.I)
+# Chromium logs every console message as "INFO:CONSOLE:<line>] ..." (or "CONSOLE(<line>)" in
+# older versions), errors without their level: the pages have no scripts, so any console line
+# is an error here.
+CONSOLE_ERROR = re.compile(r"Uncaught|:CONSOLE\b|ERROR:CONSOLE", re.I)
 
 
 def chromium(*args, timeout=60):
@@ -134,8 +138,9 @@ class Render(unittest.TestCase):
             capture_output=True,
         )
         write_incident_from(rec, os.path.join(cls.dir, "incident"))
+        synthetic.write_logdir(os.path.join(cls.dir, "logdir"))
         cls.pages, cls.seconds = {}, {}
-        for name in ("rec", "incident"):
+        for name in ("rec", "incident", "logdir"):
             start = time.monotonic()
             out = os.path.join(cls.dir, name + ".html")
             done = subprocess.run(
@@ -177,6 +182,14 @@ class Render(unittest.TestCase):
         )
         return dom.stdout
 
+    def test_console_errors_are_seen(self):
+        """The console check itself: a page with a failing script is caught."""
+        bad = os.path.join(self.dir, "bad.html")
+        with open(bad, "w") as f:
+            f.write("<html><body><script>undefinedFunction();</script></body></html>")
+        dom = chromium("--enable-logging=stderr", "--v=0", "--dump-dom", "file://" + bad)
+        self.assertTrue(any(CONSOLE_ERROR.search(line) for line in dom.stderr.splitlines()))
+
     def test_recording(self):
         dom = self.check_page("rec", min_svgs=5)
         self.assertIn("replay (swlio-run)", dom)
@@ -193,6 +206,11 @@ class Render(unittest.TestCase):
         self.assertIn("lidar: no datagram for 1.0 s", dom)  # the log line near the event
         self.assertNotIn("replayed with defaults", dom)  # the incident's config.yaml was used
         self.assertIn("sweeps (replay) silent 2.", dom)  # the replay saw the outage too
+
+    def test_log_directory(self):
+        dom = self.check_page("logdir", min_svgs=6)
+        self.assertIn("the daemon's log directory", dom)
+        self.assertIn("degraded: CPU: 4 sweeps skipped", dom)
 
 
 if __name__ == "__main__":
