@@ -23,6 +23,7 @@ pre{background:#fff;border:1px solid #ddd;padding:6px;overflow-x:auto;font-size:
 .log .at{font-weight:bold;border-left:3px solid #c0392b}
 svg.plot{display:block;max-width:100%;height:auto;margin:4px 0}
 small{color:#666}
+.headline{font-size:15px;margin:6px 0 10px;padding-left:0;list-style:none}.headline li{margin:3px 0}
 """
 
 KIND_TEXT = {
@@ -111,9 +112,25 @@ def _verdicts(verdicts):
     )
 
 
+def headline(verdicts):
+    """One sentence: the failed and degraded subsystems with their first reason, or all ok."""
+    bad = [v for v in verdicts if v.level in ("failed", "degraded")]
+    bad.sort(key=lambda v: v.level != "failed")
+    if not bad:
+        judged = [v.subsystem for v in verdicts if v.level == "ok"]
+        return f'<p class="headline">All judged subsystems ok ({", ".join(judged) or "none"}).</p>'
+    parts = "".join(
+        f"<li>{badge(v.level)} <b>{escape(v.subsystem)}</b>: "
+        f"{escape(v.reason().split('; ')[0])}</li>"
+        for v in bad
+    )
+    return f'<ul class="headline">{parts}</ul>'
+
+
 def summary(inputs, timeline, replay, verdicts):
     return (
         '<section id="summary"><h2>Summary</h2>'
+        + headline(verdicts)
         + _facts(inputs, timeline, replay)
         + _verdicts(verdicts)
         + _events(inputs, timeline)
