@@ -107,6 +107,15 @@ class Malformed(unittest.TestCase):
             self.assertIn("swlio-report:", done.stderr)
             self.assertNotIn("Traceback", done.stderr)
 
+    def test_unwritable_output(self):
+        done = subprocess.run(
+            [sys.executable, REPORT, self.good, "-o", "/nonexistent/dir/page.html"],
+            capture_output=True,
+            text=True,
+        )
+        self.assertEqual(done.returncode, 1)
+        self.assertIn("swlio-report: cannot write /nonexistent/dir/page.html", done.stderr)
+
 
 class InstalledLayout(unittest.TestCase):
     def test_script_finds_its_package_under_share(self):

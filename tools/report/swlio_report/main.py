@@ -32,6 +32,12 @@ def _replay(args, inputs, script_dir):
         return None
     program = replay_mod.find_swlio_run(args.swlio_run, script_dir)
     config = os.path.join(inputs.path, "config.yaml") if inputs.config_text is not None else None
+    mb = inputs.present["lidar.pcap"] / 1e6
+    print(
+        f"swlio-report: replaying {mb:.0f} MB of LiDAR with swlio-run (--no-replay skips it; "
+        "about 6 s per 100 MB on a quiet core)",
+        file=sys.stderr,
+    )
     if args.keep_replay:
         os.makedirs(args.keep_replay, exist_ok=True)
         return replay_mod.run(program, inputs.path, args.keep_replay, config)
@@ -71,8 +77,12 @@ def main(argv=None, script_dir=None):
     replay_s = time.monotonic() - start
     html = build_page(inputs, replay)
     out = args.out or os.path.basename(os.path.abspath(args.path)) + ".report.html"
-    with open(out, "w", encoding="utf-8") as f:
-        f.write(html)
+    try:
+        with open(out, "w", encoding="utf-8") as f:
+            f.write(html)
+    except OSError as e:
+        print(f"swlio-report: cannot write {out}: {e.strerror}", file=sys.stderr)
+        return 1
     page_s = time.monotonic() - start - replay_s
     print(
         f"swlio-report: {out} ({len(html.encode()) / 1024:.0f} KB; replay {replay_s:.1f} s, "
