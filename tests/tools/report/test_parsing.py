@@ -83,6 +83,24 @@ class LogLines(unittest.TestCase):
         self.assertEqual(fields["lag_pose_ms"], 1.1)
         self.assertEqual(logs.parse_status("loop closure: node 3"), {})
 
+    def test_a_real_daemon_log(self):
+        """data/swliod-live.log: swliod on a live simulated drive (a 2.5 s LiDAR outage, serial
+        garbage), stopped after the drive: spdlog's "+00:00" zone and "warning" level."""
+        notes = []
+        path = os.path.join(os.path.dirname(__file__), "data", "swliod-live.log")
+        with open(path) as f:
+            lines = logs.parse_lines(f.read(), "swliod.log", notes)
+        self.assertEqual(notes, [])
+        self.assertEqual(len(lines), 21)
+        self.assertEqual(lines[0].level, "warn")
+        self.assertAlmostEqual(lines[0].utc_s, logs.parse_utc("2026-12-04T16:25:56.030Z"))
+        status = [logs.parse_status(line.message) for line in lines]
+        status = [s for s in status if s]
+        self.assertEqual(len(status), 12)
+        self.assertTrue(status[-1]["final"])
+        self.assertEqual(set(logs.STATUS_FIELDS) - set(status[0]), set())
+        self.assertEqual(status[0]["state"], "initializing")
+
     def test_rotated_files_oldest_first(self):
         with tempfile.TemporaryDirectory() as d:
             for name in ("swliod.log", "swliod.2.log", "swliod.1.log"):

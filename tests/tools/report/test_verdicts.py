@@ -77,6 +77,18 @@ class Verdicts(unittest.TestCase):
         self.assertIn("4 sweeps skipped behind; 12 queue drops", v["CPU / queues"].reason())
         self.assertEqual(v["LiDAR"].label(), "ok")
 
+    def test_status_lines_zero_rate_only_after_streaming_fails(self):
+        os.makedirs(self.dir)
+        lines = synthetic.log_text(gap=None).splitlines(True)
+        status = [i for i, line in enumerate(lines) if " status " in line]
+        for i in status[:2] + status[-2:]:  # waiting for the sensors, then silent at the end
+            lines[i] = lines[i].replace("10.0 sweeps/s", "0.0 sweeps/s")
+        with open(os.path.join(self.dir, "swliod.log"), "w") as f:
+            f.writelines(lines)
+        v = judge(self.dir)["LiDAR"]
+        self.assertEqual(v.label(), "failed")
+        self.assertIn("0 sweeps/s in 2 status line(s) from 14:32:30.0", v.reason())
+
 
 if __name__ == "__main__":
     unittest.main()

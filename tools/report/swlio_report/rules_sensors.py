@@ -13,6 +13,19 @@ from .verdicts import (
 )
 
 
+def _status_silence(v, ctx, name, unit):
+    """Status lines with a zero rate once the sensor had streamed (before that the daemon waits
+    for it: only a sensor that never streams fails then)."""
+    rows = [(t, r) for t, r in zip(*ctx.ev.get(name)) if r is not None]
+    first = next((i for i, (_, r) in enumerate(rows) if r > 0), None)
+    if first is None:
+        v.add("failed", f"never streamed: 0 {unit} in all {len(rows)} status lines")
+        return
+    zero = [t for t, r in rows[first:] if r == 0]
+    if zero:
+        v.add("failed", f"0 {unit} in {len(zero)} status line(s) from {ctx.tl.utc(zero[0])}")
+
+
 def _lidar_counts(v, ctx):
     ev = ctx.ev
     datagrams, missing = ev.grew("lidar_datagrams"), ev.grew("lidar_missing_packets")
@@ -33,13 +46,7 @@ def lidar(v, ctx):
     if ev.has("lidar_datagrams"):
         _silence(v, ctx, *ev.get("lidar_datagrams"), LIDAR_SILENT_S, "LiDAR")
     elif ev.has("status_sweeps_hz"):
-        ts, hz = ev.get("status_sweeps_hz")
-        zero = [t for t, h in zip(ts, hz) if h == 0]
-        if zero:
-            v.add(
-                "failed",
-                f"0 sweeps/s in {len(zero)} status line(s), first at {ctx.tl.utc(zero[0])}",
-            )
+        _status_silence(v, ctx, "status_sweeps_hz", "sweeps/s")
     _lidar_counts(v, ctx)
     _events(v, ctx, ("lidar_silent",), "failed")
     _events(v, ctx, ("lidar_lossy",), "degraded")
@@ -67,10 +74,7 @@ def imu(v, ctx):
         if not _silence(v, ctx, *ev.get("imu_samples"), IMU_SILENT_S, "IMU"):
             v.add("ok", f"{count(ev.grew('imu_samples'))} samples")
     elif ev.has("status_imu_hz"):
-        ts, hz = ev.get("status_imu_hz")
-        zero = [t for t, h in zip(ts, hz) if h == 0]
-        if zero:
-            v.add("failed", f"0 Hz in {len(zero)} status line(s), first at {ctx.tl.utc(zero[0])}")
+        _status_silence(v, ctx, "status_imu_hz", "IMU Hz")
     unplugged = ev.grew("imu_disconnects")
     if unplugged > 0:
         v.add("failed", f"{count(unplugged)} disconnect(s)")

@@ -94,10 +94,25 @@ def _extremes(bucket):
     return sorted({lo, hi}, key=lambda p: p[0])
 
 
+def _break_gaps(pts):
+    """A None between points further apart in x than ten median steps (at least 1.5 s): a line
+    does not bridge a stretch without data."""
+    steps = sorted(b[0] - a[0] for a, b in zip(pts, pts[1:]) if b[0] > a[0])
+    if not steps:
+        return pts
+    limit = max(1.5, 10 * steps[len(steps) // 2])
+    out = pts[:1]
+    for a, b in zip(pts, pts[1:]):
+        if b[0] - a[0] > limit:
+            out.append((None, None))
+        out.append(b)
+    return out
+
+
 def _polyline(frame, pts, color, width=1.4, step=False):
     """One <path> per run of points without None."""
     out, run = [], []
-    for x, y in list(pts) + [(None, None)]:
+    for x, y in _break_gaps(list(pts)) + [(None, None)]:
         if x is None or y is None or not math.isfinite(y):
             if run:
                 d = "M" + " L".join(
