@@ -89,6 +89,17 @@ class Verdicts(unittest.TestCase):
         self.assertEqual(v.label(), "failed")
         self.assertIn("0 sweeps/s in 2 status line(s) from 14:32:30.0", v.reason())
 
+    def test_a_recorded_wall_clock_step_degrades_the_clocks(self):
+        os.makedirs(self.dir)
+        with open(os.path.join(self.dir, "manifest.yaml"), "w") as f:
+            f.write("format_version: 2\nrealtime_minus_monotonic_ns: 1796399846839300466\n")
+        with open(os.path.join(self.dir, "clock_offsets.csv"), "w") as f:
+            f.write("t_monotonic_ns,realtime_minus_monotonic_ns\n")
+            f.write("100000000000,1796399846839300466\n130000000000,1796399847339300466\n")
+        v = judge(self.dir)["clocks"]
+        self.assertEqual(v.label(), "degraded")
+        self.assertIn("wall clock stepped 1 time(s), by +500.0 ms at", v.reason())
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -63,6 +63,9 @@ def sensor_rates(f):
     lidar = f.rate("lidar_datagrams") or f.column("status_lidar_pkt_hz")
     imu = f.rate("imu_samples") or f.column("status_imu_hz")
     sweeps = f.rate("lidar_sweeps") or f.column("status_sweeps_hz")
+    timings = f.ctx.replay.timings if f.ctx.replay else None
+    if not sweeps and timings is not None:
+        sweeps = f.rel(raw_sensors.per_second(series.seconds(timings.numbers("t_ns"))))
     raw = f.ctx.raw
     if not lidar and raw is not None and raw.lidar_times:
         lidar = f.rel(raw_sensors.per_second(raw.lidar_times))
@@ -125,7 +128,35 @@ def clock_plots(f):
         "Clock jumps (increase over the span)",
         "count",
     )
-    return [offsets, drift, jumps]
+    return [offsets, drift, jumps, wall_clock_plot(f)]
+
+
+def wall_clock_steps(inputs):
+    """[(host s, realtime − monotonic change since the first row, ms)] of clock_offsets.csv
+    (swliod --record: a row at the start and at each change of the wall clock)."""
+    table = inputs.clock_offsets
+    if table is None:
+        return []
+    rows = [
+        (t * 1e-9, o)
+        for t, o in zip(
+            table.numbers("t_monotonic_ns"), table.numbers("realtime_minus_monotonic_ns")
+        )
+        if t is not None and o is not None
+    ]
+    return [(t, (o - rows[0][1]) * 1e-6) for t, o in rows]
+
+
+def wall_clock_plot(f):
+    steps = wall_clock_steps(f.ctx.inputs)
+    if len(steps) > 1:
+        steps = steps + [(f.tl.end, steps[-1][1])]  # the last offset holds to the end
+    return f.plot(
+        [{"label": "wall clock − monotonic", "points": f.rel(steps), "step": True}],
+        "Wall clock against the monotonic clock (clock_offsets.csv), change since the start",
+        "ms",
+        floor_zero=False,
+    )
 
 
 def _sigma(f, indices, scale=1.0):

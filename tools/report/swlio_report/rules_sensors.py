@@ -91,6 +91,21 @@ def imu(v, ctx):
             v.add("ok", f"{count(len(raw.imu))} serial bursts, no gap ≥ {IMU_SILENT_S:g} s")
 
 
+def _recorded_wall_clock(v, ctx):
+    """clock_offsets.csv: each row after the first is a step of the wall clock."""
+    from .figures import wall_clock_steps
+
+    steps = wall_clock_steps(ctx.inputs)
+    if len(steps) > 1:
+        t, ms = max(steps[1:], key=lambda s: abs(s[1]))
+        v.add(
+            "degraded",
+            f"wall clock stepped {len(steps) - 1} time(s), by {ms:+.1f} ms at {ctx.tl.utc(t)}",
+        )
+    elif steps:
+        v.add("ok", "wall clock steady (clock_offsets.csv)")
+
+
 def clocks(v, ctx):
     ev = ctx.ev
     for sensor in ("lidar", "imu"):
@@ -106,6 +121,7 @@ def clocks(v, ctx):
     steps = ev.grew("wall_clock_steps")
     if steps > 0:
         v.add("degraded", f"wall clock stepped {count(steps)} time(s)")
+    _recorded_wall_clock(v, ctx)
     _events(v, ctx, ("clock_jump",), "degraded")
     jumps = (ctx.replay.summary.get("clock_jumps") if ctx.replay else None) or {}
     if isinstance(jumps, dict) and jumps:
