@@ -1,6 +1,7 @@
 # `cmake --install` layout (included from the root CMakeLists.txt after every target exists):
 #   <prefix>/bin/                        swliod and the command-line tools
 #   <prefix>/share/man/man{1,8}/         their man pages (docs/man/, cmake/SwlioManPages.cmake)
+#   <prefix>/share/swlio/report/         swlio-report's Python package (the script is in bin/)
 #   <prefix>/lib/systemd/system/         swliod.service (paths of this install filled in)
 #   <prefix>/lib/sysusers.d/swlio.conf   the swlio system user (systemd-sysusers)
 #   <prefix>/lib/tmpfiles.d/swlio.conf   /run/swlio for the control socket (systemd-tmpfiles)
@@ -26,6 +27,9 @@ if(EXISTS ${CMAKE_SOURCE_DIR}/tools/report/swlio-report)
   list(APPEND SWLIO_INSTALLED_SCRIPTS swlio-report)
 endif()
 include(${CMAKE_CURRENT_LIST_DIR}/SwlioManPages.cmake)
+install(PROGRAMS tools/report/swlio-report DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY tools/report/swlio_report DESTINATION ${CMAKE_INSTALL_DATADIR}/swlio/report
+        FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
 install(FILES systemd/swlio.sysusers.conf DESTINATION lib/sysusers.d RENAME swlio.conf)
 install(FILES systemd/swlio.tmpfiles.conf DESTINATION lib/tmpfiles.d RENAME swlio.conf)
 install(FILES systemd/swliod-realtime.conf DESTINATION ${CMAKE_INSTALL_DATADIR}/swlio)

@@ -40,7 +40,7 @@ swlio-echo, swlio-eval, swlio-run and swlio-sim.]=])
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(_depends "systemd")
 if("swlio-report" IN_LIST SWLIO_INSTALLED_SCRIPTS)
-  string(APPEND _depends ", python3")
+  string(APPEND _depends ", python3, python3-yaml")
 endif()
 set(CPACK_DEBIAN_PACKAGE_DEPENDS ${_depends})
 
