@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <thread>
 
+#include <time.h>
+
 #include "swlio/core/time.h"
 #include "swlio/daemon/blackbox/ring_segments.h"
 #include "swlio/daemon/recording/recorder.h"
@@ -28,6 +30,12 @@ struct Options {
   double incident_every_s = 300.0;
   DaemonConfig config;
 };
+
+int64_t RealtimeNowNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_REALTIME, &ts);
+  return ts.tv_sec * 1'000'000'000LL + ts.tv_nsec;
+}
 
 /// One sensor second of traffic, pushed at `t_ns` (host).
 void PushSecond(Recorder* r, int64_t t_ns, uint64_t* refused) {
@@ -72,7 +80,7 @@ int Run(Options& opt) {
     }
     PushSecond(recorder.get(), due, &refused);
     if (s > 0 && s % static_cast<int64_t>(opt.incident_every_s) == 0)
-      recorder->AddEvent({setup.time.ToDaemon(due), 0, "mark", "soak " + std::to_string(s)});
+      recorder->AddEvent({setup.time.ToDaemon(due), RealtimeNowNs(), "mark", "soak " + std::to_string(s)});
     if (s % 50 == 0) most_disk = std::max(most_disk, swlio::daemon::DirectoryBytes(opt.dir + "/ring"));
   }
   stop = true;

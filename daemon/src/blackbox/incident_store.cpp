@@ -6,6 +6,7 @@
 #include <ctime>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "swlio/daemon/blackbox/health_row.h"
 #include "swlio/daemon/blackbox/recording_concat.h"
@@ -199,16 +200,25 @@ bool IncidentStore::WriteParts(const std::vector<std::filesystem::path>& parts,
 }
 
 void IncidentStore::Bound() {
-  std::vector<std::pair<std::filesystem::path, uint64_t>> kept;
+  struct Kept {
+    std::filesystem::file_time_type written;  ///< when it was renamed into place
+    std::filesystem::path path;
+    uint64_t bytes = 0;
+    bool operator<(const Kept& o) const { return std::tie(written, path) < std::tie(o.written, o.path); }
+  };
+  std::vector<Kept> kept;
   uint64_t total = 0;
   std::error_code ec;
   for (auto it = std::filesystem::directory_iterator(dir_, ec);
        !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
     if (!it->is_directory(ec) || IsPartial(it->path())) continue;
-    kept.emplace_back(it->path(), DirectoryBytes(it->path()));
-    total += kept.back().second;
+    kept.push_back({std::filesystem::last_write_time(it->path(), ec), it->path(),
+                    DirectoryBytes(it->path())});
+    total += kept.back().bytes;
   }
-  std::sort(kept.begin(), kept.end());  // names begin with the UTC time: oldest first
+  // Oldest first by when each was written (names begin with the UTC time, but a wall clock
+  // can step back).
+  std::sort(kept.begin(), kept.end());
   const auto max_count = static_cast<size_t>(std::max<int64_t>(config_.incidents_max_count, 1));
   const auto max_bytes = static_cast<uint64_t>(config_.incidents_max_mb) * 1'000'000;
   size_t count = kept.size();
@@ -217,7 +227,7 @@ void IncidentStore::Bound() {
     std::lock_guard<std::mutex> lock(mutex_);
     newest = counters_.last_incident;
   }
-  for (const auto& [path, bytes] : kept) {
+  for (const auto& [written, path, bytes] : kept) {
     if (count <= max_count && total <= max_bytes) break;
     if (path.filename() == newest) continue;
     std::filesystem::remove_all(path, ec);

@@ -111,8 +111,9 @@ void Recorder::Run(const std::atomic<bool>& stop, const Watchdog::Handle& beat) 
     if (!Drain() && lidar_.WaitPop(&p, 50'000)) WritePacket(p);  // sleep until data arrives
     const int64_t now = MonotonicNowNs();
     RecordClockOffset(now);
+    BoundRing(now);
     if (now >= next_housekeeping_ns) {
-      Housekeep(now);
+      Housekeep();
       next_housekeeping_ns = now + 1'000'000'000;
     }
   }
@@ -187,10 +188,13 @@ void Recorder::TakeSideInputs() {
   if (!events.empty() && !files_) store_->CloseAll();  // no segment will come any more
 }
 
-void Recorder::Housekeep(int64_t now_ns) {
+void Recorder::Housekeep() {
   TakeSideInputs();
   if (files_) files_->Flush();
   if (files_ && files_->failed()) StopOnFailure();
+}
+
+void Recorder::BoundRing(int64_t now_ns) {
   if (!ring_) return;
   const int64_t t_ns = setup_.time.ToDaemon(now_ns);
   const RecordConfig& c = setup_.config->record;
@@ -200,7 +204,11 @@ void Recorder::Housekeep(int64_t now_ns) {
     Rotate(t_ns);
   }
   const uint64_t open_bytes = files_ ? files_->bytes() : 0;
-  ring_->Trim(t_ns, {SecToNs(c.ring_minutes * 60.0), max_bytes}, open_bytes, store_->KeepFromNs());
+  if (ring_->bytes() + open_bytes > max_bytes || now_ns >= next_trim_ns_) {
+    ring_->Trim(t_ns, {SecToNs(c.ring_minutes * 60.0), max_bytes}, open_bytes,
+                store_->KeepFromNs());
+    next_trim_ns_ = now_ns + 1'000'000'000;
+  }
   ring_bytes_.store(ring_->bytes() + open_bytes, std::memory_order_relaxed);
 }
 

@@ -125,7 +125,7 @@ void RecordingFiles::Serial(int64_t t_ns, std::span<const uint8_t> bytes) {
               static_cast<std::streamsize>(bytes.size()));
   rx_csv_ << serial_offset_ << ',' << bytes.size() << ',' << t_ns << '\n';
   serial_offset_ += bytes.size();
-  bytes_ += bytes.size() + 32;
+  bytes_ += bytes.size() + 40;  // and its imu.rx.csv row
   if (Check(xbus_, "imu.xbus")) Check(rx_csv_, "imu.rx.csv");
 }
 

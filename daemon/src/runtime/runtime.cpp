@@ -203,7 +203,7 @@ bool Runtime::MakeRecorder(const Eigen::Isometry3d& T_imu_lidar,
       return true;
     }
     spdlog::info(
-        "black box: the last {:.0f} min in {} (at most {} MB); incidents: {:.0f} s before "
+        "black box: the last {:.1f} min in {} (at most {} MB); incidents: {:.0f} s before "
         "to {:.0f} s after an event",
         config_.record.ring_minutes, config_.record.directory, config_.record.max_disk_mb,
         config_.record.incident_before_s, config_.record.incident_after_s);

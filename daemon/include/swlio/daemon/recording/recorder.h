@@ -123,8 +123,11 @@ class Recorder {
   void WritePacket(const LidarPacket& p);
   /// A clock_offsets.csv row when the offset moved (at most every 10 ms).
   void RecordClockOffset(int64_t now_ns);
-  /// Every second: health rows, events, log lines, flush, rotation and the ring's bounds.
-  void Housekeep(int64_t now_ns);
+  /// Every second: health rows, events, log lines, flush.
+  void Housekeep();
+  /// After every drain: rotation, and the ring's bounds as soon as its bytes exceed them (by
+  /// span every second).
+  void BoundRing(int64_t now_ns);
   void TakeSideInputs();
   void Rotate(int64_t t_ns);
   void CloseSegment(int64_t t_ns);
@@ -152,6 +155,7 @@ class Recorder {
   std::atomic<bool> stopped_{false};
   int64_t segment_start_ns_ = 0;  ///< daemon time
   int64_t next_offset_check_ns_ = 0;
+  int64_t next_trim_ns_ = 0;
   int64_t last_offset_row_ns_ = 0;  ///< the offset of the last row
 };
 
