@@ -1,4 +1,4 @@
-"""incident.yaml (/work/notes/blackbox-spec.md): why the black box kept this span.
+"""incident.yaml (docs/blackbox.md): why the black box kept this span.
 
 ```
 format: swlio-incident 1

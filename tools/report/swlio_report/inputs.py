@@ -1,7 +1,7 @@
 """What the report reads: the kind of PATH and every file of it that exists.
 
 PATH is an incident folder (a recording plus health.csv, log.txt, odometry.tum, config.yaml and
-incident.yaml: /work/notes/blackbox-spec.md), a recording folder (lidar.pcap, imu.xbus,
+incident.yaml: docs/blackbox.md), a recording folder (lidar.pcap, imu.xbus,
 imu.rx.csv, manifest.yaml; the black-box files may be absent) or the daemon's log directory
 (swliod.log, swliod.1.log, ...).
 """
