@@ -1,5 +1,5 @@
 """A synthetic black-box incident (health.csv, log.txt, odometry.tum, config.yaml, incident.yaml
-as /work/notes/blackbox-spec.md lays them out), optionally beside a simulated recording's files.
+as docs/blackbox.md lays them out), optionally beside a simulated recording's files.
 
 The default incident: 40 rows at 1 Hz from host time 100 s (UTC 2026-12-04T14:32:00Z); the
 LiDAR is silent for 3 s from 120 s (rows 121, 122, 123 see no datagram); the estimator is
