@@ -75,13 +75,16 @@ int Run(Options& opt) {
     const int64_t due = start + s * step_ns;
     for (int64_t now = swlio::daemon::MonotonicNowNs(); now < due;
          now = swlio::daemon::MonotonicNowNs()) {
-      std::this_thread::sleep_for(std::chrono::nanoseconds(std::min<int64_t>(due - now, 20'000'000)));
+      std::this_thread::sleep_for(
+          std::chrono::nanoseconds(std::min<int64_t>(due - now, 20'000'000)));
       most = std::max(most, recorder->counters().ring_bytes);
     }
     PushSecond(recorder.get(), due, &refused);
     if (s > 0 && s % static_cast<int64_t>(opt.incident_every_s) == 0)
-      recorder->AddEvent({setup.time.ToDaemon(due), RealtimeNowNs(), "mark", "soak " + std::to_string(s)});
-    if (s % 50 == 0) most_disk = std::max(most_disk, swlio::daemon::DirectoryBytes(opt.dir + "/ring"));
+      recorder->AddEvent(
+          {setup.time.ToDaemon(due), RealtimeNowNs(), "mark", "soak " + std::to_string(s)});
+    if (s % 50 == 0)
+      most_disk = std::max(most_disk, swlio::daemon::DirectoryBytes(opt.dir + "/ring"));
   }
   stop = true;
   rec.join();

@@ -124,11 +124,9 @@ void IncidentStore::Run(const std::atomic<bool>& stop, const Watchdog::Handle& b
   }
 }
 
-void IncidentStore::Write(const Incident& incident, const Watchdog::Handle& beat) {
+std::string IncidentStore::Yaml(const Incident& incident,
+                                const std::vector<SegmentInfo>& segments) const {
   const IncidentEvent& first = incident.events.front();
-  const std::vector<SegmentInfo> segments = ring_->Overlapping(incident.start_ns, incident.end_ns);
-  std::vector<std::filesystem::path> parts;
-  for (const SegmentInfo& s : segments) parts.push_back(s.dir);
   const int64_t kept_start = segments.empty() ? first.t_ns : segments.front().start_ns;
   const int64_t kept_end = segments.empty() ? first.t_ns : segments.back().end_ns;
   auto utc = [&](int64_t t_ns) { return Quoted(UtcIso(first.realtime_ns + (t_ns - first.t_ns))); };
@@ -147,14 +145,23 @@ void IncidentStore::Write(const Incident& incident, const Watchdog::Handle& beat
     y << "  - {t_ns: " << e.t_ns << ", utc: " << Quoted(UtcIso(e.realtime_ns))
       << ", reason: " << e.reason << ", detail: " << Quoted(e.detail) << "}\n";
   }
-  if (parts.empty()) {
+  return y.str();
+}
+
+void IncidentStore::Write(const Incident& incident, const Watchdog::Handle& beat) {
+  const IncidentEvent& first = incident.events.front();
+  const std::vector<SegmentInfo> segments = ring_->Overlapping(incident.start_ns, incident.end_ns);
+  if (segments.empty()) {
     std::lock_guard<std::mutex> lock(mutex_);
     ++counters_.failed;
     counters_.last_error = "incident " + first.reason + ": no ring segment of its span is left";
     spdlog::error("black box: {}", counters_.last_error);
     return;
   }
-  WriteParts(parts, UniqueName(first), y.str(), beat);
+  std::vector<std::filesystem::path> parts;
+  parts.reserve(segments.size());
+  for (const SegmentInfo& s : segments) parts.push_back(s.dir);
+  WriteParts(parts, UniqueName(first), Yaml(incident, segments), beat);
 }
 
 bool IncidentStore::WriteParts(const std::vector<std::filesystem::path>& parts,
@@ -204,7 +211,9 @@ void IncidentStore::Bound() {
     std::filesystem::file_time_type written;  ///< when it was renamed into place
     std::filesystem::path path;
     uint64_t bytes = 0;
-    bool operator<(const Kept& o) const { return std::tie(written, path) < std::tie(o.written, o.path); }
+    bool operator<(const Kept& o) const {
+      return std::tie(written, path) < std::tie(o.written, o.path);
+    }
   };
   std::vector<Kept> kept;
   uint64_t total = 0;
@@ -212,8 +221,8 @@ void IncidentStore::Bound() {
   for (auto it = std::filesystem::directory_iterator(dir_, ec);
        !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
     if (!it->is_directory(ec) || IsPartial(it->path())) continue;
-    kept.push_back({std::filesystem::last_write_time(it->path(), ec), it->path(),
-                    DirectoryBytes(it->path())});
+    kept.push_back(
+        {std::filesystem::last_write_time(it->path(), ec), it->path(), DirectoryBytes(it->path())});
     total += kept.back().bytes;
   }
   // Oldest first by when each was written (names begin with the UTC time, but a wall clock

@@ -47,6 +47,7 @@ std::vector<std::filesystem::path> RingSegments::Leftovers() const {
   }
   std::sort(found.begin(), found.end());
   std::vector<std::filesystem::path> out;
+  out.reserve(found.size());
   for (auto& [n, p] : found) out.push_back(std::move(p));
   return out;
 }

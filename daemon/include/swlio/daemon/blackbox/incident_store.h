@@ -66,6 +66,8 @@ class IncidentStore {
     bool cut_short = false;  ///< the recording ended before end_ns
   };
   void Write(const Incident& incident, const Watchdog::Handle& beat);
+  /// incident.yaml for `incident` kept as `segments`.
+  std::string Yaml(const Incident& incident, const std::vector<SegmentInfo>& segments) const;
   bool WriteParts(const std::vector<std::filesystem::path>& parts,
                   const std::string& name,
                   const std::string& yaml,
