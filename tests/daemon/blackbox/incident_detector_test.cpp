@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "swlio/estimator/map/map_localizer.h"
+
 namespace swlio::daemon {
 namespace {
 
@@ -109,6 +111,26 @@ TEST(IncidentDetector, AStalledThreadIsOneEventPerEpisode) {
   EXPECT_TRUE(d.Update(HealthSnapshot{}, 3 * kSec, 0, {}).empty());
   EXPECT_EQ(Reasons(d.Update(HealthSnapshot{}, 30 * kSec, 0, {"publisher"})),
             std::vector<std::string>{"watchdog"});
+}
+
+TEST(IncidentDetector, LocalizationLostAndLongAmbiguityAreEvents) {
+  IncidentDetector d;
+  HealthSnapshot s;
+  s.localization.enabled = true;
+  s.localization.state = estimator::LocalizationState::kConfirming;
+  s.localization.hypotheses = 2;
+  std::vector<std::string> seen;
+  // Confirming from the second look on (the first only sets the baseline): ambiguous 30 s on.
+  for (int64_t t = 1; t <= 40; ++t) {
+    for (const std::string& r : Reasons(d.Update(s, t * kSec, 0)))
+      seen.push_back(r + "@" + std::to_string(t));
+  }
+  EXPECT_EQ(seen, std::vector<std::string>{"localization_ambiguous@32"});
+  s.localization.state = estimator::LocalizationState::kTracking;
+  EXPECT_TRUE(d.Update(s, 41 * kSec, 0).empty());
+  s.localization.lost = 1;
+  s.localization.state = estimator::LocalizationState::kRelocalizing;
+  EXPECT_EQ(Reasons(d.Update(s, 42 * kSec, 0)), std::vector<std::string>{"localization_lost"});
 }
 
 }  // namespace
