@@ -251,14 +251,14 @@ void Recorder::StopOnFailure() {
 
 void Recorder::Finish() {
   TakeSideInputs();
-  if (!files_) return;
-  const int64_t t_ns = setup_.time.ToDaemon(MonotonicNowNs());
   if (!ring_) {
-    if (!files_->Close()) StopOnFailure();
+    if (files_ && !files_->Close()) StopOnFailure();
     return;
   }
-  CloseSegment(t_ns);
+  if (files_) CloseSegment(setup_.time.ToDaemon(MonotonicNowNs()));
   store_->CloseAll();
+  // Also after a stop on a full disk: this run's segments are no crash's (and a disk still
+  // full could not hold them as an incident).
   std::ofstream(ring_dir_ / kCleanStopMark) << "swliod stopped cleanly\n";
 }
 

@@ -102,6 +102,8 @@ TEST(RecorderRing, AFullDiskStopsTheRingAndNothingElse) {
     EXPECT_NE(c.error.find("No space left on device"), std::string::npos) << c.error;
     EXPECT_GT(c.discarded, 0u);
     EXPECT_LT(fed_s, 10.0);  // a loose sanity bound: 1.5 s of pushes were never held up
+    EXPECT_TRUE(std::filesystem::exists(dir / "ring" / kCleanStopMark))
+        << "a stop after a full disk is still a clean stop";
     std::cout << "[ note ] " << c.error << "; " << c.discarded << " datagrams discarded\n";
   }
   umount2(dir.c_str(), MNT_DETACH);
