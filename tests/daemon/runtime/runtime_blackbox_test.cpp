@@ -2,7 +2,8 @@
 // (a LiDAR outage at 8 s, an IMU unplug at 20 s, a blind LiDAR at 31 s that makes the estimator
 // diverge); exactly those three incidents are kept, each around its fault with the span asked
 // for, while the ring stays within max_disk_mb. An incident then replays byte-identically with
-// swlio-replay --deterministic and follows what the daemon estimated live. A full disk stops
+// swlio-replay --deterministic and follows what the daemon estimated live, and swlio-report
+// names the failed subsystem in its summary. A full disk stops
 // the ring and nothing else.
 
 #include <gtest/gtest.h>
@@ -177,6 +178,19 @@ TEST(RuntimeBlackBox, KeepsExactlyTheInjectedFaultsAndReplaysThem) {
   EXPECT_GE(matched, 50u);
   EXPECT_GE(rms, 0.0);
   EXPECT_LT(rms, 0.10);
+  // swlio-report on the kept incidents: the failed subsystem named in the summary.
+  for (const auto& [k, subsystem] :
+       {std::pair{&kept[0], "LiDAR"}, std::pair{&kept[2], "estimator"}}) {
+    const std::filesystem::path page = out / (k->reason + ".html");
+    const std::string cmd = std::string(SWLIO_REPORT_PATH) + " '" + k->dir.string() +
+                            "' --no-replay -o '" + page.string() + "' > '" + page.string() +
+                            ".log' 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << Read(page.string() + ".log");
+    const std::string html = Read(page);
+    EXPECT_NE(html.find(std::string("failed</span> <b>") + subsystem + "</b>"), std::string::npos)
+        << k->reason << ": " << page;
+    EXPECT_NE(html.find(k->reason), std::string::npos);
+  }
 }
 
 // The black box on a 3 MB tmpfs: the disk fills within seconds, the ring stops and says why in
