@@ -62,7 +62,7 @@ int Run(Options& opt) {
   setup.time = {swlio::daemon::MonotonicNowNs(), opt.speed};
   setup.version = "soak";
   std::string error;
-  auto recorder = Recorder::CreateRing(setup, "soak", &error);
+  auto recorder = Recorder::CreateRing(setup, &error);
   if (!recorder) return std::fprintf(stderr, "%s\n", error.c_str()), 1;
   std::atomic<bool> stop{false}, stop_keeper{false};
   std::thread rec([&] { recorder->Run(stop, {}); });

@@ -37,15 +37,19 @@ ProcessUsage ReadProcessUsage() {
   return u;
 }
 
-std::string UtcIso(int64_t realtime_ns) {
+std::string FormatUtc(int64_t realtime_ns, const char* format) {
   const time_t sec = static_cast<time_t>(realtime_ns / 1'000'000'000);
   tm utc{};
   gmtime_r(&sec, &utc);
-  char text[40];
-  const size_t n = std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
-  std::snprintf(text + n, sizeof text - n, ".%03dZ",
-                static_cast<int>((realtime_ns / 1'000'000) % 1000));
-  return text;
+  char text[64];
+  const size_t n = std::strftime(text, sizeof text, format, &utc);
+  return std::string(text, n);
+}
+
+std::string UtcIso(int64_t realtime_ns) {
+  char ms[8];
+  std::snprintf(ms, sizeof ms, ".%03dZ", static_cast<int>((realtime_ns / 1'000'000) % 1000));
+  return FormatUtc(realtime_ns, "%Y-%m-%dT%H:%M:%S") + ms;
 }
 
 namespace {

@@ -3,11 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <ctime>
 #include <fstream>
 #include <sstream>
 #include <tuple>
 
+#include "swlio/core/time.h"
 #include "swlio/daemon/blackbox/health_row.h"
 #include "swlio/daemon/blackbox/recording_concat.h"
 
@@ -15,8 +15,6 @@ namespace swlio::daemon {
 namespace {
 
 constexpr char kPartial[] = ".partial";
-
-int64_t SecToNs(double s) { return static_cast<int64_t>(s * 1e9); }
 
 /// A YAML double-quoted scalar.
 std::string Quoted(const std::string& text) {
@@ -26,16 +24,6 @@ std::string Quoted(const std::string& text) {
     out += (c == '\n' || c == '\r') ? ' ' : c;
   }
   return out + '"';
-}
-
-/// "20261204T143207Z"
-std::string CompactUtc(int64_t realtime_ns) {
-  const time_t sec = static_cast<time_t>(realtime_ns / 1'000'000'000);
-  tm utc{};
-  gmtime_r(&sec, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y%m%dT%H%M%SZ", &utc);
-  return text;
 }
 
 bool IsPartial(const std::filesystem::path& p) {
@@ -250,7 +238,7 @@ void IncidentStore::Bound() {
 }
 
 std::string IncidentStore::UniqueName(const IncidentEvent& first) const {
-  const std::string base = CompactUtc(first.realtime_ns) + "-" + first.reason;
+  const std::string base = FormatUtc(first.realtime_ns, "%Y%m%dT%H%M%SZ") + "-" + first.reason;
   std::string name = base;
   for (int n = 2; std::filesystem::exists(dir_ / name) && n < 1000; ++n)
     name = base + "-" + std::to_string(n);

@@ -6,17 +6,15 @@
 #include <fstream>
 #include <string>
 
+#include "swlio/core/time.h"
 #include "swlio/daemon/config/config_printer.h"
 #include "swlio/daemon/runtime/version.h"
 
 namespace swlio::daemon {
-namespace {
 
-int64_t SecToNs(double s) { return static_cast<int64_t>(s * 1e9); }
-
-RecordingSetup SetupFor(const DaemonConfig& config,
-                        const Eigen::Isometry3d& T_imu_lidar,
-                        const TimeScale& time) {
+RecordingSetup MakeRecordingSetup(const DaemonConfig& config,
+                                  const Eigen::Isometry3d& T_imu_lidar,
+                                  const TimeScale& time) {
   RecordingSetup s;
   s.config = &config;
   s.T_imu_lidar = T_imu_lidar;
@@ -27,8 +25,6 @@ RecordingSetup SetupFor(const DaemonConfig& config,
   s.difop_port = static_cast<uint16_t>(config.lidar.difop_port);
   return s;
 }
-
-}  // namespace
 
 Recorder::Recorder(const RecordingSetup& setup, const StampClock* stamps) : setup_(setup) {
   if (stamps != nullptr) clocks_ = stamps->clocks();
@@ -53,14 +49,13 @@ std::unique_ptr<Recorder> Recorder::Create(const std::filesystem::path& dir,
                                            const StampClock* stamps) {
   // The setup points at the configuration: keep a copy that lives as long as the recorder.
   auto owned = std::make_shared<DaemonConfig>(config);
-  std::unique_ptr<Recorder> r(new Recorder(SetupFor(*owned, T_imu_lidar, time), stamps));
+  std::unique_ptr<Recorder> r(new Recorder(MakeRecordingSetup(*owned, T_imu_lidar, time), stamps));
   r->owned_config_ = std::move(owned);
   if (!r->OpenFolder(dir, error)) return nullptr;
   return r;
 }
 
 std::unique_ptr<Recorder> Recorder::CreateRing(const RecordingSetup& setup,
-                                               const std::string& version,
                                                std::string* error,
                                                const StampClock* stamps) {
   const RecordConfig& c = setup.config->record;
@@ -74,7 +69,7 @@ std::unique_ptr<Recorder> Recorder::CreateRing(const RecordingSetup& setup,
   }
   r->ring_ = std::make_unique<RingSegments>(r->ring_dir_);
   r->store_ = std::make_unique<IncidentStore>(std::filesystem::path(c.directory) / "incidents",
-                                              r->ring_.get(), c, version);
+                                              r->ring_.get(), c, setup.version);
   const std::vector<std::filesystem::path> leftovers = r->ring_->Leftovers();
   const std::filesystem::path mark = r->ring_dir_ / kCleanStopMark;
   if (!leftovers.empty() && !std::filesystem::exists(mark, ec)) {
@@ -268,7 +263,6 @@ RecorderCounters Recorder::counters() const {
   c.serial_bytes = serial_bytes_.load(std::memory_order_relaxed);
   c.discarded = discarded_.load(std::memory_order_relaxed);
   c.stopped = stopped_.load();
-  c.write_errors = c.stopped ? 1 : 0;
   c.ring = ring_ != nullptr;
   {
     std::lock_guard<std::mutex> lock(side_mutex_);

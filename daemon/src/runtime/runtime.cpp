@@ -8,10 +8,8 @@
 
 #include "swlio/core/time.h"
 #include "swlio/daemon/blackbox/health_row.h"
-#include "swlio/daemon/config/config_printer.h"
 #include "swlio/daemon/runtime/event_log.h"
 #include "swlio/daemon/runtime/thread_setup.h"
-#include "swlio/daemon/runtime/version.h"
 #include "swlio/estimator/map/saved_map.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
@@ -187,16 +185,9 @@ bool Runtime::MakeRecorder(const Eigen::Isometry3d& T_imu_lidar,
                                  stamp_clock_.get());
     if (!recorder_) return false;
   } else {
-    RecordingSetup setup;
-    setup.config = &recorded_config_;
-    setup.T_imu_lidar = T_imu_lidar;
-    setup.time = time;
-    setup.config_text = PrintConfig(recorded_config_);
-    setup.version = SwlioVersion();
-    setup.msop_port = lidar_rx_->msop_port();
-    setup.difop_port = lidar_rx_->difop_port();
     std::string why;
-    recorder_ = Recorder::CreateRing(setup, SwlioVersion(), &why, stamp_clock_.get());
+    recorder_ = Recorder::CreateRing(MakeRecordingSetup(recorded, T_imu_lidar, time), &why,
+                                     stamp_clock_.get());
     if (!recorder_) {
       blackbox_error_ = why;
       spdlog::error("{}; the daemon runs without it", why);

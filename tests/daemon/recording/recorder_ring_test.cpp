@@ -36,7 +36,7 @@ struct Ring {
     setup.config = &config;
     setup.time = TimeScale{MonotonicNowNs(), 1.0};
     setup.version = "test";
-    recorder = Recorder::CreateRing(setup, "test", &error);
+    recorder = Recorder::CreateRing(setup, &error);
     return recorder != nullptr;
   }
 };

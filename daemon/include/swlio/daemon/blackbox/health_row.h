@@ -21,6 +21,9 @@ struct ProcessUsage {
 };
 ProcessUsage ReadProcessUsage();
 
+/// A CLOCK_REALTIME time in UTC through strftime's `format` (whole seconds).
+std::string FormatUtc(int64_t realtime_ns, const char* format);
+
 /// "2026-12-04T14:32:07.120Z" for a CLOCK_REALTIME time.
 std::string UtcIso(int64_t realtime_ns);
 

@@ -59,17 +59,23 @@ namespace swlio::daemon {
 struct RecorderCounters {
   uint64_t lidar_packets = 0;
   uint64_t serial_bytes = 0;
-  uint64_t write_errors = 0;  ///< 1 once a write failed (the recording then stopped)
-  bool ring = false;          ///< the black box (else one folder, --record)
-  bool stopped = false;       ///< a write failed: nothing more is recorded
-  std::string error;          ///< why it stopped
-  uint64_t discarded = 0;     ///< inputs taken after it stopped, not written
-  uint64_t segments = 0;      ///< closed segments in the ring
-  uint64_t ring_bytes = 0;    ///< theirs and the open one's
+  bool ring = false;        ///< the black box (else one folder, --record)
+  bool stopped = false;     ///< a write failed: nothing more is recorded
+  std::string error;        ///< why it stopped
+  uint64_t discarded = 0;   ///< inputs taken after it stopped, not written
+  uint64_t segments = 0;    ///< closed segments in the ring
+  uint64_t ring_bytes = 0;  ///< theirs and the open one's
   uint64_t segments_deleted = 0;
   double ring_span_s = 0.0;  ///< from the oldest segment's start to now
   IncidentCounters incidents;
 };
+
+/// What a recording of `config` (not owned; must outlive the recorder) is opened with: its
+/// printed configuration, this build's version, and the configuration's LiDAR ports (give the
+/// bound ones in `config` when it asked for port 0).
+RecordingSetup MakeRecordingSetup(const DaemonConfig& config,
+                                  const Eigen::Isometry3d& T_imu_lidar,
+                                  const TimeScale& time);
 
 /// A clock_offsets.csv row is written when the offset moved by more than this since the last.
 inline constexpr int64_t kClockOffsetRowNs = 100'000;
@@ -88,9 +94,8 @@ class Recorder {
                                           const StampClock* stamps = nullptr);
   /// The black box under `setup.config->record.directory` (ring/, incidents/). An earlier
   /// run's segments become an incident `unclean_stop` when that run did not stop cleanly, and
-  /// are deleted otherwise. `version`: written into incidents.
+  /// are deleted otherwise. Incidents carry `setup.version`.
   static std::unique_ptr<Recorder> CreateRing(const RecordingSetup& setup,
-                                              const std::string& version,
                                               std::string* error,
                                               const StampClock* stamps = nullptr);
   ~Recorder();
