@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "disturb/apply_disturbances.h"
 #include "live/sim_live.h"
 #include "recording/sim_recording.h"
 #include "scenarios/scenarios.h"
@@ -177,7 +178,7 @@ int Run(int argc, char** argv) {
   std::string dump_dir;
   swlio::sim::LiveOptions live_opts;
   app.add_option("--scenario", scenario,
-                 "short | loop943 | degenerate | aggressive | revisit | calibration");
+                 "short | loop943 | degenerate | aggressive | revisit | calibration | field");
   app.add_option("--seed", seed, "world and noise seed");
   app.add_option("--world-seed", world_seed,
                  "draw the substation from this seed instead (a second drive in a mapped world)");
@@ -202,6 +203,17 @@ int Run(int argc, char** argv) {
   app.add_flag("--precast", live_opts.precast,
                "live: cast every LiDAR packet before streaming (about 1 MB per second of "
                "driving), so the stream keeps its schedule on a loaded machine");
+  std::string disturb;
+  app.add_option("--disturb", disturb,
+                 "add field disturbances, comma-separated: people, vehicles, vibration, "
+                 "mixed_pixels, rain, dust, dropouts, time_offset, temperature, all (the "
+                 "scenario's own stay on: field has all)");
+  double time_offset_ms = 0.0;
+  app.add_option("--time-offset-ms", time_offset_ms,
+                 "the time_offset disturbance with this offset (ms) instead of one drawn in "
+                 "+-10 ms from the seed: IMU samples measure the motion this long before their "
+                 "stamps")
+      ->check(CLI::Range(-100.0, 100.0));
   FaultArgs fault_args;
   fault_args.Add(app);
   StreamArgs stream_args;
@@ -223,6 +235,20 @@ int Run(int argc, char** argv) {
     return 2;
   }
   stream_args.Apply(&*setup);
+  {
+    std::string error;
+    auto set = swlio::sim::ParseDisturbanceList(disturb, &error);
+    if (!set) {
+      std::cerr << "swlio-sim: --disturb: " << error << "\n";
+      return 2;
+    }
+    swlio::sim::DisturbanceOverrides overrides;
+    if (app.count("--time-offset-ms") > 0) {
+      overrides.time_offset_s = time_offset_ms * 1e-3;
+      set->Add(swlio::sim::Disturbance::kTimeOffset);
+    }
+    swlio::sim::ApplyDisturbances(&*setup, *set, overrides);
+  }
   if (std::string error; !swlio::sim::RepeatRoute(&*setup, laps, &error)) {
     std::cerr << "swlio-sim: --laps: " << error << "\n";
     return 2;

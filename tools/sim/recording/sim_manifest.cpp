@@ -6,6 +6,7 @@
 #include <sstream>
 #include <vector>
 
+#include "disturb/disturbance_manifest.h"
 #include "recording/sim_recording.h"
 #include "swlio/core/exact_number.h"
 #include "swlio/core/lie.h"
@@ -157,7 +158,7 @@ std::string ManifestYaml(const SimSetup& setup,
     << ", burst_period_s: " << Num(setup.imu.delivery.burst_period_s)
     << ", stall_probability: " << Num(setup.imu.delivery.stall_probability)
     << ", stall_s: " << Num(setup.imu.delivery.stall_s) << "}\n"
-    << GnssBlock(setup) << WheelBlock(setup, mode)
+    << GnssBlock(setup) << WheelBlock(setup, mode) << DisturbanceManifestBlock(setup)
     << "groundtruth_rate_hz: " << Num(setup.gt_rate_hz) << "\n"
     << "counts:\n"
     << "  msop_packets: " << stats.msop_packets << "\n"

@@ -19,7 +19,8 @@ RouteSpec Base(double cruise_mps, double radius_m, const std::vector<Eigen::Vect
 }
 
 Scenario Short() {
-  Scenario s{"short", "about 60 s: along the south road, a left turn onto the east road", {}, {}};
+  Scenario s{
+      "short", "about 60 s: along the south road, a left turn onto the east road", {}, {}, {}};
   s.route =
       Base(1.2, 4.0, {{150.0, L::kRoadSouth}, {L::kRoadEast, L::kRoadSouth}, {L::kRoadEast, 35.0}});
   return s;
@@ -29,6 +30,7 @@ Scenario Loop943() {
   Scenario s{"loop943",
              "a 943 m patrol: ring and middle roads, then a loop through the open yard, back to "
              "the start; revisits the east and south roads",
+             {},
              {},
              {}};
   s.route = Base(1.0, 4.0,
@@ -52,6 +54,7 @@ Scenario Degenerate() {
   Scenario s{"degenerate",
              "a long stretch across the open yard, then along the west and south fences",
              {},
+             {},
              {}};
   s.route = Base(1.2, 4.0, {{20.0, 0.0}, {20.0, 85.0}, {-7.0, 85.0}, {-7.0, -3.0}, {35.0, -3.0}});
   return s;
@@ -60,6 +63,7 @@ Scenario Degenerate() {
 Scenario Aggressive() {
   Scenario s{"aggressive",
              "fast (1.5 m/s) slalom with yaw rates near 60 °/s, over road bumps, sharp corners",
+             {},
              {},
              {}};
   std::vector<Eigen::Vector2d> pts = {{60.0, L::kRoadSouth}};
@@ -145,6 +149,7 @@ Scenario Revisit(uint64_t seed) {
              "200 m along the substation roads from a start drawn from the seed (either "
              "direction): a second drive for relocalization in a map made on loop943",
              {},
+             {},
              {}};
   const std::vector<Eigen::Vector2d> roads = PatrolRoads();
   double total_m = 0.0;
@@ -158,10 +163,21 @@ Scenario Revisit(uint64_t seed) {
   return s;
 }
 
+/// `loop943`'s patrol in the field (issue 36): every disturbance on (disturb/disturbances.h).
+Scenario Field() {
+  Scenario s = Loop943();
+  s.name = "field";
+  s.description =
+      "loop943's patrol with every field disturbance: people, vehicles, vibration, mixed "
+      "pixels, rain, dust, dropouts, a LiDAR-IMU time offset, IMU temperature drift";
+  for (Disturbance d : AllDisturbances()) s.disturb.Add(d);
+  return s;
+}
+
 }  // namespace
 
 std::vector<std::string> ScenarioNames() {
-  return {"short", "loop943", "degenerate", "aggressive", "revisit", "calibration"};
+  return {"short", "loop943", "degenerate", "aggressive", "revisit", "calibration", "field"};
 }
 
 std::optional<Scenario> MakeScenario(const std::string& name, uint64_t seed) {
@@ -171,6 +187,7 @@ std::optional<Scenario> MakeScenario(const std::string& name, uint64_t seed) {
   if (name == "degenerate") return Degenerate();
   if (name == "aggressive") return Aggressive();
   if (name == "calibration") return Calibration();
+  if (name == "field") return Field();
   return std::nullopt;
 }
 

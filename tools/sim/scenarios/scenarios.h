@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "disturb/disturbances.h"
 #include "scenarios/trajectory.h"
 
 namespace swlio::sim {
@@ -18,10 +19,12 @@ struct Scenario {
   /// Added to the substation's own (this scenario's course; the other scenarios' world is the
   /// same for every one of them).
   std::vector<Bump> extra_bumps;
+  /// Field disturbances on by default (`field`: all of them); `--disturb` adds to them.
+  DisturbanceSet disturb;
 };
 
 /// Names of the built-in scenarios: short, loop943, degenerate, aggressive, revisit,
-/// calibration.
+/// calibration, field.
 std::vector<std::string> ScenarioNames();
 
 /// The scenario called `name`, or nothing when there is none. Only `revisit` depends on the

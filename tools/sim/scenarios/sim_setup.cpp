@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "disturb/apply_disturbances.h"
 #include "rng.h"
 #include "swlio/core/lie.h"
 #include "world/substation.h"
@@ -67,6 +68,7 @@ std::optional<SimSetup> MakeSimSetup(const std::string& scenario,
   if (duration_s) {
     setup.trajectory->Truncate(std::max(0.1, *duration_s));
   }
+  ApplyDisturbances(&setup, setup.scenario.disturb);
   return setup;
 }
 

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "disturb/disturbances.h"
 #include "scenarios/scenarios.h"
 #include "scenarios/trajectory.h"
 #include "sensors/gnss_sim.h"
@@ -30,6 +31,9 @@ struct SimSetup {
   GnssSimConfig gnss;         ///< the MTi's GNSS items (their rate: imu.gnss_pvt_period_s)
   WheelSimConfig wheel;       ///< chassis odometry on CAN (T_imu_base, drawn scale errors)
   double gt_rate_hz = 200.0;  ///< ground-truth pose rate
+  /// The field disturbances that are on (disturb/apply_disturbances.h); their models live in
+  /// the configurations above.
+  DisturbanceSet disturb;
 };
 
 /// Builds the setup; `duration_s` (when given) shortens the route's timeline; `world_seed`

@@ -69,7 +69,7 @@ std::vector<SimImuSample> SimulateImu(const Trajectory& trajectory,
     const double device_s = device_start + static_cast<double>(k) * dt;
     const double host_s = config.clock.ToHost(device_s);
     if (host_s > trajectory.duration_s()) break;
-    const Kinematics kin = trajectory.At(host_s);
+    const Kinematics kin = trajectory.At(std::max(0.0, host_s - config.time_offset_s));
     SimImuSample s;
     s.t_true_ns = SecToNs(host_s);
     s.sample_time_fine =

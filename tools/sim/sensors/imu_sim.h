@@ -55,7 +55,9 @@ struct SerialDelivery {
 };
 
 struct SimImuSample {
-  int64_t t_true_ns = 0;          ///< host time at which the sample was taken (ground truth)
+  /// Host time its SampleTimeFine stands for (ground truth); the motion it measures is that
+  /// of t_true_ns − ImuSimConfig::time_offset_s.
+  int64_t t_true_ns = 0;
   int64_t t_rx_ns = 0;            ///< host time at which its frame arrives over serial
   uint32_t sample_time_fine = 0;  ///< device clock, 100 µs ticks, wraps at 2³²
   uint16_t packet_counter = 0;
@@ -83,6 +85,10 @@ struct ImuSimConfig {
   /// Bytes a GnssPvtData item adds to a frame (XDI, size, 94 bytes of data), which lengthen its
   /// transmission.
   double gnss_pvt_item_bytes = 3.0 + 94.0;
+  /// An unknown LiDAR–IMU time offset (the `time_offset` disturbance): each sample measures the
+  /// motion of `time_offset_s` before the host time its SampleTimeFine stands for (a filter
+  /// delay or a constant serial latency the clock model cannot see; negative: after).
+  double time_offset_s = 0.0;
 };
 
 /// Samples over [0, duration] host seconds, in order; deterministic for a seed.

@@ -1,0 +1,26 @@
+#pragma once
+/// @file
+/// Turns disturbances on in a SimSetup: each sets up its model (drawn from the setup's seed
+/// where the model has random parts) in the sensor or world it acts on. Call after
+/// MakeSimSetup and before RepeatRoute or any emitter is built.
+
+#include <optional>
+
+#include "disturb/disturbances.h"
+#include "scenarios/sim_setup.h"
+
+namespace swlio::sim {
+
+/// What the command line can fix instead of drawing it from the seed.
+struct DisturbanceOverrides {
+  /// The LiDAR–IMU time offset (s): IMU samples are stamped this much later than they were
+  /// measured (negative: earlier). Drawn in ±10 ms from the seed when not given.
+  std::optional<double> time_offset_s;
+};
+
+/// Adds `set` to setup->disturb and sets up each model that was not on yet.
+void ApplyDisturbances(SimSetup* setup,
+                       const DisturbanceSet& set,
+                       const DisturbanceOverrides& overrides = {});
+
+}  // namespace swlio::sim
