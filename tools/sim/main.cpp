@@ -214,6 +214,10 @@ int Run(int argc, char** argv) {
                  "+-10 ms from the seed: IMU samples measure the motion this long before their "
                  "stamps")
       ->check(CLI::Range(-100.0, 100.0));
+  std::string vibration_rms;
+  app.add_option("--vibration-rms", vibration_rms,
+                 "the vibration disturbance with these acceleration RMS (m/s^2) as REST:DRIVE "
+                 "(standing, at 1 m/s) instead of drawn from the seed");
   FaultArgs fault_args;
   fault_args.Add(app);
   StreamArgs stream_args;
@@ -246,6 +250,16 @@ int Run(int argc, char** argv) {
     if (app.count("--time-offset-ms") > 0) {
       overrides.time_offset_s = time_offset_ms * 1e-3;
       set->Add(swlio::sim::Disturbance::kTimeOffset);
+    }
+    if (!vibration_rms.empty()) {
+      const swlio::sim::TimeWindow w = ParseWindow(vibration_rms);  // two numbers, A:B
+      if (w.start_s < 0.0 || w.duration_s < 0.0) {
+        std::cerr << "swlio-sim: --vibration-rms: negative RMS\n";
+        return 2;
+      }
+      overrides.vibration_rest_rms_mps2 = w.start_s;
+      overrides.vibration_drive_rms_mps2 = w.duration_s;
+      set->Add(swlio::sim::Disturbance::kVibration);
     }
     swlio::sim::ApplyDisturbances(&*setup, *set, overrides);
   }

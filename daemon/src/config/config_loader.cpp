@@ -366,8 +366,16 @@ void Bind(Section s, estimator::DynamicBootstrapConfig& c) {
   s.Finish();
 }
 
+void Bind(Section s, estimator::ImuNoiseAdapterConfig& c) {
+  s.Get("enabled", c.enabled);
+  s.Get("gain", c.gain);
+  s.Get("time_constant_s", c.time_constant_s);
+  s.Finish();
+}
+
 void Bind(Section s, estimator::StandstillConfig& c) {
   s.Get("enabled", c.enabled);
+  s.Get("imu_window_s", c.imu_window_s);
   s.Get("max_acc_std_mps2", c.max_acc_std_mps2);
   s.Get("max_gyro_std_radps", c.max_gyro_std_radps);
   s.Get("max_specific_force_error_mps2", c.max_specific_force_error_mps2);
@@ -449,6 +457,7 @@ void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   Bind(s.Child("divergence"), c.divergence);
   Bind(s.Child("wheel"), c.wheel);
   Bind(s.Child("standstill"), c.standstill);
+  Bind(s.Child("imu_noise_adapter"), c.imu_noise_adapter);
   s.Finish();
 }
 

@@ -208,12 +208,21 @@ void Emit(ConfigWriter& w, const estimator::WheelFactorConfig& c) {
 void Emit(ConfigWriter& w, const estimator::StandstillConfig& c) {
   w.BeginMap("standstill");
   w.Put("enabled", c.enabled);
+  w.Put("imu_window_s", c.imu_window_s);
   w.Put("max_acc_std_mps2", c.max_acc_std_mps2);
   w.Put("max_gyro_std_radps", c.max_gyro_std_radps);
   w.Put("max_specific_force_error_mps2", c.max_specific_force_error_mps2);
   w.Put("max_rate_radps", c.max_rate_radps);
   w.Put("max_lidar_speed_mps", c.max_lidar_speed_mps);
   w.Put("sigma_velocity_mps", c.sigma_velocity_mps);
+  w.EndMap();
+}
+
+void Emit(ConfigWriter& w, const estimator::ImuNoiseAdapterConfig& c) {
+  w.BeginMap("imu_noise_adapter");
+  w.Put("enabled", c.enabled);
+  w.Put("gain", c.gain);
+  w.Put("time_constant_s", c.time_constant_s);
   w.EndMap();
 }
 
@@ -259,6 +268,7 @@ void Emit(ConfigWriter& w, const estimator::WindowEstimatorConfig& c) {
   Emit(w, c.bootstrap);
   Emit(w, c.wheel);
   Emit(w, c.standstill);
+  Emit(w, c.imu_noise_adapter);
   w.EndMap();
 }
 

@@ -2,27 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
-#include "swlio/estimator/imu/imu_moments.h"
+#include "swlio/estimator/imu/imu_stillness.h"
 
 namespace swlio::estimator {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
-
-/// |mean of the second half − mean of the first half| of get(sample).
-template <typename Get>
-double HalfWindowDrift(const std::deque<ImuSample>& window, Get get) {
-  const size_t half = window.size() / 2;
-  Vec3 first = Vec3::Zero(), second = Vec3::Zero();
-  for (size_t k = 0; k < half; ++k) first += get(window[k]);
-  for (size_t k = half; k < window.size(); ++k) second += get(window[k]);
-  first /= static_cast<double>(std::max<size_t>(half, 1));
-  second /= static_cast<double>(window.size() - half);
-  return (second - first).norm();
-}
 
 }  // namespace
 
@@ -76,17 +65,15 @@ const StaticInitResult& StaticInitializer::Add(const ImuSample& sample) {
 }
 
 void StaticInitializer::Evaluate() {
-  const auto get_acc = [](const ImuSample& s) { return s.acc_mps2; };
-  const auto get_gyro = [](const ImuSample& s) { return s.gyro_radps; };
-  const ImuMoments acc = ComputeImuMoments(window_, get_acc);
-  const ImuMoments gyro = ComputeImuMoments(window_, get_gyro);
-  const double f_norm = acc.mean.norm();
-  result_.acc_std_mps2 = acc.std.maxCoeff();
-  result_.gyro_std_radps = gyro.std.maxCoeff();
+  const std::vector<ImuSample> samples(window_.begin(), window_.end());
+  const ImuStillness m = ComputeImuStillness(samples);
+  const double f_norm = m.acc_mean_mps2.norm();
+  result_.acc_std_mps2 = m.acc_lowpass_std_mps2;
+  result_.gyro_std_radps = m.gyro_lowpass_std_radps;
   result_.gravity_error_mps2 = f_norm - gravity_mps2_;
-  result_.gyro_mean_radps = gyro.mean.norm();
-  result_.acc_drift_mps2 = HalfWindowDrift(window_, get_acc);
-  result_.gyro_drift_radps = HalfWindowDrift(window_, get_gyro);
+  result_.gyro_mean_radps = m.gyro_mean_radps.norm();
+  result_.acc_drift_mps2 = (m.acc_second_half_mps2 - m.acc_first_half_mps2).norm();
+  result_.gyro_drift_radps = (m.gyro_second_half_radps - m.gyro_first_half_radps).norm();
   const bool still = result_.acc_std_mps2 <= options_.max_acc_std_mps2 &&
                      result_.gyro_std_radps <= options_.max_gyro_std_radps &&
                      std::abs(result_.gravity_error_mps2) <= options_.max_gravity_error_mps2 &&
@@ -100,17 +87,20 @@ void StaticInitializer::Evaluate() {
   // Up in the IMU frame is u = f/|f| = R_world_imuᵀ e_z. With R = Rz(0)·Ry(pitch)·Rx(roll),
   // Rᵀ e_z = (−sin p, sin r cos p, cos r cos p), so roll = atan2(u_y, u_z) and
   // pitch = atan2(−u_x, √(u_y² + u_z²)).
-  const Vec3 up = acc.mean / f_norm;
+  const Vec3 up = m.acc_mean_mps2 / f_norm;
   const double roll = std::atan2(up.y(), up.z());
   const double pitch = std::atan2(-up.x(), std::hypot(up.y(), up.z()));
   State& s = result_.state;
   s = State{};
   s.t_ns = window_.back().t_ns;
   s.T_world_imu.linear() = lie::QuatFromRpy(roll, pitch, 0.0).toRotationMatrix();
-  s.bias_gyro = gyro.mean;
+  s.bias_gyro = m.gyro_mean_radps;
   s.bias_acc = result_.gravity_error_mps2 * up;  // the gravity-axis component only
   result_.gravity_imu = up;
-  result_.bias_gyro_std = gyro.std / std::sqrt(static_cast<double>(window_.size()));
+  // White noise: σ/√N. Vibration's tones leak < 1e-3 of their amplitude into the Hann mean,
+  // which the (vibration-inflated) std over √N covers.
+  result_.bias_gyro_std =
+      Vec3::Constant(m.gyro_std_radps / std::sqrt(static_cast<double>(window_.size())));
   result_.status = InitStatus::kInitialized;
 }
 

@@ -1,14 +1,16 @@
 #include "swlio/estimator/window/standstill.h"
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 
-#include "swlio/estimator/imu/imu_moments.h"
+#include "swlio/estimator/imu/imu_stillness.h"
 
 namespace swlio::estimator {
 
 ConfigIssues StandstillConfig::Validate() const {
   ConfigIssues issues;
+  CheckInRange(issues, "imu_window_s", imu_window_s, 0.0, 5.0);
   CheckInRange(issues, "max_acc_std_mps2", max_acc_std_mps2, 0.0, 1.0);
   CheckInRange(issues, "max_gyro_std_radps", max_gyro_std_radps, 0.0, 0.5);
   CheckInRange(issues, "max_specific_force_error_mps2", max_specific_force_error_mps2, 0.0, 1.0);
@@ -18,21 +20,24 @@ ConfigIssues StandstillConfig::Validate() const {
   return issues;
 }
 
-bool ImuAtRest(const std::vector<ImuSample>& samples,
-               const Eigen::Matrix3d& R_gravity_imu,
-               const Eigen::Vector3d& bias_acc,
-               const Eigen::Vector3d& bias_gyro,
-               double gravity_mps2,
-               const StandstillConfig& config) {
-  if (samples.size() < 4) return false;
-  const ImuMoments f = ComputeImuMoments(samples, [](const ImuSample& s) { return s.acc_mps2; });
-  const ImuMoments w = ComputeImuMoments(samples, [](const ImuSample& s) { return s.gyro_radps; });
+std::optional<double> ImuAtRest(const std::vector<ImuSample>& samples,
+                                const Eigen::Matrix3d& R_gravity_imu,
+                                const Eigen::Vector3d& bias_acc,
+                                const Eigen::Vector3d& bias_gyro,
+                                double gravity_mps2,
+                                const StandstillConfig& config) {
+  if (samples.size() < 4) return std::nullopt;
+  const ImuStillness still = ComputeImuStillness(samples);
   const Eigen::Vector3d f_rest =
       R_gravity_imu.transpose() * Eigen::Vector3d(0.0, 0.0, gravity_mps2) + bias_acc;
-  return f.std.maxCoeff() <= config.max_acc_std_mps2 &&
-         w.std.maxCoeff() <= config.max_gyro_std_radps &&
-         (f.mean - f_rest).norm() <= config.max_specific_force_error_mps2 &&
-         (w.mean - bias_gyro).norm() <= config.max_rate_radps;
+  const bool at_rest =
+      still.acc_lowpass_std_mps2 <= config.max_acc_std_mps2 &&
+      still.gyro_lowpass_std_radps <= config.max_gyro_std_radps &&
+      (still.acc_mean_mps2 - f_rest).norm() <= config.max_specific_force_error_mps2 &&
+      (still.gyro_mean_radps - bias_gyro).norm() <= config.max_rate_radps;
+  if (!at_rest) return std::nullopt;
+  // Per axis: the RMS over all three axes spread evenly.
+  return std::max(config.sigma_velocity_mps, still.velocity_rms_mps / std::sqrt(3.0));
 }
 
 bool ZeroVelocityFactor::Evaluate(double const* const* parameters,

@@ -99,6 +99,7 @@ WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn no
       init_sigma_bias_acc_mps2_(config_.init_sigma_bias_acc_mps2),
       init_sigma_bias_gyro_radps_(Eigen::Vector3d::Constant(config_.init_sigma_bias_gyro_radps)),
       propagator_(config_.odometry.estimator.gravity_mps2),
+      noise_adapter_(config_.odometry.estimator.imu_noise, config_.imu_noise_adapter),
       front_end_(config_.odometry.front_end),
       plane_map_(config_.odometry.plane_map),
       edge_map_(config_.odometry.edge_map),
@@ -136,6 +137,13 @@ void WindowEstimator::ResetExtrinsicPrior() {
 
 void WindowEstimator::AddImu(const ImuSample& sample) {
   if (calibration_) calibration_->AddImu(sample);
+  noise_adapter_.Add(sample);
+  if (!recent_imu_.empty() && sample.t_ns < recent_imu_.back().t_ns) recent_imu_.clear();
+  recent_imu_.push_back(sample);
+  const int64_t keep_ns = SecToNs(config_.standstill.imu_window_s) + kNsPerSec / 5;
+  while (!recent_imu_.empty() && recent_imu_.front().t_ns < sample.t_ns - keep_ns) {
+    recent_imu_.pop_front();
+  }
   if (initialized_) {
     imu_.push_back(sample);
     return;
@@ -246,11 +254,10 @@ bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) {
   }
   if (s.empty()) return false;
   if (s.back().t_ns < to->t_ns) s.push_back(At(s.back(), to->t_ns));  // hold the last rates
-  to->pre = std::make_unique<Preintegrator>(config_.odometry.estimator.imu_noise, from.BiasGyro(),
-                                            from.BiasAcc());
+  const ImuNoiseConfig noise = noise_adapter_.Effective();
+  to->pre = std::make_unique<Preintegrator>(noise, from.BiasGyro(), from.BiasAcc());
   if (to->pre->Integrate(s, from.t_ns, to->t_ns) != PreintegrationStatus::kOk) return false;
-  to->SetImu(ImuFactor::Create(to->pre->result(), config_.odometry.estimator.imu_noise,
-                               config_.odometry.estimator.gravity_mps2));
+  to->SetImu(ImuFactor::Create(to->pre->result(), noise, config_.odometry.estimator.gravity_mps2));
   return to->imu != nullptr;
 }
 

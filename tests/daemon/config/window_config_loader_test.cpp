@@ -77,6 +77,7 @@ void ExpectSameWindow(const WindowEstimatorConfig& a, const WindowEstimatorConfi
   EXPECT_EQ(ia.gravity_iterations, ib.gravity_iterations);
   const auto &sa = a.standstill, &sb = b.standstill;
   EXPECT_EQ(sa.enabled, sb.enabled);
+  EXPECT_EQ(sa.imu_window_s, sb.imu_window_s);
   EXPECT_EQ(sa.max_acc_std_mps2, sb.max_acc_std_mps2);
   EXPECT_EQ(sa.max_gyro_std_radps, sb.max_gyro_std_radps);
   EXPECT_EQ(sa.max_specific_force_error_mps2, sb.max_specific_force_error_mps2);
@@ -154,6 +155,7 @@ estimator:
         gravity_iterations: 5
     standstill:
       enabled: false
+      imu_window_s: 0.7
       max_acc_std_mps2: 0.04
       max_gyro_std_radps: 0.02
       max_specific_force_error_mps2: 0.06
@@ -213,6 +215,7 @@ estimator:
   init.gyro_iterations = 4;
   init.gravity_iterations = 5;
   want.standstill = {.enabled = false,  // the default is on
+                     .imu_window_s = 0.7,
                      .max_acc_std_mps2 = 0.04,
                      .max_gyro_std_radps = 0.02,
                      .max_specific_force_error_mps2 = 0.06,

@@ -1,6 +1,9 @@
 #include "disturb/apply_disturbances.h"
 
+#include <memory>
+
 #include "rng.h"
+#include "scenarios/chassis_vibration.h"
 
 namespace swlio::sim {
 namespace {
@@ -16,15 +19,28 @@ void SetUpTimeOffset(SimSetup* setup, const DisturbanceOverrides& overrides) {
   setup->imu.time_offset_s = overrides.time_offset_s.value_or(drawn);
 }
 
+/// Magnitudes: chassis_vibration.h.
+void SetUpVibration(SimSetup* setup, const DisturbanceOverrides& overrides) {
+  Rng rng(setup->seed ^ 0x5BAC7ull);
+  ChassisVibrationSpec spec;
+  spec.rest_rms_mps2 = rng.Uniform(0.5, 1.0);
+  spec.drive_rms_mps2 = rng.Uniform(1.0, 2.0);
+  spec.rest_rms_mps2 = overrides.vibration_rest_rms_mps2.value_or(spec.rest_rms_mps2);
+  spec.drive_rms_mps2 = overrides.vibration_drive_rms_mps2.value_or(spec.drive_rms_mps2);
+  setup->trajectory->SetVibration(std::make_shared<ChassisVibration>(spec, setup->seed));
+}
+
 void SetUp(SimSetup* setup, Disturbance d, const DisturbanceOverrides& overrides) {
   switch (d) {
     case Disturbance::kTimeOffset:
       SetUpTimeOffset(setup, overrides);
       break;
+    case Disturbance::kVibration:
+      SetUpVibration(setup, overrides);
+      break;
     // The other models are set up by their own files as they land (issue 36).
     case Disturbance::kPeople:
     case Disturbance::kVehicles:
-    case Disturbance::kVibration:
     case Disturbance::kMixedPixels:
     case Disturbance::kRain:
     case Disturbance::kDust:
@@ -42,9 +58,10 @@ void ApplyDisturbances(SimSetup* setup,
   for (Disturbance d : AllDisturbances()) {
     if (!set.Has(d)) continue;
     // An override applies even to a disturbance already on (the scenario's own).
-    if (setup->disturb.Has(d) && !(d == Disturbance::kTimeOffset && overrides.time_offset_s)) {
-      continue;
-    }
+    const bool overridden = (d == Disturbance::kTimeOffset && overrides.time_offset_s) ||
+                            (d == Disturbance::kVibration && (overrides.vibration_rest_rms_mps2 ||
+                                                              overrides.vibration_drive_rms_mps2));
+    if (setup->disturb.Has(d) && !overridden) continue;
     SetUp(setup, d, overrides);
   }
   setup->disturb.Add(set);

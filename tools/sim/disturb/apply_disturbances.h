@@ -16,6 +16,10 @@ struct DisturbanceOverrides {
   /// The LiDAR–IMU time offset (s): IMU samples are stamped this much later than they were
   /// measured (negative: earlier). Drawn in ±10 ms from the seed when not given.
   std::optional<double> time_offset_s;
+  /// Chassis vibration's acceleration RMS (m/s²) standing and at 1 m/s; drawn from the seed in
+  /// 0.5–1.0 and 1.0–2.0 when not given.
+  std::optional<double> vibration_rest_rms_mps2;
+  std::optional<double> vibration_drive_rms_mps2;
 };
 
 /// Adds `set` to setup->disturb and sets up each model that was not on yet.

@@ -15,6 +15,19 @@ std::string DisturbanceManifestBlock(const SimSetup& setup) {
       << "  # SampleTimeFine maps to: the estimator should find it as the IMU-LiDAR offset\n"
       << "  time_offset_s: " << ExactNumber(setup.imu.time_offset_s) << "\n";
   }
+  if (const ChassisVibration* v = setup.trajectory->vibration()) {
+    y << "  # chassis vibration (scenarios/chassis_vibration.h): acceleration RMS standing and\n"
+      << "  # at vibration_reference_speed_mps; tones in vibration_band_hz\n"
+      << "  vibration_rest_rms_mps2: " << ExactNumber(v->spec().rest_rms_mps2) << "\n"
+      << "  vibration_drive_rms_mps2: " << ExactNumber(v->spec().drive_rms_mps2) << "\n"
+      << "  vibration_reference_speed_mps: " << ExactNumber(v->spec().reference_speed_mps) << "\n"
+      << "  vibration_band_hz: [" << ExactNumber(v->spec().min_hz) << ", "
+      << ExactNumber(v->spec().max_hz) << "]\n"
+      << "  vibration_motor_hz: [";
+    const std::vector<double> hz = v->MotorFrequenciesHz();
+    for (size_t i = 0; i < hz.size(); ++i) y << (i ? ", " : "") << ExactNumber(hz[i]);
+    y << "]\n";
+  }
   return y.str();
 }
 

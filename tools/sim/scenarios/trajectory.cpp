@@ -228,9 +228,15 @@ bool Trajectory::EndsWhereItStarts() const {
 }
 
 Kinematics Trajectory::At(double t) const {
-  if (lap_period_s_ <= 0.0) return AtInLap(t);
-  const double lap = std::floor(t / lap_period_s_);
-  return AtInLap(lap <= 0.0 ? t : t - lap * lap_period_s_);
+  Kinematics k;
+  if (lap_period_s_ <= 0.0) {
+    k = AtInLap(t);
+  } else {
+    const double lap = std::floor(t / lap_period_s_);
+    k = AtInLap(lap <= 0.0 ? t : t - lap * lap_period_s_);
+  }
+  if (vibration_) vibration_->Apply(t, &k);
+  return k;
 }
 
 Kinematics Trajectory::AtInLap(double t) const {

@@ -10,7 +10,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <vector>
+
+#include "scenarios/chassis_vibration.h"
 
 #include "world/terrain.h"
 
@@ -61,7 +64,13 @@ class Trajectory {
   /// Whether the last pose is the first one (within 5 cm and 0.5°), so that laps join up.
   bool EndsWhereItStarts() const;
   double lap_period_s() const { return lap_period_s_; }  ///< 0: the route is driven once
+  /// The route's kinematics at `t_s`, with the chassis vibration when one is set.
   Kinematics At(double t_s) const;
+  /// Shakes the sensor head (the `vibration` disturbance); null: none.
+  void SetVibration(std::shared_ptr<const ChassisVibration> vibration) {
+    vibration_ = std::move(vibration);
+  }
+  const ChassisVibration* vibration() const { return vibration_.get(); }
 
  private:
   struct Segment {  ///< straight (theta = 0) or sin² turn
@@ -91,6 +100,7 @@ class Trajectory {
   double length_m_ = 0.0;
   double duration_s_ = 0.0;
   double lap_period_s_ = 0.0;  ///< 0: one pass
+  std::shared_ptr<const ChassisVibration> vibration_;
 };
 
 }  // namespace swlio::sim

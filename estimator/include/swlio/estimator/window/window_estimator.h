@@ -217,8 +217,10 @@ class WindowEstimator {
   /// Tracked states that passed the checks, the last kGoodHistoryNs of them: a divergence may
   /// have begun a few sweeps before a check tripped, so the anchor is the oldest.
   std::deque<State> good_;
-  std::deque<ImuSample> imu_;        ///< samples from just before the newest frame on
-  std::deque<WheelOdometry> wheel_;  ///< the last second of wheel odometry
+  std::deque<ImuSample> imu_;         ///< samples from just before the newest frame on
+  std::deque<ImuSample> recent_imu_;  ///< the last standstill.imu_window_s (and a little more)
+  ImuNoiseAdapter noise_adapter_;     ///< the IMU factors' noise, measured
+  std::deque<WheelOdometry> wheel_;   ///< the last second of wheel odometry
   size_t wheel_factors_ = 0, wheel_rejected_ = 0;
   size_t standstill_frames_ = 0;
   FrontEnd front_end_;

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "swlio/core/config_issue.h"
+#include "swlio/estimator/imu/imu_noise_adapter.h"
 #include "swlio/estimator/init/dynamic_bootstrap.h"
 #include "swlio/estimator/registration/lidar_odometry.h"
 #include "swlio/estimator/wheel/wheel_factor_config.h"
@@ -94,6 +95,8 @@ struct WindowEstimatorConfig {
   WheelFactorConfig wheel;
   /// A frame at rest (IMU and LiDAR agree) gets a zero-velocity factor (standstill.h).
   StandstillConfig standstill;
+  /// The IMU factors' white-noise densities measured from the data (imu_noise_adapter.h).
+  ImuNoiseAdapterConfig imu_noise_adapter;
   // Flags last (padding).
   /// Before the window solve, the newest frame is registered alone from the IMU prediction
   /// (ScanMatcher::Match, as the LiDAR-only mode does) and associated at that pose: the window
