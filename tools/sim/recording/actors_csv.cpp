@@ -9,14 +9,15 @@ namespace swlio::sim {
 bool WriteActorsCsv(const ActorSet& set,
                     double duration_s,
                     const std::function<int64_t(double)>& host_ns,
-                    std::ostream& out) {
+                    std::ostream& out,
+                    double lap_period_s) {
   out << "t_ns,id,kind,moves,x_m,y_m,z_m,yaw_rad,half_x_m,half_y_m,half_z_m\n";
   char line[256];
   for (int64_t k = 0; static_cast<double>(k) / kActorsCsvRateHz <= duration_s; ++k) {
     const double t_s = static_cast<double>(k) / kActorsCsvRateHz;
     const int64_t t_ns = host_ns(t_s);
     for (const Actor& a : set.actors()) {
-      const ActorPose pose = a.At(t_s);
+      const ActorPose pose = a.At(lap_period_s > 0.0 ? std::fmod(t_s, lap_period_s) : t_s);
       const ActorPart& b = a.bounds();
       const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
       const Eigen::Vector3d centre =

@@ -18,10 +18,12 @@ namespace swlio::sim {
 inline constexpr double kActorsCsvRateHz = 10.0;
 
 /// Writes the header and a row per actor every 0.1 s of [0, duration_s], stamped
-/// `host_ns(t_s)`. Returns whether the stream is still good.
+/// `host_ns(t_s)`; with `lap_period_s` > 0 (a repeated route) the actors repeat every lap.
+/// Returns whether the stream is still good.
 bool WriteActorsCsv(const ActorSet& set,
                     double duration_s,
                     const std::function<int64_t(double)>& host_ns,
-                    std::ostream& out);
+                    std::ostream& out,
+                    double lap_period_s = 0.0);
 
 }  // namespace swlio::sim

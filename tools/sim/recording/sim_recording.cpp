@@ -169,7 +169,8 @@ bool WriteRecording(const SimSetup& setup,
     std::ofstream actors(dir / "actors.csv");
     if (!WriteActorsCsv(
             *setup.world->actors, SimDuration(setup),
-            [](double t_s) { return kFileHostStartNs + SecToNs(t_s); }, actors)) {
+            [](double t_s) { return kFileHostStartNs + SecToNs(t_s); }, actors,
+            setup.trajectory->lap_period_s())) {
       *error = "cannot write actors.csv";
       return false;
     }

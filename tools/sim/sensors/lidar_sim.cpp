@@ -96,6 +96,11 @@ void LidarSimulator::MakeDifop(SimPacket* out) {
   last_rx_ns_ = out->t_rx_ns;
 }
 
+double LidarSimulator::ActorTimeS(double t_s) const {
+  const double lap_s = trajectory_->lap_period_s();
+  return lap_s > 0.0 ? std::fmod(t_s, lap_s) : t_s;
+}
+
 void LidarSimulator::BeginActors(double t0_s, const Eigen::Isometry3d& pose) {
   const double t1_s = t0_s + NsToSec(kMsopPeriodNs);
   auto horizontal = [&](double t_s) {
@@ -116,10 +121,10 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
   if (returns != nullptr) returns->clear();
   Eigen::Isometry3d pose_a = LidarPose(t0);
   const bool actors = world_->actors != nullptr;
-  if (actors) BeginActors(t0, pose_a);
+  if (actors) BeginActors(ActorTimeS(t0), pose_a);
   for (int f = 0; f < kFiringsPerPacket; ++f) {
     const double t_seq = t0 + NsToSec(f * kFiringPeriodNs);
-    if (actors) actor_rays_.SetTime(t_seq);
+    if (actors) actor_rays_.SetTime(ActorTimeS(t_seq));
     const Eigen::Isometry3d pose_b = LidarPose(t_seq + NsToSec(kFiringPeriodNs));
     const Eigen::Vector3d dphi = lie::Log(pose_a.linear().transpose() * pose_b.linear());
     auto& block = content.blocks[static_cast<size_t>(f / 2)];

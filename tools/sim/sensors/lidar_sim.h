@@ -107,6 +107,9 @@ class LidarSimulator {
  private:
   void MakeMsop(SimPacket* out, std::vector<SimReturn>* returns);
   void MakeDifop(SimPacket* out);
+  /// The actors' time at simulation time `t_s`: they repeat every lap of a repeated route
+  /// (RepeatRoute), as LidarLaps replays the first lap's packets.
+  double ActorTimeS(double t_s) const;
   /// Picks the actors this packet (starting at `t0_s`, LiDAR pose `pose`) may hit.
   void BeginActors(double t0_s, const Eigen::Isometry3d& pose);
   Eigen::Isometry3d LidarPose(double t_s) const;
