@@ -28,6 +28,7 @@ double BruteForce(const ActorSet& set,
   double best = std::numeric_limits<double>::infinity();
   for (const Actor& a : set.actors()) {
     const ActorPose pose = a.At(t_s);
+    if (!pose.present) continue;
     const Eigen::Vector3d r = o - pose.ground_m;
     const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
     const Eigen::Vector3d ol(c * r.x() + s * r.y(), -s * r.x() + c * r.y(), r.z());
@@ -49,6 +50,9 @@ TEST(SimActorRays, PickingLosesNoHit) {
   walker.waypoints_xy.push_back({-10.0, 10.0});
   walker.t_go_s = 0.0;
   set.Add(walker);
+  ActorPlan gone = Standing(ActorKind::kVehicle, {3.0, 3.0}, 0.0, van);
+  gone.vanish_s = 0.0;  // left before the drive
+  set.Add(gone);
   const Eigen::Vector3d origin(0.0, 0.0, 0.5);
   constexpr double kWedge = 4.8 * std::numbers::pi / 180.0;
   ActorRays rays;
@@ -72,6 +76,7 @@ TEST(SimActorRays, PickingLosesNoHit) {
           continue;
         }
         ASSERT_NE(actor, 0) << "missed at azimuth " << a << " elevation " << elev_deg;
+        ASSERT_NE(actor, 6) << "not there";
         ASSERT_NEAR(hit.range_m, truth, 1e-9);
         EXPECT_EQ(moving, actor == 5);
         ++hits;

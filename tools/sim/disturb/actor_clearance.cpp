@@ -96,6 +96,7 @@ double MinRobotDistanceM(const Actor& actor, const RobotTrack& robot, double* at
     const double bound = (lo - p).cwiseMax(p - hi).cwiseMax(0.0).norm();
     if (bound >= best) continue;
     const double t = static_cast<double>(k) * robot.dt_s;
+    if (!actor.Present(t)) continue;
     const double d = Distance(p, FootprintAt(actor, actor.At(t)));
     if (d < best) {
       best = d;
@@ -167,12 +168,13 @@ bool ActorClearance::ClearOfActors(const Actor& actor, const ActorSet& set) cons
     Eigen::Vector2d olo, ohi;
     PathBounds(other, kActorMarginM, &olo, &ohi);
     if (!BoundsOverlap(lo, hi, olo, ohi)) continue;
-    // Both stand before the first starts and after the last stops: those two instants cover
-    // the standing times; every 0.1 s between them.
+    // Both stand (or are away) before the first starts and after the last stops: those two
+    // instants cover the standing times; every 0.1 s between them.
     const double t0 = std::clamp(std::min(actor.plan().t_go_s, other.plan().t_go_s), 0.0, drive_s);
     const double t1 = std::clamp(std::max(actor.EndS(), other.EndS()), t0, drive_s);
     for (double t = t0;; t = std::min(t + 0.1, t1)) {
-      if (Overlap(FootprintAt(actor, actor.At(t), kActorMarginM),
+      if (actor.Present(t) && other.Present(t) &&
+          Overlap(FootprintAt(actor, actor.At(t), kActorMarginM),
                   FootprintAt(other, other.At(t), kActorMarginM))) {
         return false;
       }

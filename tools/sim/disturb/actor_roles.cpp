@@ -1,6 +1,7 @@
 #include "disturb/actor_roles.h"
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "world/substation.h"
@@ -84,6 +85,23 @@ void Add(ActorPlan* p, const Vector2d& xy, double stop_s = 0.0) {
   p->stop_s.push_back(stop_s);
 }
 
+/// Comes into the yard (out of a gate, a building, from far along the roads) `before_s` before
+/// it sets off and leaves it `after_s` after its last stop: a person standing for minutes is
+/// part of the scenery, not a moving object, and a map may rightly keep it.
+void Presence(ActorPlan* p, double before_s, double after_s) {
+  const Actor probe(1, *p, nullptr);  // timing only: the terrain is not read
+  p->appear_s = p->t_go_s - before_s;
+  p->vanish_s = probe.EndS() + after_s;
+}
+
+void PersonPresence(ActorPlan* p, Rng& rng) {
+  Presence(p, rng.Uniform(5.0, 20.0), rng.Uniform(10.0, 40.0));
+}
+
+void VehiclePresence(ActorPlan* p, Rng& rng) {
+  Presence(p, rng.Uniform(0.0, 3.0), rng.Uniform(5.0, 20.0));
+}
+
 double Side(Rng& rng) { return rng.Uniform() < 0.5 ? -1.0 : 1.0; }
 
 /// Crosses the robot's path where the robot is at the anchor time, 1.5–3.5 s before it gets
@@ -100,6 +118,7 @@ ActorPlan Crossing(const RobotAnchor& a, Rng& rng) {
   const double along = rng.Uniform(-8.0, 8.0);
   if (std::abs(along) > 1.0) Add(&p, far + along * a.heading);
   TimeToPass(&p, 1, 3.2, a.t_s - rng.Uniform(1.5, 3.5));
+  PersonPresence(&p, rng);
   return p;
 }
 
@@ -115,6 +134,7 @@ ActorPlan Walking(const RobotAnchor& a, Rng& rng) {
   Add(&p, stop, rng.Uniform(3.0, 12.0));
   Add(&p, stop + rng.Uniform(5.0, 20.0) * dir);
   TimeToPass(&p, 0, before, a.t_s);
+  PersonPresence(&p, rng);
   return p;
 }
 
@@ -139,6 +159,7 @@ std::optional<ActorPlan> Inspecting(const RobotAnchor& a, Rng& rng) {
     Add(&p, mouth + Side(rng) * rng.Uniform(5.0, 15.0) * ex);
     TimeToPass(&p, 0, (p.waypoints_xy[1] - p.waypoints_xy[0]).norm(),
                a.t_s - rng.Uniform(0.0, 10.0));
+    PersonPresence(&p, rng);
     return p;
   }
   return std::nullopt;
@@ -157,6 +178,7 @@ ActorPlan Oncoming(const RobotAnchor& a, Rng& rng) {
   const Vector2d last = p.waypoints_xy.back();
   Add(&p, lane - rng.Uniform(30.0, 60.0) * a.heading);
   TimeToPass(&p, p.waypoints_xy.size() - 2, (last - lane).norm(), a.t_s);
+  VehiclePresence(&p, rng);
   return p;
 }
 
@@ -171,6 +193,7 @@ ActorPlan Overtaking(const RobotAnchor& a, Rng& rng) {
   Add(&p, stop, rng.Uniform(8.0, 25.0));
   Add(&p, stop + rng.Uniform(20.0, 40.0) * a.heading);
   TimeToPass(&p, 0, behind, a.t_s);
+  VehiclePresence(&p, rng);
   return p;
 }
 
@@ -185,6 +208,7 @@ ActorPlan Parked(ActorRole role, const RobotAnchor& a, Rng& rng) {
   if (role == ActorRole::kParkedLeaving) {  // leaves 5 s before to 15 s after the anchor
     Add(&p, p.waypoints_xy.front() + rng.Uniform(40.0, 80.0) * dir);
     p.t_go_s = a.t_s + rng.Uniform(-5.0, 15.0);
+    Presence(&p, std::numeric_limits<double>::infinity(), rng.Uniform(5.0, 20.0));
   }
   return p;
 }

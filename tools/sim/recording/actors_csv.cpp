@@ -18,6 +18,7 @@ bool WriteActorsCsv(const ActorSet& set,
     const int64_t t_ns = host_ns(t_s);
     for (const Actor& a : set.actors()) {
       const ActorPose pose = a.At(lap_period_s > 0.0 ? std::fmod(t_s, lap_period_s) : t_s);
+      if (!pose.present) continue;
       const ActorPart& b = a.bounds();
       const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
       const Eigen::Vector3d centre =

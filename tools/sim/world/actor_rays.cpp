@@ -61,8 +61,8 @@ void ActorRays::BeginPacket(const ActorSet& set,
       const double off = std::atan2(std::abs(Cross2(mid, to)), mid.dot(to));
       if (off > half_wedge + std::asin(r / dist) + kWedgeMarginRad) continue;
     }
-    picked_.push_back(
-        {&a, set.Moving(a.id()), pose.ground_m, std::cos(pose.yaw_rad), std::sin(pose.yaw_rad)});
+    picked_.push_back({&a, set.Moving(a.id()), pose.ground_m, std::cos(pose.yaw_rad),
+                       std::sin(pose.yaw_rad), true});
   }
 }
 
@@ -72,6 +72,7 @@ void ActorRays::SetTime(double t_s) {
     p.ground_m = pose.ground_m;
     p.cos_yaw = std::cos(pose.yaw_rad);
     p.sin_yaw = std::sin(pose.yaw_rad);
+    p.present = pose.present;
   }
 }
 
@@ -84,6 +85,7 @@ void ActorRays::Cast(const Eigen::Vector3d& o,
   *actor = 0;
   double best = hit->range_m > 0.0 ? hit->range_m : max_range_m;
   for (const Picked& p : picked_) {
+    if (!p.present) continue;
     const Eigen::Vector3d r = o - p.ground_m;  // into the actor's frame: rotate by −yaw
     const Eigen::Vector3d ol(p.cos_yaw * r.x() + p.sin_yaw * r.y(),
                              -p.sin_yaw * r.x() + p.cos_yaw * r.y(), r.z());

@@ -46,6 +46,7 @@ class ActorRays {
     bool moving = false;
     Eigen::Vector3d ground_m = Eigen::Vector3d::Zero();
     double cos_yaw = 1.0, sin_yaw = 0.0;
+    bool present = true;
   };
   const ActorSet* set_ = nullptr;
   std::vector<Picked> picked_;

@@ -80,6 +80,12 @@ ActorPose Actor::Standing(const Eigen::Vector2d& xy, double yaw_rad) const {
 }
 
 ActorPose Actor::At(double t_s) const {
+  ActorPose pose = Where(t_s);
+  pose.present = Present(t_s);
+  return pose;
+}
+
+ActorPose Actor::Where(double t_s) const {
   const auto& w = plan_.waypoints_xy;
   if (legs_.empty()) return Standing(w.front(), plan_.yaw0_rad);
   if (t_s <= legs_.front().t0_s) return Standing(w.front(), legs_.front().yaw_rad);

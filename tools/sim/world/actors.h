@@ -56,6 +56,10 @@ struct ActorPlan {
   double acc_mps2 = 0.7;         ///< acceleration and braking on every leg
   double turn_rate_radps = 1.5;  ///< turning in place at a waypoint
   double yaw0_rad = 0.0;         ///< heading of an actor with one waypoint
+  /// In the yard (seen, in the way) during [appear_s, vanish_s) only: it comes from and goes
+  /// to places out of sight (a gate, a building, far along the roads).
+  double appear_s = -std::numeric_limits<double>::infinity();
+  double vanish_s = std::numeric_limits<double>::infinity();
   std::vector<ActorPart> parts;  ///< ≥ 1
 };
 
@@ -64,6 +68,7 @@ struct ActorPose {
   Eigen::Vector3d ground_m = Eigen::Vector3d::Zero();  ///< frame origin, on the terrain
   double yaw_rad = 0.0;
   double speed_mps = 0.0;  ///< along its path (0 while turning in place)
+  bool present = true;     ///< in [appear_s, vanish_s): else nothing is there
 };
 
 class Actor {
@@ -71,7 +76,9 @@ class Actor {
   /// `terrain` must outlive the actor; `id` ≥ 1.
   Actor(uint16_t id, ActorPlan plan, const Terrain* terrain);
 
+  /// Its pose at `t_s` (where it would be, also while not present).
   ActorPose At(double t_s) const;
+  bool Present(double t_s) const { return t_s >= plan_.appear_s && t_s < plan_.vanish_s; }
   /// The time it reaches waypoint `k` (t_go_s for k = 0).
   double ArrivalS(size_t k) const;
   /// The time it is `dist_m` along leg `leg` (from waypoint `leg` to the next one).
@@ -98,6 +105,7 @@ class Actor {
   /// Distance along leg `leg` after `tau_s` on it, and the speed there.
   double LegDistance(const Leg& leg, double tau_s, double* speed_mps) const;
   ActorPose Standing(const Eigen::Vector2d& xy, double yaw_rad) const;
+  ActorPose Where(double t_s) const;
 
   uint16_t id_;
   ActorPlan plan_;
