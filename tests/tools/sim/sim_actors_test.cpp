@@ -14,6 +14,7 @@
 #include "disturb/apply_disturbances.h"
 #include "recording/actors_csv.h"
 #include "recording/sim_recording.h"
+#include "scenarios/sim_laps.h"
 #include "scenarios/sim_setup.h"
 #include "sensors/labelled_scan.h"
 #include "swlio/core/time.h"
@@ -360,6 +361,48 @@ TEST(SimActors, RevisitParksVehiclesElsewhere) {
       }
     }
     EXPECT_GE(parked, 1) << "seed " << seed;
+  }
+}
+
+}  // namespace
+}  // namespace swlio::sim
+
+namespace swlio::sim {
+namespace {
+
+/// A repeated route's second lap sees the actors where the first lap saw them (LidarLaps
+/// replays the first lap's packets; a file recording of the laps must agree with it).
+TEST(SimActors, ActorsRepeatWithTheLaps) {
+  auto setup = WithActors("loop943", 1);
+  ASSERT_TRUE(setup);
+  std::string error;
+  ASSERT_TRUE(RepeatRoute(&*setup, 2, &error)) << error;
+  const ActorSet& set = *setup->world->actors;
+  const RobotTrack robot = SampleRobot(*setup->trajectory);
+  double near_s = 0.0;
+  MinRobotDistanceM(set.Get(1), robot, &near_s);
+  const double packet_s = static_cast<double>(kMsopPeriodNs) * 1e-9;
+  const double t1 = std::ceil(near_s / packet_s) * packet_s;
+  auto actor_returns = [&](double t_s) {
+    LidarSimulator lidar(setup->world.get(), setup->trajectory.get(), setup->lidar, 1);
+    lidar.SkipTo(t_s);
+    std::vector<std::pair<uint16_t, double>> out;
+    SimPacket packet;
+    std::vector<SimReturn> returns;
+    for (int i = 0; i < 1500 && lidar.Next(&packet, &returns); ++i) {
+      for (const SimReturn& r : returns) {
+        if (r.actor != 0) out.emplace_back(r.actor, r.true_range_m);
+      }
+    }
+    return out;
+  };
+  const auto first = actor_returns(t1);
+  const auto second = actor_returns(t1 + setup->trajectory->lap_period_s());
+  ASSERT_GT(first.size(), 100u);
+  ASSERT_EQ(first.size(), second.size());
+  for (size_t i = 0; i < first.size(); ++i) {
+    ASSERT_EQ(first[i].first, second[i].first);
+    ASSERT_NEAR(first[i].second, second[i].second, 1e-6);
   }
 }
 
