@@ -199,7 +199,7 @@ TEST(SimActors, FieldHasEveryKindOfBehaviour) {
 /// The returns on actors lie on one of the actor's parts at their firing time, carry its class
 /// and moving flag; both kinds are seen on a short drive.
 TEST(SimActors, LidarSeesThemWhereTheyAre) {
-  auto setup = WithActors("short", 1, 10.0);
+  auto setup = WithActors("short", 1, 7.0);
   ASSERT_TRUE(setup);
   const ActorSet& set = *setup->world->actors;
   LidarSimulator lidar(setup->world.get(), setup->trajectory.get(), setup->lidar, 1);
@@ -235,7 +235,7 @@ TEST(SimActors, LidarSeesThemWhereTheyAre) {
 }
 
 TEST(SimActors, LabelledScansMarkMovingPoints) {
-  auto setup = WithActors("short", 1, 10.0);
+  auto setup = WithActors("short", 1, 7.0);
   ASSERT_TRUE(setup);
   LabelledScanSource source(*setup);
   LabelledScan ls;
