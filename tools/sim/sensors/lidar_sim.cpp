@@ -108,8 +108,9 @@ void LidarSimulator::BeginActors(double t0_s, const Eigen::Isometry3d& pose) {
     return Eigen::Vector2d((pose.linear() * SimRayDirection(config_, 0, alpha)).head<2>())
         .normalized();
   };
-  actor_rays_.BeginPacket(*world_->actors, t0_s, t1_s, pose.translation(), horizontal(t0_s),
-                          horizontal(t1_s), config_.max_range_m);
+  actor_rays_.BeginPacket(*world_->actors, ActorTimeS(t0_s), ActorTimeS(t0_s) + (t1_s - t0_s),
+                          pose.translation(), horizontal(t0_s), horizontal(t1_s),
+                          config_.max_range_m);
 }
 
 void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
@@ -121,7 +122,7 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
   if (returns != nullptr) returns->clear();
   Eigen::Isometry3d pose_a = LidarPose(t0);
   const bool actors = world_->actors != nullptr;
-  if (actors) BeginActors(ActorTimeS(t0), pose_a);
+  if (actors) BeginActors(t0, pose_a);
   for (int f = 0; f < kFiringsPerPacket; ++f) {
     const double t_seq = t0 + NsToSec(f * kFiringPeriodNs);
     if (actors) actor_rays_.SetTime(ActorTimeS(t_seq));

@@ -110,7 +110,8 @@ class LidarSimulator {
   /// The actors' time at simulation time `t_s`: they repeat every lap of a repeated route
   /// (RepeatRoute), as LidarLaps replays the first lap's packets.
   double ActorTimeS(double t_s) const;
-  /// Picks the actors this packet (starting at `t0_s`, LiDAR pose `pose`) may hit.
+  /// Picks the actors this packet (starting at simulation time `t0_s`, LiDAR pose `pose`) may
+  /// hit, at their time (ActorTimeS).
   void BeginActors(double t0_s, const Eigen::Isometry3d& pose);
   Eigen::Isometry3d LidarPose(double t_s) const;
   int64_t MsopRxNs(uint64_t index) const;
