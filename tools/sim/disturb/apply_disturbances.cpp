@@ -2,6 +2,7 @@
 
 #include <memory>
 
+#include "disturb/actor_setup.h"
 #include "rng.h"
 #include "scenarios/chassis_vibration.h"
 
@@ -38,9 +39,13 @@ void SetUp(SimSetup* setup, Disturbance d, const DisturbanceOverrides& overrides
     case Disturbance::kVibration:
       SetUpVibration(setup, overrides);
       break;
-    // The other models are set up by their own files as they land (issue 36).
     case Disturbance::kPeople:
+      SetUpPeople(setup);
+      break;
     case Disturbance::kVehicles:
+      SetUpVehicles(setup);
+      break;
+    // The other models are set up by their own files as they land (issue 36).
     case Disturbance::kMixedPixels:
     case Disturbance::kRain:
     case Disturbance::kDust:

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "live/serial_backlog.h"
+#include "recording/actors_csv.h"
 #include "recording/sim_recording.h"
 #include "scenarios/sim_laps.h"
 #include "swlio/core/time.h"
@@ -294,6 +295,13 @@ bool RunLive(const SimSetup& setup,
     for (int64_t k = 0; static_cast<double>(k) / setup.gt_rate_hz <= SimDuration(setup); ++k) {
       const double t = static_cast<double>(k) / setup.gt_rate_hz;
       gt << TumLine(setup, t, start_ns + SecToNs(t / options.speed)) << '\n';
+    }
+    if (setup.world->actors) {
+      std::ofstream actors(options.out_dir / "actors.csv");
+      WriteActorsCsv(
+          *setup.world->actors, SimDuration(setup),
+          [&](double t_s) { return start_ns + SecToNs(t_s / options.speed); }, actors,
+          setup.trajectory->lap_period_s());
     }
     WriteImuWrites(options.out_dir / "imu_writes.csv", imu, host_ns,
                    options.imu_write_ns != nullptr ? *options.imu_write_ns : written_ns);
