@@ -1,5 +1,6 @@
 #include "disturb/apply_disturbances.h"
 
+#include "disturb/weather_setup.h"
 #include "rng.h"
 
 namespace swlio::sim {
@@ -21,15 +22,25 @@ void SetUp(SimSetup* setup, Disturbance d, const DisturbanceOverrides& overrides
     case Disturbance::kTimeOffset:
       SetUpTimeOffset(setup, overrides);
       break;
+    case Disturbance::kMixedPixels:
+      SetUpMixedPixels(setup);
+      break;
+    case Disturbance::kRain:
+      SetUpRain(setup);
+      break;
+    case Disturbance::kDust:
+      SetUpDust(setup);
+      break;
+    case Disturbance::kDropouts:
+      SetUpDropouts(setup);
+      break;
+    case Disturbance::kTemperature:
+      SetUpTemperature(setup);
+      break;
     // The other models are set up by their own files as they land (issue 36).
     case Disturbance::kPeople:
     case Disturbance::kVehicles:
     case Disturbance::kVibration:
-    case Disturbance::kMixedPixels:
-    case Disturbance::kRain:
-    case Disturbance::kDust:
-    case Disturbance::kDropouts:
-    case Disturbance::kTemperature:
       break;
   }
 }

@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "disturb/weather_setup.h"
 #include "swlio/core/exact_number.h"
 
 namespace swlio::sim {
@@ -15,6 +16,7 @@ std::string DisturbanceManifestBlock(const SimSetup& setup) {
       << "  # SampleTimeFine maps to: the estimator should find it as the IMU-LiDAR offset\n"
       << "  time_offset_s: " << ExactNumber(setup.imu.time_offset_s) << "\n";
   }
+  y << WeatherManifestLines(setup);
   return y.str();
 }
 

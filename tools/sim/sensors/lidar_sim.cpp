@@ -47,7 +47,11 @@ LidarSimulator::LidarSimulator(const World* world,
                                const Trajectory* trajectory,
                                const LidarSimConfig& config,
                                uint64_t seed)
-    : world_(world), trajectory_(trajectory), config_(config), rng_(seed ^ 0x11DA4ull) {}
+    : world_(world), trajectory_(trajectory), config_(config), rng_(seed ^ 0x11DA4ull) {
+  if (config_.weather.Any()) {
+    weather_ = std::make_unique<LidarWeather>(world_, config_.weather, seed);
+  }
+}
 
 Eigen::Isometry3d LidarSimulator::LidarPose(double t_s) const {
   const Kinematics k = trajectory_->At(t_s);
@@ -120,7 +124,10 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
       const double alpha = SimAzimuthDeg(config_, t_fire) * kDegToRad;
       const Eigen::Vector3d dir = R * SimRayDirection(config_, static_cast<size_t>(laser), alpha);
       const Eigen::Vector3d lens = origin + R * SimLensCentre(config_, alpha);
-      const RayHit hit = world_->Cast(lens, dir, config_.max_range_m);
+      RayHit hit = world_->Cast(lens, dir, config_.max_range_m);
+      if (weather_) {
+        weather_->Apply({SecToNs(t_fire), laser, lens, dir, R.col(2)}, config_.max_range_m, &hit);
+      }
       double range = 0.0;
       if (hit.range_m > 0.0 && rng_.Uniform() >= config_.dropout) {
         range = hit.range_m + rng_.Normal(config_.range_sigma_m);
