@@ -24,7 +24,7 @@ constexpr double kResidualAfterCompensation = 0.1;
 
 /// Dust: a puff every 8 s on average while the robot drives faster than 0.3 m/s, lasting
 /// 1.5–4 s, 0.5–1.5 m behind the IMU and up to 0.6 m to its side, 0.2–0.6 m above the ground,
-/// 0.4–1 m in radius, blown at 0.5–2 m/s, 0.5–2 scattering events per metre (assumed; the
+/// 0.3–0.8 m in radius, blown at 0.5–2 m/s, 0.1–0.6 scattering events per metre (assumed; the
 /// clouds of Phillips et al., ACRA 2017, near the vehicle, intermittent, low).
 constexpr double kDustMeanIntervalS = 8.0;
 constexpr double kDustMinSpeedMps = 0.3;
@@ -40,8 +40,8 @@ DustPuff DrawPuff(const SimSetup& setup, double t_s, Rng& rng) {
   const double wind_dir = rng.Uniform(0.0, 2.0 * std::numbers::pi);
   p.wind_world_mps =
       rng.Uniform(0.5, 2.0) * Eigen::Vector3d(std::cos(wind_dir), std::sin(wind_dir), 0.0);
-  p.radius_m = rng.Uniform(0.4, 1.0);
-  p.extinction_per_m = rng.Uniform(0.5, 2.0);
+  p.radius_m = rng.Uniform(0.3, 0.8);
+  p.extinction_per_m = rng.Uniform(0.1, 0.6);
   return p;
 }
 

@@ -49,7 +49,7 @@ struct RainConfig {
   /// A drop at range r gives a detectable echo when its diameter exceeds
   /// `detect_diameter_at_1m_mm`·r (echo power ∝ D²/r²); assumed, chosen so that moderate rain
   /// gives tens of spurious returns per sweep within 2 m.
-  double detect_diameter_at_1m_mm = 2.0;
+  double detect_diameter_at_1m_mm = 2.5;
   double beam_area_m2 = 1.0e-4;  ///< near-field beam cross-section (about 1 cm², assumed)
   double near_min_m = 0.4;       ///< the emitter's minimum range (LidarSimConfig::min_range_m)
   double near_max_m = 4.0;       ///< drops beyond this never give a return
@@ -91,7 +91,9 @@ struct DetectionConfig {
   double wet_ground_factor = 0.5;  ///< reflectivity of wet ground / dry (assumed)
   double puddle_cell_m = 1.5;      ///< puddles on a grid of this size
   double puddle_fraction = 0.08;   ///< of the ground's cells (assumed)
-  double puddle_reflectivity_factor = 0.02;  ///< a puddle's diffuse return left at grazing
+  /// A puddle's diffuse return left (of the wet ground's): still water reflects specularly,
+  /// away from a sensor that sees it at grazing incidence (assumed).
+  double puddle_reflectivity_factor = 0.001;
   uint64_t puddle_seed = 0;
 };
 
