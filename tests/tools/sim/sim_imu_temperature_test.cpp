@@ -57,6 +57,23 @@ TEST(SimImuTemperature, BiasFollowsProfileTimesCoefficients) {
   EXPECT_NE(manifest.find("imu_temperature_tau_s: 300"), std::string::npos) << manifest;
 }
 
+TEST(SimImuTemperature, LeavesTheLidarAlone) {
+  auto clean = MakeSimSetup("aggressive", 8, 4.0), warm = MakeSimSetup("aggressive", 8, 4.0);
+  ASSERT_TRUE(clean && warm);
+  SetUpTemperature(&*warm);
+  EXPECT_FALSE(warm->lidar.weather.Any());
+  auto bytes = [](const SimSetup& s) {
+    LidarSimulator lidar(s.world.get(), s.trajectory.get(), s.lidar, s.seed);
+    std::vector<uint8_t> out;
+    SimPacket packet;
+    while (lidar.Next(&packet) && packet.t_header_s < 0.2) {
+      out.insert(out.end(), packet.bytes.begin(), packet.bytes.end());
+    }
+    return out;
+  };
+  EXPECT_EQ(bytes(*clean), bytes(*warm));
+}
+
 TEST(SimImuTemperature, CoefficientsAreDrawnPerSeed) {
   auto a = MakeSimSetup("short", 1), b = MakeSimSetup("short", 1), c = MakeSimSetup("short", 2);
   ASSERT_TRUE(a && b && c);

@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -25,23 +24,23 @@ SimSetup SetupOrDie(const std::string& name, uint64_t seed, double duration_s) {
   return std::move(*s);
 }
 
-/// The truth of every MSOP slot from `from_s` to `to_s` (sim time).
-std::vector<SimReturn> Cast(const SimSetup& setup,
-                            const LidarSimConfig& config,
-                            double from_s,
-                            double to_s,
-                            LidarSimulator** keep = nullptr) {
-  static std::unique_ptr<LidarSimulator> last;
-  last = std::make_unique<LidarSimulator>(setup.world.get(), setup.trajectory.get(), config,
-                                          setup.seed);
-  last->SkipTo(from_s);
-  std::vector<SimReturn> all, truth;
+struct CastRun {
+  std::vector<SimReturn> truth;  ///< every MSOP slot's
+  WeatherCounts counts;
+};
+
+/// The truth of every MSOP slot from `from_s` to `to_s` (sim time), and the weather's counts.
+CastRun Cast(const SimSetup& setup, const LidarSimConfig& config, double from_s, double to_s) {
+  LidarSimulator lidar(setup.world.get(), setup.trajectory.get(), config, setup.seed);
+  lidar.SkipTo(from_s);
+  CastRun run;
+  std::vector<SimReturn> truth;
   SimPacket packet;
-  while (last->Next(&packet, &truth) && packet.t_header_s < to_s) {
-    all.insert(all.end(), truth.begin(), truth.end());
+  while (lidar.Next(&packet, &truth) && packet.t_header_s < to_s) {
+    run.truth.insert(run.truth.end(), truth.begin(), truth.end());
   }
-  if (keep != nullptr) *keep = last.get();
-  return all;
+  if (lidar.weather() != nullptr) run.counts = lidar.weather()->counts();
+  return run;
 }
 
 bool SameSlot(const SimReturn& a, const SimReturn& b) {
@@ -50,9 +49,9 @@ bool SameSlot(const SimReturn& a, const SimReturn& b) {
 
 TEST(SimWeather, RainAddsReturnsOnlyWithinItsNearRange) {
   SimSetup setup = SetupOrDie("aggressive", 2, 6.0);
-  const std::vector<SimReturn> clean = Cast(setup, setup.lidar, 3.0, 4.0);
+  const std::vector<SimReturn> clean = Cast(setup, setup.lidar, 3.0, 4.0).truth;
   SetUpRain(&setup);
-  const std::vector<SimReturn> rain = Cast(setup, setup.lidar, 3.0, 4.0);
+  const std::vector<SimReturn> rain = Cast(setup, setup.lidar, 3.0, 4.0).truth;
   ASSERT_EQ(clean.size(), rain.size());
   size_t drops = 0, lost = 0;
   for (size_t i = 0; i < clean.size(); ++i) {
@@ -147,11 +146,10 @@ TEST(SimWeather, MixedPixelsOnADrive) {
     LidarSimConfig config = setup.lidar;
     config.weather.mixed.on = true;
     config.weather.mixed.every_ray = every_ray;
-    LidarSimulator* lidar = nullptr;
-    const std::vector<SimReturn> truth = Cast(setup, config, 4.0, 5.0, &lidar);
+    const CastRun run = Cast(setup, config, 4.0, 5.0);
     size_t returns = 0;
-    for (const SimReturn& r : truth) returns += r.true_range_m > 0.0 ? 1 : 0;
-    const WeatherCounts& c = lidar->weather()->counts();
+    for (const SimReturn& r : run.truth) returns += r.true_range_m > 0.0 ? 1 : 0;
+    const WeatherCounts& c = run.counts;
     std::printf("mixed pixels (%s): %.2f %% of returns moved, footprints probed %.2f %% of rays\n",
                 every_ray ? "every ray" : "after a jump",
                 100.0 * static_cast<double>(c.mixed) / static_cast<double>(returns),
@@ -180,9 +178,9 @@ TEST(SimWeather, DetectionFallsWithReflectivityRangeAndIncidence) {
 /// same distance, more on far (grazing) ground than near.
 TEST(SimWeather, DropoutsRiseOnDarkWetAndFarSurfaces) {
   SimSetup setup = SetupOrDie("aggressive", 4, 8.0);
-  const std::vector<SimReturn> clean = Cast(setup, setup.lidar, 4.0, 5.0);
+  const std::vector<SimReturn> clean = Cast(setup, setup.lidar, 4.0, 5.0).truth;
   SetUpDropouts(&setup);
-  const std::vector<SimReturn> wet = Cast(setup, setup.lidar, 4.0, 5.0);
+  const std::vector<SimReturn> wet = Cast(setup, setup.lidar, 4.0, 5.0).truth;
   ASSERT_EQ(clean.size(), wet.size());
   const DetectionConfig& d = setup.lidar.weather.detection;
   struct Tally {
@@ -232,28 +230,36 @@ TEST(SimWeather, DustReturnsComeFromActivePuffsOnly) {
   SetUpDust(&setup);
   const std::vector<DustPuff>& puffs = setup.lidar.weather.dust.puffs;
   ASSERT_FALSE(puffs.empty());
-  const double from_s = NsToSec(puffs.front().t_start_ns);
-  const std::vector<SimReturn> clean = Cast(clean_setup, clean_setup.lidar, from_s, from_s + 1.0);
-  const std::vector<SimReturn> dusty = Cast(setup, setup.lidar, from_s, from_s + 1.0);
+  const double from_s = NsToSec(puffs.front().t_start_ns) - 0.3;  // before it, and in it
+  const std::vector<SimReturn> clean =
+      Cast(clean_setup, clean_setup.lidar, from_s, from_s + 1.3).truth;
+  const std::vector<SimReturn> dusty = Cast(setup, setup.lidar, from_s, from_s + 1.3).truth;
   ASSERT_EQ(clean.size(), dusty.size());
-  size_t dust = 0;
+  size_t dust = 0, unchanged_outside = 0;
   for (size_t i = 0; i < clean.size(); ++i) {
-    if (clean[i].true_range_m == dusty[i].true_range_m) continue;
-    if (dusty[i].true_range_m < 0.0) continue;  // lost in the cloud
-    ++dust;
-    bool inside = false;
+    bool active = false, inside = false;
     for (const DustPuff& p : puffs) {
       if (dusty[i].t_true_ns < p.t_start_ns || dusty[i].t_true_ns > p.t_end_ns) continue;
+      active = true;
       const double dt_s = NsToSec(dusty[i].t_true_ns - p.t_start_ns);
       const Eigen::Vector3d c = p.center_world + dt_s * p.wind_world_mps;
       inside = inside || (dusty[i].p_world - c).norm() <= p.radius_m + 1e-6;
     }
+    if (!active) {
+      EXPECT_EQ(clean[i].true_range_m, dusty[i].true_range_m) << "no puff, no change";
+      ++unchanged_outside;
+      continue;
+    }
+    if (clean[i].true_range_m == dusty[i].true_range_m) continue;
+    if (dusty[i].true_range_m < 0.0) continue;  // lost in the cloud
+    ++dust;
     EXPECT_TRUE(inside);
     EXPECT_EQ(dusty[i].cls, SurfaceClass::kNone);
   }
-  std::printf("dust: %zu returns in the first puff's second (%zu puffs in 12 s)\n", dust,
+  std::printf("dust: %zu returns in the first puff's first second (%zu puffs in 12 s)\n", dust,
               puffs.size());
   EXPECT_GT(dust, 50u);
+  EXPECT_GT(unchanged_outside, 0u) << "the second also holds firings without a puff";
 }
 
 TEST(SimWeather, DeterministicPerSeedAndOnlyTheLidarChanges) {

@@ -49,7 +49,7 @@ LidarSimulator::LidarSimulator(const World* world,
                                uint64_t seed)
     : world_(world), trajectory_(trajectory), config_(config), rng_(seed ^ 0x11DA4ull) {
   if (config_.weather.Any()) {
-    weather_ = std::make_unique<LidarWeather>(world_, config_.weather, seed);
+    weather_.emplace(world_, config_.weather, seed);
   }
 }
 

@@ -10,7 +10,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
-#include <memory>
+#include <optional>
 #include <vector>
 
 #include "rng.h"
@@ -105,7 +105,7 @@ class LidarSimulator {
   uint64_t msop_packets() const { return msop_index_; }
   uint64_t difop_packets() const { return difop_index_; }
   /// The weather model's counters; nothing when no weather model is on.
-  const LidarWeather* weather() const { return weather_.get(); }
+  const LidarWeather* weather() const { return weather_ ? &*weather_ : nullptr; }
 
  private:
   void MakeMsop(SimPacket* out, std::vector<SimReturn>* returns);
@@ -119,8 +119,8 @@ class LidarSimulator {
   Rng rng_;
   uint64_t msop_index_ = 0;
   uint64_t difop_index_ = 0;
-  int64_t last_rx_ns_ = 0;                 ///< keeps receive times in order
-  std::unique_ptr<LidarWeather> weather_;  ///< only when a weather model is on
+  int64_t last_rx_ns_ = 0;               ///< keeps receive times in order
+  std::optional<LidarWeather> weather_;  ///< only when a weather model is on
 };
 
 }  // namespace swlio::sim
