@@ -75,6 +75,8 @@ TEST(SimWeather, RainAddsReturnsOnlyWithinItsNearRange) {
               per_sweep, static_cast<double>(lost) / 10.0);
   EXPECT_GT(per_sweep, 10.0);
   EXPECT_LT(per_sweep, 300.0);
+  EXPECT_GT(lost, 0u) << "the rain's attenuation costs some far returns";
+  EXPECT_LT(lost, drops) << "but few at 5 mm/h";
 }
 
 /// Rays from the LiDAR's pose at `t_s` over a full turn, every 0.2° for each laser.

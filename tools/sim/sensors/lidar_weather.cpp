@@ -41,10 +41,13 @@ double RainEchoesPerRay(const RainConfig& rain) {
          (std::exp(-k * a) - std::exp(-k * b));
 }
 
-double RainTransmission(const RainConfig& rain, double range_m) {
+double RainExtinctionPerM(const RainConfig& rain) {
   // α = 1.076·R^0.67 dB/km → 1/m: ·ln(10)/10/1000.
-  const double alpha_per_m = 1.076 * std::pow(rain.rate_mm_per_h, 0.67) * std::log(10.0) / 1e4;
-  return std::exp(-2.0 * alpha_per_m * range_m);
+  return 1.076 * std::pow(rain.rate_mm_per_h, 0.67) * std::log(10.0) / 1e4;
+}
+
+double RainTransmission(const RainConfig& rain, double range_m) {
+  return std::exp(-2.0 * RainExtinctionPerM(rain) * range_m);
 }
 
 double DetectionProbability(const DetectionConfig& d, double power) {
@@ -63,6 +66,12 @@ bool IsPuddle(const DetectionConfig& d, double x_m, double y_m) {
 LidarWeather::LidarWeather(const World* world, const LidarWeatherConfig& config, uint64_t seed)
     : world_(world), config_(config), rng_(seed ^ 0x3EA7E4ull) {
   previous_range_m_.fill(-1.0);
+  if (config_.rain.on) {
+    rain_echo_probability_ = 1.0 - std::exp(-RainEchoesPerRay(config_.rain));
+    rain_decay_per_m_ =
+        MarshallPalmerLambda(config_.rain.rate_mm_per_h) * config_.rain.detect_diameter_at_1m_mm;
+    rain_alpha_per_m_ = RainExtinctionPerM(config_.rain);
+  }
 }
 
 void LidarWeather::Apply(const WeatherRay& ray, double max_range_m, RayHit* hit) {
@@ -84,29 +93,11 @@ void LidarWeather::ApplyMixedPixel(const WeatherRay& ray, double max_range_m, Ra
   previous = hit->range_m;
   if (hit->range_m <= 0.0 || !(jump || m.every_ray)) return;
   ++counts_.edge_checks;
+  const FootprintEdge edge = FindEdge(ray, max_range_m, *hit);
+  if (!edge.found) return;
   const double w = 0.5 * m.divergence_rad;
-  auto cast_at = [&](double offset_rad) {
-    return world_->Cast(ray.origin_world, Turn(ray.dir_world, ray.up_world, offset_rad),
-                        max_range_m);
-  };
-  RayHit other;
-  double side = 0.0;
-  for (const double s : {-1.0, 1.0}) {
-    const RayHit h = cast_at(s * w);
-    if (h.range_m > 0.0 && IsJump(m, hit->range_m, h.range_m) &&
-        (side == 0.0 ||
-         std::abs(h.range_m - hit->range_m) > std::abs(other.range_m - hit->range_m))) {
-      other = h;
-      side = s;
-    }
-  }
-  if (side == 0.0) return;
-  double inside = 0.0, outside = w;  // the edge lies between these offsets
-  for (int i = 0; i < 4; ++i) {
-    const double mid = 0.5 * (inside + outside);
-    (IsJump(m, hit->range_m, cast_at(side * mid).range_m) ? outside : inside) = mid;
-  }
-  const double beyond = 1.0 - Phi(0.5 * (inside + outside) / (0.5 * w));
+  const RayHit& other = edge.other;
+  const double beyond = 1.0 - Phi(edge.offset_rad / (0.5 * w));
   const double p_centre =
       (1.0 - beyond) * Albedo(hit->reflectivity) / (hit->range_m * hit->range_m);
   const double p_other = beyond * Albedo(other.reflectivity) / (other.range_m * other.range_m);
@@ -118,16 +109,51 @@ void LidarWeather::ApplyMixedPixel(const WeatherRay& ray, double max_range_m, Ra
   ++counts_.mixed;
 }
 
+/// Casts the footprint's edges (±w about the rotation axis); where one of them sees another
+/// surface (the larger range step if both do), four bisection casts place the edge to w/16.
+LidarWeather::FootprintEdge LidarWeather::FindEdge(const WeatherRay& ray,
+                                                   double max_range_m,
+                                                   const RayHit& centre) const {
+  const MixedPixelConfig& m = config_.mixed;
+  const double w = 0.5 * m.divergence_rad;
+  auto cast_at = [&](double offset_rad) {
+    return world_->Cast(ray.origin_world, Turn(ray.dir_world, ray.up_world, offset_rad),
+                        max_range_m);
+  };
+  FootprintEdge edge;
+  double side = 0.0;
+  for (const double s : {-1.0, 1.0}) {
+    const RayHit h = cast_at(s * w);
+    if (h.range_m > 0.0 && IsJump(m, centre.range_m, h.range_m) &&
+        (side == 0.0 ||
+         std::abs(h.range_m - centre.range_m) > std::abs(edge.other.range_m - centre.range_m))) {
+      edge.other = h;
+      side = s;
+    }
+  }
+  if (side == 0.0) return edge;
+  double inside = 0.0, outside = w;  // the edge lies between these offsets
+  for (int i = 0; i < 4; ++i) {
+    const double mid = 0.5 * (inside + outside);
+    if (IsJump(m, centre.range_m, cast_at(side * mid).range_m)) {
+      outside = mid;
+    } else {
+      inside = mid;
+    }
+  }
+  edge.found = true;
+  edge.offset_rad = 0.5 * (inside + outside);
+  return edge;
+}
+
 /// A drop echo: the number of detectable drops along the beam is Poisson with mean
 /// RainEchoesPerRay; the first one's range follows their density ∝ exp(−Λ·D1·r).
 bool LidarWeather::ApplyRain(RayHit* hit) {
   const RainConfig& rain = config_.rain;
+  if (rng_.Uniform() >= rain_echo_probability_) return false;
   const double a = rain.near_min_m, b = std::max(rain.near_max_m, rain.near_min_m);
-  const double mean = RainEchoesPerRay(rain);
-  if (rng_.Uniform() >= 1.0 - std::exp(-mean)) return false;
-  const double k = MarshallPalmerLambda(rain.rate_mm_per_h) * rain.detect_diameter_at_1m_mm;
-  const double u = rng_.Uniform();
-  const double r = a - std::log(1.0 - u * (1.0 - std::exp(-k * (b - a)))) / k;
+  const double k = rain_decay_per_m_;
+  const double r = a - std::log(1.0 - rng_.Uniform() * (1.0 - std::exp(-k * (b - a)))) / k;
   if (hit->range_m > 0.0 && hit->range_m < r) return false;  // behind the surface: unseen
   hit->range_m = r;
   hit->cls = SurfaceClass::kNone;
@@ -185,7 +211,7 @@ void LidarWeather::ApplyDetection(const WeatherRay& ray, RayHit* hit) {
     if (IsPuddle(d, p.x(), p.y())) albedo *= d.puddle_reflectivity_factor;
   }
   const double power = albedo * cos_incidence / (hit->range_m * hit->range_m);
-  const double t2 = config_.rain.on ? RainTransmission(config_.rain, hit->range_m) : 1.0;
+  const double t2 = config_.rain.on ? std::exp(-2.0 * rain_alpha_per_m_ * hit->range_m) : 1.0;
   double p = DetectionProbability(d, power * t2);
   if (!d.on) p /= std::max(DetectionProbability(d, power), 1e-12);
   if (rng_.Uniform() < p) return;

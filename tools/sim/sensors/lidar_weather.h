@@ -139,7 +139,16 @@ class LidarWeather {
   const WeatherCounts& counts() const { return counts_; }
 
  private:
+  /// Where a footprint straddles two surfaces: the other surface and the edge's offset from
+  /// the beam's centre (rad).
+  struct FootprintEdge {
+    bool found = false;
+    RayHit other;
+    double offset_rad = 0.0;
+  };
+
   void ApplyMixedPixel(const WeatherRay& ray, double max_range_m, RayHit* hit);
+  FootprintEdge FindEdge(const WeatherRay& ray, double max_range_m, const RayHit& centre) const;
   bool ApplyRain(RayHit* hit);
   bool ApplyDust(const WeatherRay& ray, RayHit* hit);
   void ApplyDetection(const WeatherRay& ray, RayHit* hit);
@@ -148,13 +157,19 @@ class LidarWeather {
   LidarWeatherConfig config_;
   Rng rng_;
   std::array<double, 16> previous_range_m_{};  ///< each laser's last hit (edge test)
+  double rain_echo_probability_ = 0.0;         ///< per firing, 1 − exp(−RainEchoesPerRay)
+  double rain_decay_per_m_ = 0.0;  ///< Λ·D1: drop echoes' density ∝ exp(−Λ·D1·r)
+  double rain_alpha_per_m_ = 0.0;  ///< extinction: two-way transmission exp(−2αr)
   WeatherCounts counts_;
 };
 
 /// Mean number of drop echoes per firing for `rain` between its near_min_m and near_max_m.
 double RainEchoesPerRay(const RainConfig& rain);
 
-/// Two-way rain transmission over `range_m`.
+/// Rain's extinction coefficient α (1/m).
+double RainExtinctionPerM(const RainConfig& rain);
+
+/// Two-way rain transmission over `range_m`, exp(−2·α·r).
 double RainTransmission(const RainConfig& rain, double range_m);
 
 /// Detection probability of an echo of relative power `power` (ρ·cos θ·T²/r², ρ in 0–1).
