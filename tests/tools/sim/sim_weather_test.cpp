@@ -152,10 +152,14 @@ TEST(SimWeather, MixedPixelsOnADrive) {
     size_t returns = 0;
     for (const SimReturn& r : run.truth) returns += r.true_range_m > 0.0 ? 1 : 0;
     const WeatherCounts& c = run.counts;
-    std::printf("mixed pixels (%s): %.2f %% of returns moved, footprints probed %.2f %% of rays\n",
-                every_ray ? "every ray" : "after a jump",
-                100.0 * static_cast<double>(c.mixed) / static_cast<double>(returns),
-                100.0 * static_cast<double>(c.edge_checks) / static_cast<double>(c.rays));
+    std::printf(
+        "mixed pixels (%s): %.2f %% of returns moved, footprints probed %.2f %% of firings, "
+        "%.3f extra casts per firing\n",
+        every_ray ? "every ray" : "after a jump",
+        100.0 * static_cast<double>(c.mixed) / static_cast<double>(returns),
+        100.0 * static_cast<double>(c.edge_checks) / static_cast<double>(c.rays),
+        static_cast<double>(c.sub_rays) / static_cast<double>(c.rays));
+    EXPECT_GE(c.sub_rays, 2 * c.edge_checks);
     EXPECT_GT(c.mixed, 0u);
     EXPECT_LT(c.mixed, returns / 10);
   }

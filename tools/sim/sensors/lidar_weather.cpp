@@ -94,6 +94,7 @@ void LidarWeather::ApplyMixedPixel(const WeatherRay& ray, double max_range_m, Ra
   if (hit->range_m <= 0.0 || !(jump || m.every_ray)) return;
   ++counts_.edge_checks;
   const FootprintEdge edge = FindEdge(ray, max_range_m, *hit);
+  counts_.sub_rays += static_cast<uint64_t>(edge.casts);
   if (!edge.found) return;
   const double w = 0.5 * m.divergence_rad;
   const RayHit& other = edge.other;
@@ -116,11 +117,12 @@ LidarWeather::FootprintEdge LidarWeather::FindEdge(const WeatherRay& ray,
                                                    const RayHit& centre) const {
   const MixedPixelConfig& m = config_.mixed;
   const double w = 0.5 * m.divergence_rad;
+  FootprintEdge edge;
   auto cast_at = [&](double offset_rad) {
+    ++edge.casts;
     return world_->Cast(ray.origin_world, Turn(ray.dir_world, ray.up_world, offset_rad),
                         max_range_m);
   };
-  FootprintEdge edge;
   double side = 0.0;
   for (const double s : {-1.0, 1.0}) {
     const RayHit h = cast_at(s * w);

@@ -118,6 +118,7 @@ struct WeatherRay {
 struct WeatherCounts {
   uint64_t rays = 0;
   uint64_t edge_checks = 0;  ///< rays whose footprint was probed with sub-rays
+  uint64_t sub_rays = 0;     ///< extra rays cast for that
   uint64_t mixed = 0;        ///< returns moved between two surfaces
   uint64_t rain = 0;         ///< returns from drops
   uint64_t dust = 0;         ///< returns from dust
@@ -145,6 +146,7 @@ class LidarWeather {
     bool found = false;
     RayHit other;
     double offset_rad = 0.0;
+    int casts = 0;  ///< sub-rays cast to find it
   };
 
   void ApplyMixedPixel(const WeatherRay& ray, double max_range_m, RayHit* hit);
