@@ -7,11 +7,13 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <sstream>
 #include <vector>
 
 #include "disturb/apply_disturbances.h"
 #include "disturb/disturbance_manifest.h"
 #include "disturb/weather_setup.h"
+#include "recording/sim_recording.h"
 #include "scenarios/sim_setup.h"
 #include "swlio/core/time.h"
 
@@ -295,6 +297,29 @@ TEST(SimWeather, DeterministicPerSeedAndOnlyTheLidarChanges) {
     EXPECT_EQ(imu_a[i].acc_mps2, imu_clean[i].acc_mps2);
     EXPECT_EQ(imu_a[i].gyro_radps, imu_clean[i].gyro_radps);
   }
+}
+
+/// Readers match manifest lines by key: each key the weather writes appears once in the file.
+TEST(SimWeather, ManifestKeysAreUnique) {
+  SimSetup setup = SetupOrDie("aggressive", 1, 30.0);
+  ApplyDisturbances(&setup,
+                    *ParseDisturbanceList("mixed_pixels,rain,dust,dropouts,temperature", nullptr));
+  const std::string manifest = ManifestYaml(setup, RecordingStats{}, 0, "file");
+  std::istringstream lines(WeatherManifestLines(setup));
+  std::string line;
+  size_t keys = 0;
+  while (std::getline(lines, line)) {
+    const size_t colon = line.find(':');
+    if (line.find('#') != std::string::npos && line.find('#') < colon) continue;
+    const std::string key = "\n" + line.substr(0, colon + 1);
+    size_t count = 0;
+    for (size_t at = manifest.find(key); at != std::string::npos; at = manifest.find(key, at + 1)) {
+      ++count;
+    }
+    EXPECT_EQ(count, 1u) << key;
+    ++keys;
+  }
+  EXPECT_GE(keys, 15u);
 }
 
 }  // namespace
