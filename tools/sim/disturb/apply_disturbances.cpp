@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "disturb/actor_setup.h"
+#include "disturb/weather_setup.h"
 #include "rng.h"
 #include "scenarios/chassis_vibration.h"
 
@@ -45,12 +46,20 @@ void SetUp(SimSetup* setup, Disturbance d, const DisturbanceOverrides& overrides
     case Disturbance::kVehicles:
       SetUpVehicles(setup);
       break;
-    // The other models are set up by their own files as they land (issue 36).
     case Disturbance::kMixedPixels:
+      SetUpMixedPixels(setup);
+      break;
     case Disturbance::kRain:
+      SetUpRain(setup);
+      break;
     case Disturbance::kDust:
+      SetUpDust(setup);
+      break;
     case Disturbance::kDropouts:
+      SetUpDropouts(setup);
+      break;
     case Disturbance::kTemperature:
+      SetUpTemperature(setup);
       break;
   }
 }

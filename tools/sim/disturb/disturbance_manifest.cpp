@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "disturb/weather_setup.h"
 #include "swlio/core/exact_number.h"
 #include "world/actors.h"
 
@@ -44,6 +45,7 @@ std::string DisturbanceManifestBlock(const SimSetup& setup) {
       << "  actor_vehicles_moving: " << vehicles_moving << "\n"
       << "  actor_vehicles_parked_all_drive: " << vehicles - vehicles_moving << "\n";
   }
+  y << WeatherManifestLines(setup);
   return y.str();
 }
 

@@ -75,11 +75,15 @@ std::vector<SimImuSample> SimulateImu(const Trajectory& trajectory,
     s.sample_time_fine =
         static_cast<uint32_t>(static_cast<uint64_t>(std::llround(device_s * 1e4)) & 0xFFFFFFFFull);
     s.packet_counter = static_cast<uint16_t>(k & 0xFFFF);
-    s.acc_mps2 = kin.R_world_body.transpose() * (kin.a_world + gravity) + bias_acc +
-                 NormalVec(rng, acc_sigma);
-    s.gyro_radps = kin.omega_body + bias_gyro + NormalVec(rng, gyro_sigma);
     s.bias_acc = bias_acc;
     s.bias_gyro = bias_gyro;
+    if (config.temperature.on) {
+      s.bias_acc += ImuTemperatureAccBias(config.temperature, host_s);
+      s.bias_gyro += ImuTemperatureGyroBias(config.temperature, host_s);
+    }
+    s.acc_mps2 = kin.R_world_body.transpose() * (kin.a_world + gravity) + s.bias_acc +
+                 NormalVec(rng, acc_sigma);
+    s.gyro_radps = kin.omega_body + s.bias_gyro + NormalVec(rng, gyro_sigma);
     out.push_back(s);
     bias_acc += NormalVec(rng, n.acc_bias_random_walk * std::sqrt(dt));
     bias_gyro += NormalVec(rng, n.gyro_bias_random_walk * std::sqrt(dt));

@@ -12,6 +12,7 @@
 
 #include "rng.h"
 #include "scenarios/trajectory.h"
+#include "sensors/imu_temperature.h"
 
 namespace swlio::sim {
 
@@ -89,6 +90,8 @@ struct ImuSimConfig {
   /// motion of `time_offset_s` before the host time its SampleTimeFine stands for (a filter
   /// delay or a constant serial latency the clock model cannot see; negative: after).
   double time_offset_s = 0.0;
+  /// Bias drift with the device's temperature (the `temperature` disturbance).
+  ImuTemperatureConfig temperature;
 };
 
 /// Samples over [0, duration] host seconds, in order; deterministic for a seed.

@@ -47,7 +47,11 @@ LidarSimulator::LidarSimulator(const World* world,
                                const Trajectory* trajectory,
                                const LidarSimConfig& config,
                                uint64_t seed)
-    : world_(world), trajectory_(trajectory), config_(config), rng_(seed ^ 0x11DA4ull) {}
+    : world_(world), trajectory_(trajectory), config_(config), rng_(seed ^ 0x11DA4ull) {
+  if (config_.weather.Any()) {
+    weather_.emplace(world_, config_.weather, seed);
+  }
+}
 
 Eigen::Isometry3d LidarSimulator::LidarPose(double t_s) const {
   const Kinematics k = trajectory_->At(t_s);
@@ -144,6 +148,14 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
       uint16_t actor = 0;
       bool moving = false;
       if (actors) actor_rays_.Cast(lens, dir, config_.max_range_m, &hit, &actor, &moving);
+      if (weather_) {
+        weather_->Apply({SecToNs(t_fire), laser, lens, dir, R.col(2)}, config_.max_range_m, &hit);
+        // Rain and dust returns (class none) come from no actor.
+        if (hit.cls == SurfaceClass::kNone) {
+          actor = 0;
+          moving = false;
+        }
+      }
       double range = 0.0;
       if (hit.range_m > 0.0 && rng_.Uniform() >= config_.dropout) {
         range = hit.range_m + rng_.Normal(config_.range_sigma_m);

@@ -10,11 +10,13 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "rng.h"
 #include "scenarios/trajectory.h"
 #include "sensors/imu_sim.h"
+#include "sensors/lidar_weather.h"
 #include "swlio/drivers/rs16_protocol.h"
 #include "world/actor_rays.h"
 #include "world/world.h"
@@ -39,6 +41,8 @@ struct LidarSimConfig {
   double lens_offset_m = drivers::rs16::kLensRxM;
   uint16_t msop_port = 6699;
   uint16_t difop_port = 7788;
+  /// Mixed pixels, rain, dust and dropouts (sensors/lidar_weather.h); all off by default.
+  LidarWeatherConfig weather;
 };
 
 /// One MSOP packet's period: 12 blocks of two firing sequences (1.332 ms).
@@ -103,6 +107,8 @@ class LidarSimulator {
 
   uint64_t msop_packets() const { return msop_index_; }
   uint64_t difop_packets() const { return difop_index_; }
+  /// The weather model's counters; nothing when no weather model is on.
+  const LidarWeather* weather() const { return weather_ ? &*weather_ : nullptr; }
 
  private:
   void MakeMsop(SimPacket* out, std::vector<SimReturn>* returns);
@@ -123,7 +129,8 @@ class LidarSimulator {
   ActorRays actor_rays_;  ///< the actors a packet's rays may hit (world_->actors)
   uint64_t msop_index_ = 0;
   uint64_t difop_index_ = 0;
-  int64_t last_rx_ns_ = 0;  ///< keeps receive times in order
+  int64_t last_rx_ns_ = 0;               ///< keeps receive times in order
+  std::optional<LidarWeather> weather_;  ///< only when a weather model is on
 };
 
 }  // namespace swlio::sim

@@ -7,7 +7,7 @@
 namespace swlio::sim {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNoHitInf = std::numeric_limits<double>::infinity();
 /// Horizontal spread of the beams around the packet's wedge: a ±15° beam of a LiDAR tilted by a
 /// few degrees (mounting, terrain) points a little off its azimuth.
 constexpr double kWedgeMarginRad = 3.0 * 3.14159265358979323846 / 180.0;
@@ -19,11 +19,11 @@ double Cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 }  // namespace
 
 double IntersectPart(const ActorPart& part, const Eigen::Vector3d& o, const Eigen::Vector3d& d) {
-  double t0 = -kInf, t1 = kInf;
+  double t0 = -kNoHitInf, t1 = kNoHitInf;
   for (int i = 0; i < 3; ++i) {
     const double rel = o(i) - part.center_m(i);
     if (std::abs(d(i)) < 1e-12) {
-      if (std::abs(rel) > part.half_m(i)) return kInf;
+      if (std::abs(rel) > part.half_m(i)) return kNoHitInf;
       continue;
     }
     double ta = (-part.half_m(i) - rel) / d(i);
@@ -31,9 +31,9 @@ double IntersectPart(const ActorPart& part, const Eigen::Vector3d& o, const Eige
     if (ta > tb) std::swap(ta, tb);
     t0 = std::max(t0, ta);
     t1 = std::min(t1, tb);
-    if (t0 > t1) return kInf;
+    if (t0 > t1) return kNoHitInf;
   }
-  return t0 > 1e-6 ? t0 : kInf;
+  return t0 > 1e-6 ? t0 : kNoHitInf;
 }
 
 void ActorRays::BeginPacket(const ActorSet& set,
