@@ -12,6 +12,7 @@
 #include "swlio/estimator/wheel/wheel_factor_config.h"
 #include "swlio/estimator/window/divergence_monitor.h"
 #include "swlio/estimator/window/standstill.h"
+#include "swlio/estimator/window/time_offset_estimator.h"
 
 namespace swlio::estimator {
 
@@ -94,6 +95,9 @@ struct WindowEstimatorConfig {
   WheelFactorConfig wheel;
   /// A frame at rest (IMU and LiDAR agree) gets a zero-velocity factor (standstill.h).
   StandstillConfig standstill;
+  /// The LiDAR–IMU time offset estimated online and applied to the IMU samples (on by default;
+  /// time_offset_estimator.h).
+  TimeOffsetConfig time_offset;
   // Flags last (padding).
   /// Before the window solve, the newest frame is registered alone from the IMU prediction
   /// (ScanMatcher::Match, as the LiDAR-only mode does) and associated at that pose: the window
