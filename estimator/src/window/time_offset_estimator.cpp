@@ -32,6 +32,7 @@ ConfigIssues TimeOffsetConfig::Validate() const {
   CheckInRange(issues, "span_s", span_s, 0.1, 2.0);
   CheckInRange(issues, "history_s", history_s, 1.0, 600.0);
   CheckPositive(issues, "gate_sigma_s", gate_sigma_s);
+  CheckInRange(issues, "coarse_gate_sigma_s", coarse_gate_sigma_s, 0.0, 0.01);
   CheckInRange<size_t>(issues, "min_rows", min_rows, 4, 100000);
   // Above 1 ms a step could reorder the shifted samples of a 400 Hz IMU (2.5 ms apart) and
   // jump the IMU factors.
@@ -193,8 +194,11 @@ void TimeOffsetEstimator::Solve() {
   status_.excitation_radps = std::sqrt(excitation_sq / n);
   status_.sigma_s = rms_rad * std::sqrt(std::max(0.0, H_inv(0, 0)));
   status_.estimate_s = std::clamp(x(0), -config_.max_offset_s, config_.max_offset_s);
-  status_.gated = rows_.size() >= config_.min_rows && status_.sigma_s <= config_.gate_sigma_s &&
-                  std::isfinite(x(0));
+  const double sigma_s = status_.sigma_s;
+  const bool constrained =
+      sigma_s <= config_.gate_sigma_s || (sigma_s <= config_.coarse_gate_sigma_s &&
+                                          std::abs(status_.estimate_s - target_s_) > 3.0 * sigma_s);
+  status_.gated = rows_.size() >= config_.min_rows && constrained && std::isfinite(x(0));
   x_.tail<3>() = x.tail<3>();
   if (!status_.gated) return;
   x_(0) = target_s_ = status_.estimate_s;

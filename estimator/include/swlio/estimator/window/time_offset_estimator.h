@@ -16,7 +16,8 @@
 /// The last `history_s` of rows form a small least squares over [d, b_g] (4 unknowns, Huber
 /// weights, two reweightings), each row kept at its own linearization point. σ_d is the
 /// Schur-complement σ of d (b_g marginalized) scaled by the residuals' robust RMS; only when
-/// σ_d ≤ `gate_sigma_s` (the motion constrains d) does the estimate become the target, and the
+/// σ_d ≤ `gate_sigma_s` (the motion constrains d), or when it is ≤ `coarse_gate_sigma_s` and the
+/// estimate is over 3σ_d from the target, does the estimate become the target, and the
 /// applied offset walks to it by at most `max_step_s` per sweep (the IMU samples of the window
 /// stay in order and its factors change smoothly). Pure library: no clock.
 
@@ -45,9 +46,12 @@ struct TimeOffsetConfig {
   /// Rotation increments span about this much (pairs of sweep ends): the signal (the change of
   /// rate over the span) grows with it, the registration noise does not.
   double span_s = 0.3;
-  double history_s = 30.0;  ///< rows kept (sliding)
-  /// The estimate becomes the target only with σ_d at or below this (excitation gate).
+  double history_s = 60.0;  ///< rows kept (sliding)
+  /// The estimate becomes the target only with σ_d at or below this (excitation gate) ...
   double gate_sigma_s = 4e-4;
+  /// ... or, with σ_d at or below this, when it lies more than 3σ_d from the target: a start
+  /// far off (10 ms) is then left sooner (8 s instead of 16–20 s into `aggressive`).
+  double coarse_gate_sigma_s = 1.5e-3;
   size_t min_rows = 30;  ///< and at least this many rows
   /// The applied offset moves at most this much per sweep (3 ms/s at 10 Hz); below the IMU's
   /// 2.5 ms sample period, so shifted samples stay in order.

@@ -121,6 +121,9 @@ class WindowEstimator {
   size_t map_points() const { return plane_map_.size() + edge_map_.size(); }
   /// The extrinsic in use: the configured one, or its online estimate (`estimate_extrinsic`).
   Eigen::Isometry3d T_imu_lidar() const { return PoseFromParameters(extrinsic_.data()); }
+  /// The LiDAR–IMU time offset applied now (ns; > 0: a sample stamped s is taken at s − offset).
+  /// A sweep ending at t is covered by the IMU once a sample stamped after t + offset arrived.
+  int64_t imu_time_offset_ns() const { return time_offset_.offset_ns(); }
   /// The last sweep's points de-skewed into the LiDAR frame at its end (what the front end
   /// read); valid until the next AddScan.
   const Scan& deskewed() const { return deskewed_; }
