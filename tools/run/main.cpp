@@ -44,6 +44,8 @@ const swlio::estimator::WindowEstimatorConfig& WindowDefaults() {
 struct Options {
   std::string loop_closure = "off", out_optimized, out_path, loops;
   std::string wheel = "off", gnss = "off", out_enu;  ///< optional sensors (aux_sensors.h)
+  std::string time_offset = "on";      ///< window.time_offset: on (estimated), fixed, off
+  double time_offset_init_ms = 0.0;    ///< window.time_offset.initial_offset_s (ms)
   std::string save_map, map_pcd, map;  ///< map files (loop closure writes, --localize reads)
   bool localize = false;
   std::string dir, out, timings, diagnostics, covariance, config, mode = "tightly-coupled";
@@ -76,12 +78,17 @@ void WriteTimings(std::ostream& out, const OdometryResult& r, int64_t t_ns) {
 constexpr const char* kDiagnosticsHeader =
     "t_ns,status,converged,iterations,plane_inliers,edge_inliers,cost,"
     "hessian_eig_min,hessian_eig_max,degenerate_directions,planes,edges,uncovered,keyframe,"
-    "vel_x,vel_y,vel_z,bias_acc_x,bias_acc_y,bias_acc_z,bias_gyro_x,bias_gyro_y,bias_gyro_z";
+    "vel_x,vel_y,vel_z,bias_acc_x,bias_acc_y,bias_acc_z,bias_gyro_x,bias_gyro_y,bias_gyro_z,"
+    "time_offset_ms,time_offset_estimate_ms,time_offset_sigma_ms";
 
 /// One line per sweep: what the registration reported (degeneracy: the smallest eigenvalue of
 /// the 6×6 Gauss–Newton Hessian against the largest), then the state's velocity (world, m/s)
-/// and biases (m/s², rad/s).
-void WriteDiagnostics(std::ostream& out, const OdometryResult& r, int64_t t_ns) {
+/// and biases (m/s², rad/s), then the LiDAR–IMU time offset applied, its estimate and σ (ms;
+/// σ negative before the estimator has rows; time_offset_estimator.h).
+void WriteDiagnostics(std::ostream& out,
+                      const OdometryResult& r,
+                      const swlio::estimator::TimeOffsetStatus& offset,
+                      int64_t t_ns) {
   char line[768];
   std::snprintf(line, sizeof line, "%lld,%s,%d,%d,%zu,%zu,%.6g,%.6g,%.6g,%d,%zu,%zu,%zu,%d",
                 static_cast<long long>(t_ns), swlio::estimator::ToString(r.status),
@@ -94,7 +101,10 @@ void WriteDiagnostics(std::ostream& out, const OdometryResult& r, int64_t t_ns) 
   std::snprintf(line, sizeof line, ",%.5f,%.5f,%.5f,%.6f,%.6f,%.6f,%.7f,%.7f,%.7f", x.vel_world.x(),
                 x.vel_world.y(), x.vel_world.z(), x.bias_acc.x(), x.bias_acc.y(), x.bias_acc.z(),
                 x.bias_gyro.x(), x.bias_gyro.y(), x.bias_gyro.z());
-  out << line << '\n';
+  out << line;
+  std::snprintf(line, sizeof line, ",%.4f,%.4f,%.4f\n", offset.offset_s * 1e3,
+                offset.estimate_s * 1e3, offset.sigma_s < 0.0 ? -1.0 : offset.sigma_s * 1e3);
+  out << line;
 }
 
 /// Header of --covariance: the newest state and its marginal covariance P (state_covariance.h:
@@ -153,6 +163,7 @@ struct Summary {
   size_t standstill = 0;  ///< sweeps the window took for rest (zero-velocity factor)
   uint64_t lidar_clock_jumps = 0, imu_clock_jumps = 0;  ///< the clock models' restarts
   bool wheel = false;
+  swlio::estimator::TimeOffsetStatus time_offset;  ///< the window's, at the last sweep
   double total_ms = 0.0, planes = 0.0, edges = 0.0, inliers = 0.0, iterations = 0.0;
   std::string extra;  ///< more JSON members (loop closure), or empty
 
@@ -174,6 +185,19 @@ struct Summary {
                   wheel_factors, wheel_rejected);
     return json;
   }
+  /// The LiDAR–IMU time offset (tightly coupled mode with estimator.window.time_offset on).
+  std::string TimeOffsetJson() const {
+    if (!time_offset.enabled) return "";
+    char json[256];
+    std::snprintf(json, sizeof json,
+                  ", \"time_offset\": {\"applied_ms\": %.4f, \"estimate_ms\": %.4f, "
+                  "\"sigma_ms\": %.4f, \"excitation_radps\": %.4f, \"rows\": %zu, "
+                  "\"updates\": %zu}",
+                  time_offset.offset_s * 1e3, time_offset.estimate_s * 1e3,
+                  time_offset.sigma_s < 0.0 ? -1.0 : time_offset.sigma_s * 1e3,
+                  time_offset.excitation_radps, time_offset.rows, time_offset.updates);
+    return json;
+  }
   void Print() const {
     const double n = std::max<double>(1.0, static_cast<double>(tracked + failed));
     std::printf(
@@ -181,12 +205,12 @@ struct Summary {
         "\"mean_scan_ms\": %.2f, "
         "\"mean_planes\": %.0f, \"mean_edges\": %.0f, \"mean_inliers\": %.0f, "
         "\"mean_iterations\": %.2f, \"reinitializations\": %zu, \"standstill_sweeps\": "
-        "%zu, \"clock_jumps\": {\"lidar\": %llu, \"imu\": %llu}%s%s%s}\n",
+        "%zu, \"clock_jumps\": {\"lidar\": %llu, \"imu\": %llu}%s%s%s%s}\n",
         scans, tracked, failed, skipped, total_ms / n, planes / n, edges / n, inliers / n,
         iterations / n, reinitializations, standstill,
         static_cast<unsigned long long>(lidar_clock_jumps),
         static_cast<unsigned long long>(imu_clock_jumps), WheelJson().c_str(),
-        extra.empty() ? "" : ", ", extra.c_str());
+        TimeOffsetJson().c_str(), extra.empty() ? "" : ", ", extra.c_str());
   }
 };
 
@@ -221,6 +245,12 @@ bool LoadDaemonConfig(const Options& opt, swlio::daemon::DaemonConfig* config) {
 void ApplyWindowFlags(const Options& opt, swlio::estimator::WindowEstimatorConfig* w) {
   auto given = [&](const char* flag) { return opt.given.count(flag) != 0; };
   if (given("--window-size")) w->window_size = opt.window_size;
+  if (given("--time-offset")) {
+    w->time_offset.enabled = opt.time_offset != "off";
+    w->time_offset.estimate = opt.time_offset == "on";
+  }
+  if (given("--time-offset-init-ms"))
+    w->time_offset.initial_offset_s = opt.time_offset_init_ms * 1e-3;
   if (given("--calibrate-extrinsic")) w->calibrate_extrinsic_s = opt.calibrate_s;
   if (given("--iterations")) w->max_iterations = opt.iterations;
   if (given("--reassociations")) w->reassociations = opt.reassociations;
@@ -411,12 +441,13 @@ int Run(const Options& opt) {
     summary.wheel_factors = std::max(summary.wheel_factors, w.wheel_factors);
     summary.wheel_rejected = std::max(summary.wheel_rejected, w.wheel_rejected);
     summary.standstill = std::max(summary.standstill, w.standstill_frames);
+    if (w.time_offset.enabled) summary.time_offset = w.time_offset;
     if (w.diverged != swlio::estimator::DivergenceReason::kNone) {
       std::cerr << "swlio-run: sweep ending at " << static_cast<double>(scan.t_end_ns) * 1e-9
                 << " s: " << swlio::estimator::ToString(w.diverged) << ", re-initializing\n";
     }
     if (timings) WriteTimings(timings, r, time.ToHost(scan.t_end_ns));
-    if (diagnostics) WriteDiagnostics(diagnostics, r, time.ToHost(scan.t_end_ns));
+    if (diagnostics) WriteDiagnostics(diagnostics, r, w.time_offset, time.ToHost(scan.t_end_ns));
     if (r.status != OdometryStatus::kTracking && r.status != OdometryStatus::kMatchFailed) return;
     if (localization) {
       if (swlio::State s; localization->OnSweep(r.state, w.keyframe.get(), &s))
@@ -552,6 +583,14 @@ int Main(int argc, char** argv) {
                  "on it; needs turns, retried until they determine the rotation "
                  "(tightly-coupled; extrinsic_calibration_run.h)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--time-offset", opt.time_offset,
+                 "the LiDAR-IMU time offset applied to the IMU samples: on (estimated online, "
+                 "the default), fixed (--time-offset-init-ms), off (tightly-coupled; "
+                 "estimator.window.time_offset.enabled and .estimate)")
+      ->check(CLI::IsMember({"on", "fixed", "off"}));
+  app.add_option("--time-offset-init-ms", opt.time_offset_init_ms,
+                 "the time offset to start from (ms; > 0: the IMU's stamps are late; "
+                 "estimator.window.time_offset.initial_offset_s)");
   app.add_flag("--estimate-extrinsic", opt.estimate_extrinsic,
                "refine T_imu_lidar online (tightly-coupled; weak prior on the configured value)");
   app.add_option("--out", opt.out,
@@ -613,10 +652,11 @@ int Main(int argc, char** argv) {
                  "daemon configuration (swlio.yaml): sensors, estimator, estimator.window (the "
                  "flags above override it), extrinsic (a manifest's extrinsic wins)");
   CLI11_PARSE(app, argc, argv);
-  for (const char* flag : {"--window-size", "--iterations", "--reassociations", "--lidar-sigma",
-                           "--bias-prior-acc", "--estimate-extrinsic", "--degenerate-eigenvalue",
-                           "--calibrate-extrinsic", "--lidar-floor-m", "--lidar-floor-tilt",
-                           "--lidar-floor-yaw", "--loop-closure", "--wheel", "--gnss"}) {
+  for (const char* flag :
+       {"--window-size", "--iterations", "--reassociations", "--lidar-sigma", "--bias-prior-acc",
+        "--estimate-extrinsic", "--degenerate-eigenvalue", "--calibrate-extrinsic",
+        "--lidar-floor-m", "--lidar-floor-tilt", "--lidar-floor-yaw", "--loop-closure", "--wheel",
+        "--gnss", "--time-offset", "--time-offset-init-ms"}) {
     if (app.count(flag) > 0) opt.given.insert(flag);
   }
   return Run(opt);

@@ -99,6 +99,7 @@ WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn no
       init_sigma_bias_acc_mps2_(config_.init_sigma_bias_acc_mps2),
       init_sigma_bias_gyro_radps_(Eigen::Vector3d::Constant(config_.init_sigma_bias_gyro_radps)),
       propagator_(config_.odometry.estimator.gravity_mps2),
+      time_offset_(config_.time_offset),
       noise_adapter_(config_.odometry.estimator.imu_noise, config_.imu_noise_adapter),
       front_end_(config_.odometry.front_end),
       plane_map_(config_.odometry.plane_map),
@@ -135,7 +136,9 @@ void WindowEstimator::ResetExtrinsicPrior() {
   extrinsic_prior_ = DiagonalPrior({{extrinsic_.data(), &manifold_}}, sigmas);
 }
 
-void WindowEstimator::AddImu(const ImuSample& sample) {
+void WindowEstimator::AddImu(const ImuSample& stamped) {
+  time_offset_.AddImu(stamped);
+  const ImuSample sample = time_offset_.Shifted(stamped);
   if (calibration_) calibration_->AddImu(sample);
   noise_adapter_.Add(sample);
   if (!recent_imu_.empty() && sample.t_ns < recent_imu_.back().t_ns) recent_imu_.clear();
@@ -360,6 +363,8 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
     const std::array<double, kPoseSize> predicted = frame->pose;
     if (config_.prealign && Prealign(frame.get())) {
       registered = PoseFromParameters(frame->pose.data()).translation();
+      time_offset_.AddRegistration(
+          scan.t_end_ns, Eigen::Quaterniond(PoseFromParameters(frame->pose.data()).linear()));
       const Eigen::Isometry3d d =
           PoseFromParameters(predicted.data()).inverse() * PoseFromParameters(frame->pose.data());
       out.prediction_error_m = d.translation().norm();
@@ -429,6 +434,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   out.wheel_factors = wheel_factors_;
   out.wheel_rejected = wheel_rejected_;
   out.standstill_frames = standstill_frames_;
+  out.time_offset = time_offset_.status();
   result.times.optimize_ms += timer.Lap();
   result.times.total_ms =
       result.times.frontend_ms + result.times.match_ms + result.times.optimize_ms;

@@ -51,6 +51,7 @@
 #include "swlio/estimator/window/divergence_monitor.h"
 #include "swlio/estimator/window/marginalization.h"
 #include "swlio/estimator/window/state_covariance.h"
+#include "swlio/estimator/window/time_offset_estimator.h"
 #include "swlio/estimator/window/window_estimator_config.h"
 
 namespace swlio::estimator {
@@ -78,6 +79,9 @@ struct WindowResult {
   size_t wheel_factors = 0;
   size_t wheel_rejected = 0;
   size_t standstill_frames = 0;  ///< frames so far that got a zero-velocity factor
+  /// The LiDAR–IMU time offset applied to the IMU samples, its estimate and excitation
+  /// (time_offset_estimator.h).
+  TimeOffsetStatus time_offset;
   // The small fields together (no padding between them).
   /// Not kNone: this sweep's state was not believable (divergence_monitor.h), so the window
   /// re-initialized; the result is kInitializing and the state is not to be used.
@@ -98,7 +102,9 @@ class WindowEstimator {
   WindowEstimator(const WindowEstimator&) = delete;
   WindowEstimator& operator=(const WindowEstimator&) = delete;
 
-  void AddImu(const ImuSample& sample);
+  /// A sample as stamped; the window takes it at its stamp minus the estimated time offset
+  /// (`time_offset`).
+  void AddImu(const ImuSample& stamped);
   /// Chassis wheel odometry (time order; used when `wheel.enabled`).
   void AddWheel(const WheelOdometry& sample);
   WindowResult AddScan(const Scan& scan);
@@ -115,6 +121,9 @@ class WindowEstimator {
   size_t map_points() const { return plane_map_.size() + edge_map_.size(); }
   /// The extrinsic in use: the configured one, or its online estimate (`estimate_extrinsic`).
   Eigen::Isometry3d T_imu_lidar() const { return PoseFromParameters(extrinsic_.data()); }
+  /// The LiDAR–IMU time offset applied now (ns; > 0: a sample stamped s is taken at s − offset).
+  /// A sweep ending at t is covered by the IMU once a sample stamped after t + offset arrived.
+  int64_t imu_time_offset_ns() const { return time_offset_.offset_ns(); }
   /// The last sweep's points de-skewed into the LiDAR frame at its end (what the front end
   /// read); valid until the next AddScan.
   const Scan& deskewed() const { return deskewed_; }
@@ -214,6 +223,7 @@ class WindowEstimator {
   /// Re-initialized: the next initialization is placed at this state (AnchorFor).
   std::optional<State> anchor_;
   ImuPropagator propagator_;
+  TimeOffsetEstimator time_offset_;  ///< shifts the IMU samples by the estimated offset
   /// Tracked states that passed the checks, the last kGoodHistoryNs of them: a divergence may
   /// have begun a few sweeps before a check tripped, so the anchor is the oldest.
   std::deque<State> good_;

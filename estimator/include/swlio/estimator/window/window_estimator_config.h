@@ -13,6 +13,7 @@
 #include "swlio/estimator/wheel/wheel_factor_config.h"
 #include "swlio/estimator/window/divergence_monitor.h"
 #include "swlio/estimator/window/standstill.h"
+#include "swlio/estimator/window/time_offset_estimator.h"
 
 namespace swlio::estimator {
 
@@ -97,6 +98,9 @@ struct WindowEstimatorConfig {
   StandstillConfig standstill;
   /// The IMU factors' white-noise densities measured from the data (imu_noise_adapter.h).
   ImuNoiseAdapterConfig imu_noise_adapter;
+  /// The LiDAR–IMU time offset estimated online and applied to the IMU samples (on by default;
+  /// time_offset_estimator.h).
+  TimeOffsetConfig time_offset;
   // Flags last (padding).
   /// Before the window solve, the newest frame is registered alone from the IMU prediction
   /// (ScanMatcher::Match, as the LiDAR-only mode does) and associated at that pose: the window

@@ -1,0 +1,132 @@
+#pragma once
+/// @file
+/// Online LiDAR–IMU time offset, beside the window: the residual of the clock models that
+/// neither sees (a USB-serial latency, the IMU's own filter delay).
+///
+/// Convention: `offset_s` = d > 0 means the IMU's stamps are d too late (the simulator's
+/// `time_offset_s`: each sample measures the motion of d before its stamp), so the estimator
+/// takes a sample stamped s as measured at s − d (Shifted).
+///
+/// Model: between two sweep ends t_a < t_b (LiDAR host time, span ≈ `span_s`) the sweeps' own
+/// registrations give the rotation increment ΔR_L = R_aᵀ R_b of the IMU frame; the gyro
+/// integrated over the stamps [t_a + d, t_b + d] with bias b gives ΔR_G(d, b). Each pair is one
+/// residual r = Log(ΔR_Lᵀ ΔR_G(d, b)) (3 rows); ∂r/∂d ≈ ω(t_b) − ΔRᵀω(t_a), the change of rate
+/// over the span, is what makes d observable (a constant turn or a straight line say nothing).
+/// Jacobians by central differences of the integration (5 integrations of ~120 samples).
+/// The last `history_s` of rows form a small least squares over [d, b_g] (4 unknowns, Huber
+/// weights, two reweightings), each row kept at its own linearization point. σ_d is the
+/// Schur-complement σ of d (b_g marginalized) scaled by the residuals' robust RMS; only when
+/// σ_d ≤ `gate_sigma_s` (the motion constrains d), or when it is ≤ `coarse_gate_sigma_s` and the
+/// estimate is over 3σ_d from the target, does the estimate become the target, and the
+/// applied offset walks to it by at most `max_step_s` per sweep (the IMU samples of the window
+/// stay in order and its factors change smoothly). Pure library: no clock.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <optional>
+
+#include "swlio/core/config_issue.h"
+#include "swlio/core/types.h"
+
+namespace swlio::estimator {
+
+struct TimeOffsetConfig {
+  /// Apply the offset to the IMU samples (off: the clock models' times as they are).
+  bool enabled = true;
+  /// Estimate it online (off: `initial_offset_s` stays, a known calibration).
+  bool estimate = true;
+  /// The offset to start from (s, the convention above): a calibration, or 0.
+  double initial_offset_s = 0.0;
+  /// Limit of the estimate (both signs): the clock models already remove the transport
+  /// latency; what is left is a filter delay or a USB-serial latency of a few ms.
+  double max_offset_s = 0.05;
+  /// Rotation increments span about this much (pairs of sweep ends): the signal (the change of
+  /// rate over the span) grows with it, the registration noise does not.
+  double span_s = 0.3;
+  double history_s = 60.0;  ///< rows kept (sliding)
+  /// The estimate becomes the target only with σ_d at or below this (excitation gate) ...
+  double gate_sigma_s = 4e-4;
+  /// ... or, with σ_d at or below this, when it lies more than 3σ_d from the target: a start
+  /// far off (10 ms) is then left sooner (8 s instead of 16–20 s into `aggressive`).
+  double coarse_gate_sigma_s = 1.5e-3;
+  size_t min_rows = 30;  ///< and at least this many rows
+  /// The applied offset moves at most this much per sweep (3 ms/s at 10 Hz); below the IMU's
+  /// 2.5 ms sample period, so shifted samples stay in order.
+  double max_step_s = 3e-4;
+  /// Huber width of a rotation residual (rad): 0.1° ≈ a sweep registration's jitter a few times.
+  double huber_rad = 2e-3;
+  /// Weight of the residual's roll/pitch rows against its yaw row (about the IMU's z axis).
+  double tilt_weight = 1.0;
+
+  ConfigIssues Validate() const;
+};
+
+/// What the daemon's health reports (WindowResult::time_offset).
+struct TimeOffsetStatus {
+  double offset_s = 0.0;    ///< applied to the IMU samples now (see the convention above)
+  double estimate_s = 0.0;  ///< the last least-squares estimate (clamped to the limit)
+  double sigma_s = -1.0;    ///< its standard deviation; negative until there are rows
+  /// RMS over the rows of |∂r/∂d| (rad/s): how much the motion constrains d.
+  double excitation_radps = 0.0;
+  double residual_rms_rad = 0.0;  ///< robust RMS of the rotation residuals
+  size_t rows = 0;                ///< rotation increments in the history
+  size_t updates = 0;             ///< sweeps so far at which the gate passed
+  bool enabled = false;
+  bool gated = false;  ///< the last solve passed the gate (the estimate is the target)
+};
+
+class TimeOffsetEstimator {
+ public:
+  explicit TimeOffsetEstimator(const TimeOffsetConfig& config);
+
+  /// A sample as stamped (the clock model's host time); kept for the gyro integrations.
+  void AddImu(const ImuSample& sample);
+  /// The sample at the time it measured: its stamp minus the applied offset.
+  ImuSample Shifted(ImuSample sample) const;
+  /// A sweep's own registration (IMU attitude at the sweep end `t_ns`, LiDAR host time). Forms
+  /// the rows its IMU coverage allows, solves, and moves the applied offset.
+  void AddRegistration(int64_t t_ns, const Eigen::Quaterniond& q_world_imu);
+  /// Forgets rows and registrations (a re-initialization); the offset and samples are kept.
+  void ForgetRows();
+
+  int64_t offset_ns() const { return offset_ns_; }
+  const TimeOffsetStatus& status() const { return status_; }
+
+  /// Gyro rotation over stamps [a_ns, b_ns] with `bias` removed: rates linear between samples,
+  /// one midpoint step per sample interval. Empty unless the samples cover [a_ns, b_ns].
+  static std::optional<Eigen::Quaterniond> IntegrateGyro(const std::deque<ImuSample>& samples,
+                                                         int64_t a_ns,
+                                                         int64_t b_ns,
+                                                         const Eigen::Vector3d& bias);
+
+ private:
+  struct Registration {
+    int64_t t_ns;
+    Eigen::Quaterniond q_world_imu;
+  };
+  struct Row {
+    int64_t t_ns;
+    Eigen::Matrix<double, 3, 4> J;  ///< ∂r/∂[d, b_g]
+    Eigen::Vector3d r;              ///< at x_lin
+    Eigen::Vector4d x_lin;          ///< [d (s), b_g (rad/s)]
+  };
+  void FormRows();
+  std::optional<Row> MakeRow(const Registration& a, const Registration& b) const;
+  void Solve();
+  void Step();
+
+  TimeOffsetConfig config_;
+  std::deque<ImuSample> imu_;               ///< stamps as received, the last seconds
+  std::deque<Registration> registrations_;  ///< waiting to be the end or start of a row
+  std::deque<Row> rows_;
+  Eigen::Vector4d x_ = Eigen::Vector4d::Zero();  ///< [d, b_g], the last solution
+  double target_s_;                              ///< the last estimate that passed the gate
+  int64_t offset_ns_;
+  bool pending_end_ = false;  ///< the newest registration has not ended a row yet
+  TimeOffsetStatus status_;
+};
+
+}  // namespace swlio::estimator

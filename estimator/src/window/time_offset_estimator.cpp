@@ -1,0 +1,215 @@
+#include "swlio/estimator/window/time_offset_estimator.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
+#include "swlio/core/lie.h"
+#include "swlio/core/time.h"
+
+namespace swlio::estimator {
+
+namespace {
+
+constexpr int64_t kMaxImuGapNs = 20'000'000;  ///< a wider gap between samples: no row
+constexpr int64_t kStepDNs = 500'000;         ///< central difference in d (0.5 ms)
+constexpr double kStepBiasRadps = 1e-3;       ///< central difference in b_g
+constexpr int64_t kImuKeptNs = 3 * kNsPerSec;
+
+int64_t ToNs(double s) { return static_cast<int64_t>(std::llround(s * 1e9)); }
+
+Eigen::Vector3d RateAt(const ImuSample& s0, const ImuSample& s1, int64_t t_ns) {
+  const double u = static_cast<double>(t_ns - s0.t_ns) / static_cast<double>(s1.t_ns - s0.t_ns);
+  return (1.0 - u) * s0.gyro_radps + u * s1.gyro_radps;
+}
+
+}  // namespace
+
+ConfigIssues TimeOffsetConfig::Validate() const {
+  ConfigIssues issues;
+  CheckInRange(issues, "max_offset_s", max_offset_s, 0.0, 0.2);
+  CheckInRange(issues, "initial_offset_s", initial_offset_s, -max_offset_s, max_offset_s);
+  CheckInRange(issues, "span_s", span_s, 0.1, 2.0);
+  CheckInRange(issues, "history_s", history_s, 1.0, 600.0);
+  CheckPositive(issues, "gate_sigma_s", gate_sigma_s);
+  CheckInRange(issues, "coarse_gate_sigma_s", coarse_gate_sigma_s, 0.0, 0.01);
+  CheckInRange<size_t>(issues, "min_rows", min_rows, 4, 100000);
+  // Above 1 ms a step could reorder the shifted samples of a 400 Hz IMU (2.5 ms apart) and
+  // jump the IMU factors.
+  CheckInRange(issues, "max_step_s", max_step_s, 0.0, 1e-3);
+  CheckPositive(issues, "huber_rad", huber_rad);
+  CheckInRange(issues, "tilt_weight", tilt_weight, 0.0, 1.0);
+  return issues;
+}
+
+TimeOffsetEstimator::TimeOffsetEstimator(const TimeOffsetConfig& config)
+    : config_(config),
+      target_s_(config.enabled ? config.initial_offset_s : 0.0),
+      offset_ns_(ToNs(target_s_)) {
+  status_.enabled = config_.enabled;
+  status_.offset_s = status_.estimate_s = target_s_;
+  x_(0) = target_s_;
+}
+
+void TimeOffsetEstimator::AddImu(const ImuSample& sample) {
+  if (!config_.enabled || !config_.estimate) return;
+  if (!imu_.empty() && sample.t_ns <= imu_.back().t_ns) return;
+  imu_.push_back(sample);
+  while (imu_.front().t_ns < sample.t_ns - kImuKeptNs) imu_.pop_front();
+  FormRows();
+}
+
+ImuSample TimeOffsetEstimator::Shifted(ImuSample sample) const {
+  sample.t_ns -= offset_ns_;
+  return sample;
+}
+
+void TimeOffsetEstimator::ForgetRows() {
+  rows_.clear();
+  registrations_.clear();
+  status_.rows = 0;
+}
+
+std::optional<Eigen::Quaterniond> TimeOffsetEstimator::IntegrateGyro(
+    const std::deque<ImuSample>& samples, int64_t a_ns, int64_t b_ns, const Eigen::Vector3d& bias) {
+  if (samples.size() < 2 || a_ns >= b_ns) return std::nullopt;
+  if (samples.front().t_ns > a_ns || samples.back().t_ns < b_ns) return std::nullopt;
+  // The last sample at or before a.
+  auto it = std::upper_bound(samples.begin(), samples.end(), a_ns,
+                             [](int64_t t, const ImuSample& s) { return t < s.t_ns; });
+  size_t i = static_cast<size_t>(std::distance(samples.begin(), it)) - 1;
+  Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+  for (; i + 1 < samples.size() && samples[i].t_ns < b_ns; ++i) {
+    const ImuSample& s0 = samples[i];
+    const ImuSample& s1 = samples[i + 1];
+    if (s1.t_ns - s0.t_ns > kMaxImuGapNs) return std::nullopt;
+    const int64_t lo = std::max(a_ns, s0.t_ns);
+    const int64_t hi = std::min(b_ns, s1.t_ns);
+    if (hi <= lo) continue;
+    const Eigen::Vector3d w = 0.5 * (RateAt(s0, s1, lo) + RateAt(s0, s1, hi)) - bias;
+    q = q * lie::QuatExp(w * static_cast<double>(hi - lo) * 1e-9);
+  }
+  return q.normalized();
+}
+
+std::optional<TimeOffsetEstimator::Row> TimeOffsetEstimator::MakeRow(const Registration& a,
+                                                                     const Registration& b) const {
+  Row row;
+  row.t_ns = b.t_ns;
+  row.x_lin << target_s_, x_.tail<3>();
+  const Eigen::Quaterniond dq_lidar = a.q_world_imu.conjugate() * b.q_world_imu;
+  const int64_t d_ns = ToNs(target_s_);
+  auto residual = [&](int64_t dd_ns,
+                      const Eigen::Vector3d& bias) -> std::optional<Eigen::Vector3d> {
+    const auto dq_gyro = IntegrateGyro(imu_, a.t_ns + d_ns + dd_ns, b.t_ns + d_ns + dd_ns, bias);
+    if (!dq_gyro) return std::nullopt;
+    return lie::QuatLog(dq_lidar.conjugate() * *dq_gyro);
+  };
+  const Eigen::Vector3d b0 = x_.tail<3>();
+  const auto r0 = residual(0, b0);
+  const auto r_plus = residual(kStepDNs, b0);
+  const auto r_minus = residual(-kStepDNs, b0);
+  if (!r0 || !r_plus || !r_minus) return std::nullopt;
+  row.r = *r0;
+  row.J.col(0) = (*r_plus - *r_minus) / (2e-9 * static_cast<double>(kStepDNs));
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d db = Eigen::Vector3d::Unit(k) * kStepBiasRadps;
+    const auto rb_plus = residual(0, b0 + db);
+    const auto rb_minus = residual(0, b0 - db);
+    if (!rb_plus || !rb_minus) return std::nullopt;
+    row.J.col(k + 1) = (*rb_plus - *rb_minus) / (2.0 * kStepBiasRadps);
+  }
+  return row;
+}
+
+void TimeOffsetEstimator::AddRegistration(int64_t t_ns, const Eigen::Quaterniond& q_world_imu) {
+  if (!config_.enabled || !config_.estimate) return;
+  if (!registrations_.empty() && t_ns <= registrations_.back().t_ns) return;
+  registrations_.push_back({t_ns, q_world_imu.normalized()});
+  pending_end_ = true;
+  FormRows();
+  Step();
+}
+
+void TimeOffsetEstimator::FormRows() {
+  if (!pending_end_ || registrations_.size() < 2 || imu_.empty()) return;
+  const Registration& b = registrations_.back();
+  // Wait until the samples cover the row's span at the offset it is linearized at.
+  if (b.t_ns + ToNs(target_s_) + 2 * kStepDNs > imu_.back().t_ns) return;
+  pending_end_ = false;
+  const int64_t span_ns = ToNs(config_.span_s);
+  // The start: the registration closest to span_s before b, within half a span of that.
+  const Registration* a = nullptr;
+  int64_t best_miss_ns = span_ns / 2;
+  for (const Registration& r : registrations_) {
+    const int64_t miss_ns = std::llabs(b.t_ns - r.t_ns - span_ns);
+    if (r.t_ns < b.t_ns && miss_ns <= best_miss_ns) {
+      a = &r;
+      best_miss_ns = miss_ns;
+    }
+  }
+  std::optional<Row> row;
+  if (a != nullptr) row = MakeRow(*a, b);
+  while (registrations_.front().t_ns < b.t_ns - 2 * span_ns) registrations_.pop_front();
+  if (!row) return;
+  rows_.push_back(*row);
+  while (rows_.front().t_ns < row->t_ns - ToNs(config_.history_s)) rows_.pop_front();
+  Solve();
+}
+
+void TimeOffsetEstimator::Solve() {
+  using Mat4 = Eigen::Matrix4d;
+  using Vec4 = Eigen::Vector4d;
+  Vec4 x = x_;
+  x(0) = target_s_;
+  const Eigen::Vector3d axis_w(config_.tilt_weight, config_.tilt_weight, 1.0);
+  // A weak prior on b_g about its last value keeps the axes a yaw-only fit leaves open solvable.
+  const Mat4 prior = Eigen::Vector4d(0.0, 1e-2, 1e-2, 1e-2).asDiagonal();
+  Mat4 H;
+  double weighted_sq = 0.0, excitation_sq = 0.0;
+  // Gauss–Newton on rows linear in x (each about its own x_lin), reweighted twice (Huber).
+  for (int iteration = 0; iteration < 3; ++iteration) {
+    H = Mat4::Identity() * 1e-12 + prior;
+    Vec4 g = prior * (x - x_);
+    weighted_sq = excitation_sq = 0.0;
+    for (const Row& row : rows_) {
+      const Eigen::Vector3d e = axis_w.asDiagonal() * (row.r + row.J * (x - row.x_lin));
+      const Eigen::Matrix<double, 3, 4> J = axis_w.asDiagonal() * row.J;
+      const double norm = e.norm();
+      const double w = norm <= config_.huber_rad ? 1.0 : config_.huber_rad / norm;
+      H += w * J.transpose() * J;
+      g += w * J.transpose() * e;
+      weighted_sq += w * e.squaredNorm();
+      excitation_sq += J.col(0).squaredNorm();
+    }
+    x -= H.ldlt().solve(g);
+  }
+  const double n = static_cast<double>(rows_.size());
+  const double rows_per = config_.tilt_weight > 0.0 ? 3.0 : 1.0;
+  const double dof = std::max(1.0, rows_per * n - 4.0);
+  const double rms_rad = std::sqrt(weighted_sq / dof);
+  const Mat4 H_inv = H.ldlt().solve(Mat4::Identity());
+  status_.rows = rows_.size();
+  status_.residual_rms_rad = rms_rad;
+  status_.excitation_radps = std::sqrt(excitation_sq / n);
+  status_.sigma_s = rms_rad * std::sqrt(std::max(0.0, H_inv(0, 0)));
+  status_.estimate_s = std::clamp(x(0), -config_.max_offset_s, config_.max_offset_s);
+  const double sigma_s = status_.sigma_s;
+  const bool constrained =
+      sigma_s <= config_.gate_sigma_s || (sigma_s <= config_.coarse_gate_sigma_s &&
+                                          std::abs(status_.estimate_s - target_s_) > 3.0 * sigma_s);
+  status_.gated = rows_.size() >= config_.min_rows && constrained && std::isfinite(x(0));
+  x_.tail<3>() = x.tail<3>();
+  if (!status_.gated) return;
+  x_(0) = target_s_ = status_.estimate_s;
+  ++status_.updates;
+}
+
+void TimeOffsetEstimator::Step() {
+  const int64_t step_ns = ToNs(config_.max_step_s);
+  const int64_t to_ns = ToNs(target_s_);
+  offset_ns_ += std::clamp(to_ns - offset_ns_, -step_ns, step_ns);
+  status_.offset_s = static_cast<double>(offset_ns_) * 1e-9;
+}
+
+}  // namespace swlio::estimator

@@ -1,0 +1,161 @@
+// The online LiDAR–IMU time offset (time_offset_estimator.h): the gyro integration, the
+// estimate from simulated gyro samples against noisy sweep-end attitudes (as the sweeps'
+// registrations give them) for offsets of both signs, its bounded walk, the excitation gate and
+// the configuration's rules.
+
+#include "swlio/estimator/window/time_offset_estimator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <deque>
+#include <random>
+
+#include "sim_imu_util.h"
+#include "swlio/core/lie.h"
+#include "swlio/core/time.h"
+
+namespace swlio::estimator {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+TEST(TimeOffsetEstimator, IntegratesTheGyroOverAnyIntervalInsideTheSamples) {
+  std::deque<ImuSample> samples;
+  const Vec3 w(0.3, -0.2, 1.0);
+  for (int i = 0; i <= 400; ++i) {
+    ImuSample s;
+    s.t_ns = i * 2'500'000;
+    s.gyro_radps = w;
+    samples.push_back(s);
+  }
+  const Vec3 bias(0.01, 0.0, -0.02);
+  // An interval between samples: the rates are held exactly, the bias removed.
+  const auto q = TimeOffsetEstimator::IntegrateGyro(samples, 101'234'567, 703'000'001, bias);
+  ASSERT_TRUE(q.has_value());
+  const Vec3 expected = (w - bias) * (0.703000001 - 0.101234567);
+  EXPECT_LT((lie::QuatLog(*q) - expected).norm(), 1e-9);
+  EXPECT_FALSE(TimeOffsetEstimator::IntegrateGyro(samples, -1, 100, bias).has_value());
+  EXPECT_FALSE(TimeOffsetEstimator::IntegrateGyro(samples, 0, 1'000'000'001, bias).has_value());
+}
+
+struct OffsetRun {
+  TimeOffsetStatus status;
+  double max_step_s = 0.0;     ///< the largest change of the applied offset between sweeps
+  double first_update_s = -1;  ///< drive time of the first gated estimate
+};
+
+/// `aggressive` seed 42 for `duration_s`, its IMU measuring the motion `offset_s` before its
+/// stamps; every 0.1 s a sweep-end attitude from the truth with `sigma_rad` of noise per axis
+/// (the sweeps' registrations), fed after the samples up to it, as the estimator gets them.
+OffsetRun Drive(double offset_s, double duration_s, double sigma_rad, TimeOffsetConfig config) {
+  auto setup = sim::MakeSimSetup("aggressive", 42, duration_s);
+  setup->imu.time_offset_s = offset_s;
+  const std::vector<ImuSample> imu =
+      test::ToImuSamples(sim::SimulateImu(*setup->trajectory, setup->imu, 42));
+  TimeOffsetEstimator estimator(config);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> n01;
+  OffsetRun run;
+  size_t next = 0;
+  for (int64_t t_ns = kNsPerSec; t_ns < SecToNs(duration_s) - kNsPerSec; t_ns += 100'000'000) {
+    for (; next < imu.size() && imu[next].t_ns <= t_ns; ++next) estimator.AddImu(imu[next]);
+    const Vec3 noise(n01(rng) * sigma_rad, n01(rng) * sigma_rad, n01(rng) * sigma_rad);
+    const Eigen::Matrix3d R = test::TrueState(*setup->trajectory, t_ns).T_world_imu.linear();
+    const double before_s = estimator.status().offset_s;
+    estimator.AddRegistration(t_ns, Eigen::Quaterniond(R * lie::Exp(noise)));
+    run.max_step_s = std::max(run.max_step_s, std::abs(estimator.status().offset_s - before_s));
+    if (run.first_update_s < 0.0 && estimator.status().updates > 0)
+      run.first_update_s = NsToSec(t_ns);
+  }
+  run.status = estimator.status();
+  return run;
+}
+
+class TimeOffsetDrive : public ::testing::TestWithParam<double> {};
+
+TEST_P(TimeOffsetDrive, FoundWithinHalfAMillisecondAfterThirtySeconds) {
+  const double offset_s = GetParam();
+  // 0.03° of registration noise per sweep, about what a sweep's registration jitters by.
+  const OffsetRun run = Drive(offset_s, 35.0, 5e-4, TimeOffsetConfig{});
+  std::cout << "offset " << offset_s * 1e3 << " ms: applied " << run.status.offset_s * 1e3
+            << " ms, estimate " << run.status.estimate_s * 1e3 << " ± " << run.status.sigma_s * 1e3
+            << " ms, first update at " << run.first_update_s << " s, rows " << run.status.rows
+            << ", excitation " << run.status.excitation_radps << " rad/s\n";
+  EXPECT_NEAR(run.status.offset_s, offset_s, 5e-4);
+  EXPECT_NEAR(run.status.estimate_s, offset_s, 5e-4);
+  EXPECT_TRUE(run.status.gated);
+  EXPECT_GT(run.status.sigma_s, 0.0);
+  EXPECT_LT(run.status.sigma_s, TimeOffsetConfig{}.gate_sigma_s);
+  // Walked there in bounded steps.
+  EXPECT_LE(run.max_step_s, TimeOffsetConfig{}.max_step_s + 1e-9);
+}
+
+INSTANTIATE_TEST_SUITE_P(Offsets, TimeOffsetDrive, ::testing::Values(-0.010, -0.005, 0.005, 0.010));
+
+TEST(TimeOffsetEstimator, WithoutRotationChangesTheGateHoldsTheOffset) {
+  // The standing start of `aggressive` (the first 2 s): no change of rate, nothing to see.
+  TimeOffsetConfig config;
+  config.min_rows = 4;
+  const OffsetRun run = Drive(0.008, 3.0, 5e-4, config);
+  EXPECT_GT(run.status.rows, 4u);
+  EXPECT_EQ(run.status.updates, 0u);
+  EXPECT_FALSE(run.status.gated);
+  EXPECT_EQ(run.status.offset_s, 0.0);
+  EXPECT_GT(run.status.sigma_s, config.gate_sigma_s);
+}
+
+TEST(TimeOffsetEstimator, TheLimitBoundsTheEstimate) {
+  TimeOffsetConfig config;
+  config.max_offset_s = 0.004;
+  const OffsetRun run = Drive(0.010, 25.0, 5e-4, config);
+  EXPECT_LE(std::abs(run.status.estimate_s), 0.004 + 1e-12);
+  EXPECT_LE(std::abs(run.status.offset_s), 0.004 + 1e-9);
+}
+
+TEST(TimeOffsetEstimator, DisabledItNeitherShiftsNorEstimates) {
+  TimeOffsetConfig config;
+  config.enabled = false;
+  const OffsetRun run = Drive(0.010, 10.0, 5e-4, config);
+  EXPECT_EQ(run.status.rows, 0u);
+  EXPECT_EQ(run.status.offset_s, 0.0);
+  EXPECT_FALSE(run.status.enabled);
+  TimeOffsetEstimator e(config);
+  ImuSample s;
+  s.t_ns = 123;
+  EXPECT_EQ(e.Shifted(s).t_ns, 123);
+}
+
+TEST(TimeOffsetEstimator, AKnownOffsetIsAppliedAndKept) {
+  TimeOffsetConfig config;
+  config.estimate = false;
+  config.initial_offset_s = 0.007;
+  const OffsetRun run = Drive(0.0, 10.0, 5e-4, config);
+  EXPECT_EQ(run.status.rows, 0u);
+  EXPECT_NEAR(run.status.offset_s, 0.007, 1e-12);
+  TimeOffsetEstimator e(config);
+  ImuSample s;
+  s.t_ns = 100'000'000;
+  EXPECT_EQ(e.Shifted(s).t_ns, 93'000'000);  // stamped 7 ms late
+}
+
+TEST(TimeOffsetConfig, ValidateNamesTheBadKeys) {
+  EXPECT_TRUE(TimeOffsetConfig{}.Validate().empty());
+  TimeOffsetConfig c;
+  c.max_offset_s = -0.01;
+  c.max_step_s = 0.002;  // could reorder 400 Hz samples
+  c.gate_sigma_s = 0.0;
+  const ConfigIssues issues = c.Validate();
+  ASSERT_EQ(issues.size(), 4u);
+  EXPECT_EQ(issues[0].key, "max_offset_s");
+  EXPECT_EQ(issues[1].key, "initial_offset_s");  // 0 is outside [0.01, -0.01]
+  EXPECT_EQ(issues[2].key, "gate_sigma_s");
+  EXPECT_EQ(issues[3].key, "max_step_s");
+  TimeOffsetConfig start;
+  start.initial_offset_s = 0.06;  // beyond the limit
+  ASSERT_EQ(start.Validate().size(), 1u);
+  EXPECT_EQ(start.Validate()[0].key, "initial_offset_s");
+}
+
+}  // namespace
+}  // namespace swlio::estimator
