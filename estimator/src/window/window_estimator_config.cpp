@@ -18,6 +18,7 @@ ConfigIssues WindowEstimatorConfig::Validate() const {
   AppendWithPrefix(issues, "divergence", divergence.Validate());
   if (wheel.enabled) AppendWithPrefix(issues, "wheel", wheel.Validate());
   if (standstill.enabled) AppendWithPrefix(issues, "standstill", standstill.Validate());
+  if (visibility.enabled) AppendWithPrefix(issues, "visibility", visibility.Validate());
   CheckInRange<size_t>(issues, "window_size", window_size, 2, 50);
   CheckInRange(issues, "max_iterations", max_iterations, 1, 50);
   CheckInRange(issues, "reassociations", reassociations, 0, 5);

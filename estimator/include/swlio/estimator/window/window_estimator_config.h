@@ -94,6 +94,10 @@ struct WindowEstimatorConfig {
   WheelFactorConfig wheel;
   /// A frame at rest (IMU and LiDAR agree) gets a zero-velocity factor (standstill.h).
   StandstillConfig standstill;
+  /// Moving objects out of the local maps (visibility_image.h): each keyframe's sweep tests
+  /// the map points within check_radius_m, and points it sees through leave the maps; the
+  /// keyframe carries its image to loop closure (KeyframeCloud::visibility).
+  VisibilityConfig visibility;
   // Flags last (padding).
   /// Before the window solve, the newest frame is registered alone from the IMU prediction
   /// (ScanMatcher::Match, as the LiDAR-only mode does) and associated at that pose: the window
