@@ -85,9 +85,9 @@ void LoopClosure::RemoveSeenThrough(size_t newest, const KeyframeCloud& keyframe
   if (store_.has_cloud(newest)) {
     const Eigen::Isometry3d T = keyframe.T_world_imu * keyframe.T_imu_lidar;
     for (const std::shared_ptr<const VisibilityImage>& earlier : recent_images_) {
-      stats_.dynamic_removed += store_.VoteAndRemove(newest, remove_at, [&](const Eigen::Vector3f& p) {
-        return earlier->Test(T * p.cast<double>());
-      });
+      stats_.dynamic_removed += store_.VoteAndRemove(
+          newest, remove_at,
+          [&](const Eigen::Vector3f& p) { return earlier->Test(T * p.cast<double>()); });
     }
   }
   recent_images_.push_back(keyframe.visibility);

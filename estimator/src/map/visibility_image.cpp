@@ -126,10 +126,10 @@ Visibility VisibilityImage::Test(const Eigen::Vector3d& p_world) const {
   const float column_rad = 2.0f * std::numbers::pi_v<float> / static_cast<float>(columns_);
   const float azimuth = FastAtan2(-q.y(), q.x()) + std::numbers::pi_v<float>;
   const int column = std::clamp(static_cast<int>(azimuth / column_rad), 0, columns_ - 1);
-  const int half = std::clamp(
-      std::max(static_cast<int>(config_.neighbour_columns),
-               static_cast<int>(std::ceil(tolerance_m / range / column_rad))),
-      0, kMaxHalfColumns);
+  const int half =
+      std::clamp(std::max(static_cast<int>(config_.neighbour_columns),
+                          static_cast<int>(std::ceil(tolerance_m / range / column_rad))),
+                 0, kMaxHalfColumns);
   float nearest = std::numeric_limits<float>::infinity();
   int nearest_column = -1;
   for (int dc = -half; dc <= half; ++dc) {
@@ -147,7 +147,7 @@ Visibility VisibilityImage::Test(const Eigen::Vector3d& p_world) const {
   const float slope = SlopeAt(ring, nearest_column);
   if (slope < 0.0f) return Visibility::kUnknown;  // no ring beside it: grazing unknown
   return nearest > range + band + slope * (off_rad + kAngleSlackRad) ? Visibility::kSeenThrough
-                                                                      : Visibility::kUnknown;
+                                                                     : Visibility::kUnknown;
 }
 
 }  // namespace swlio::estimator

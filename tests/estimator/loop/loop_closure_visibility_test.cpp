@@ -170,8 +170,8 @@ TEST(LoopClosureVisibility, MovingObjectsLeaveTheMapsAndStaticStructureStays) {
                        test);
     }
     for (LocalMaps* m : {&local_with, &local_without}) {
-      for (auto [map, points] : {std::pair{&m->planes, &kf.planes_lidar},
-                                 std::pair{&m->edges, &kf.edges_lidar}}) {
+      for (auto [map, points] :
+           {std::pair{&m->planes, &kf.planes_lidar}, std::pair{&m->edges, &kf.edges_lidar}}) {
         std::vector<Eigen::Vector3d> world;
         for (const Eigen::Vector3d& p : *points) world.push_back(T_world_lidar * p);
         map->Insert(world);
@@ -202,8 +202,8 @@ TEST(LoopClosureVisibility, MovingObjectsLeaveTheMapsAndStaticStructureStays) {
     }
     std::printf("\n");
   }
-  std::printf("keyframes %zu, mover features %zu, removed from the stored clouds %zu\n",
-              keyframes, mover_features, with.stats().dynamic_removed);
+  std::printf("keyframes %zu, mover features %zu, removed from the stored clouds %zu\n", keyframes,
+              mover_features, with.stats().dynamic_removed);
   EXPECT_EQ(saved_on.unlabelled + saved_off.unlabelled, 0u) << "bookkeeping";
   // Without the removal the movers are in both maps (else this test could not fail).
   EXPECT_GT(saved_off.MoverShare(), 0.01);

@@ -107,17 +107,29 @@ inline std::vector<MovingBox> RouteMovers(const sim::SimSetup& setup, double t0_
   };
   std::vector<MovingBox> boxes;
   // A person crossing 8 m ahead at 1.3 m/s, from 5 m left to 5 m right.
-  boxes.push_back({{0.25, 0.25, 0.9}, t0_s + 2.0, t0_s + 2.0 + 10.0 / 1.3, at(t0_s + 2.0, 8, 5),
-                   at(t0_s + 2.0, 8, -5), yaw(t0_s + 2.0)});
+  boxes.push_back({{0.25, 0.25, 0.9},
+                   t0_s + 2.0,
+                   t0_s + 2.0 + 10.0 / 1.3,
+                   at(t0_s + 2.0, 8, 5),
+                   at(t0_s + 2.0, 8, -5),
+                   yaw(t0_s + 2.0)});
   // A car passing the other way at 5 m/s, 3 m to the left.
-  boxes.push_back({{2.2, 0.9, 0.75}, t0_s + 6.0, t0_s + 14.0, at(t0_s + 6.0, 25, 3.5),
-                   at(t0_s + 6.0, -15, 3.5), yaw(t0_s + 6.0)});
+  boxes.push_back({{2.2, 0.9, 0.75},
+                   t0_s + 6.0,
+                   t0_s + 14.0,
+                   at(t0_s + 6.0, 25, 3.5),
+                   at(t0_s + 6.0, -15, 3.5),
+                   yaw(t0_s + 6.0)});
   // A car parked 4 m to the right, 6 m ahead, that leaves 3 s after the robot passed it.
   const Eigen::Vector2d parked = at(t0_s, 6, -4.5);
   boxes.push_back({{2.2, 0.9, 0.75}, t0_s - 60.0, t0_s + 9.0, parked, parked, yaw(t0_s)});
   // A person walking beside the robot, 3 m to the left, at its own pace, for 8 s.
-  boxes.push_back({{0.25, 0.25, 0.9}, t0_s + 12.0, t0_s + 20.0, at(t0_s + 12.0, 3, 3),
-                   at(t0_s + 20.0, 3, 3), yaw(t0_s + 12.0)});
+  boxes.push_back({{0.25, 0.25, 0.9},
+                   t0_s + 12.0,
+                   t0_s + 20.0,
+                   at(t0_s + 12.0, 3, 3),
+                   at(t0_s + 20.0, 3, 3),
+                   yaw(t0_s + 12.0)});
   return boxes;
 }
 

@@ -19,7 +19,7 @@ struct StageTimes {
   /// A keyframe's local-map upkeep: moving objects out (visibility_image.h) and its features
   /// in (tightly coupled mode only; 0 on other sweeps).
   double map_ms = 0.0;
-  double total_ms = 0.0;     ///< the whole scan update
+  double total_ms = 0.0;  ///< the whole scan update
 };
 
 /// Stopwatch over an injected clock.

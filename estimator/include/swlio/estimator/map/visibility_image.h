@@ -33,8 +33,8 @@ namespace swlio::estimator {
 struct VisibilityConfig {
   /// Off: maps keep every point (the behaviour before issue 36).
   bool enabled = true;
-  int64_t rings = 16;      ///< rows; a point's ring must be below this
-  int64_t columns = 900;   ///< azimuth bins per turn (0.4°: two RS16 columns at 10 Hz)
+  int64_t rings = 16;     ///< rows; a point's ring must be below this
+  int64_t columns = 900;  ///< azimuth bins per turn (0.4°: two RS16 columns at 10 Hz)
   double min_range_m = 1.0;
   double max_range_m = 60.0;  ///< map points farther from the keyframe are not tested
   /// A point is tested only when the beam of its nearest ring passes within this distance.

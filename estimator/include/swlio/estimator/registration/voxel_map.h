@@ -164,7 +164,7 @@ class VoxelMap {
   std::vector<Voxel> voxels_;
   std::vector<std::vector<Eigen::Vector3d>> pool_;
   std::vector<std::vector<int8_t>> scores_;  ///< chunked as pool_
-  std::vector<Slot> slots_;  ///< size a power of two
+  std::vector<Slot> slots_;                  ///< size a power of two
   int slot_bits_ = 0;
   size_t points_ = 0;
   uint64_t revision_;
