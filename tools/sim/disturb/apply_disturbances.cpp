@@ -1,5 +1,6 @@
 #include "disturb/apply_disturbances.h"
 
+#include "disturb/actor_setup.h"
 #include "rng.h"
 
 namespace swlio::sim {
@@ -21,9 +22,13 @@ void SetUp(SimSetup* setup, Disturbance d, const DisturbanceOverrides& overrides
     case Disturbance::kTimeOffset:
       SetUpTimeOffset(setup, overrides);
       break;
-    // The other models are set up by their own files as they land (issue 36).
     case Disturbance::kPeople:
+      SetUpPeople(setup);
+      break;
     case Disturbance::kVehicles:
+      SetUpVehicles(setup);
+      break;
+    // The other models are set up by their own files as they land (issue 36).
     case Disturbance::kVibration:
     case Disturbance::kMixedPixels:
     case Disturbance::kRain:

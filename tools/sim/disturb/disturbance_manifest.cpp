@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "swlio/core/exact_number.h"
+#include "world/actors.h"
 
 namespace swlio::sim {
 
@@ -14,6 +15,21 @@ std::string DisturbanceManifestBlock(const SimSetup& setup) {
     y << "  # each IMU sample measures the motion of time_offset_s before the host time its\n"
       << "  # SampleTimeFine maps to: the estimator should find it as the IMU-LiDAR offset\n"
       << "  time_offset_s: " << ExactNumber(setup.imu.time_offset_s) << "\n";
+  }
+  if (setup.world->actors) {
+    int people = 0, people_moving = 0, vehicles = 0, vehicles_moving = 0;
+    for (const Actor& a : setup.world->actors->actors()) {
+      const bool moving = setup.world->actors->Moving(a.id());
+      (a.plan().kind == ActorKind::kPerson ? people : vehicles) += 1;
+      (a.plan().kind == ActorKind::kPerson ? people_moving : vehicles_moving) += moving ? 1 : 0;
+    }
+    y << "  # people and vehicles (actors.csv), drawn from the drive's seed; moving: they move\n"
+      << "  # at some time during the drive (the returns labelled moving come from them)\n"
+      << "  actor_people: " << people << "\n"
+      << "  actor_people_moving: " << people_moving << "\n"
+      << "  actor_vehicles: " << vehicles << "\n"
+      << "  actor_vehicles_moving: " << vehicles_moving << "\n"
+      << "  actor_vehicles_parked_all_drive: " << vehicles - vehicles_moving << "\n";
   }
   return y.str();
 }

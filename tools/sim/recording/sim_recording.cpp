@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "recording/actors_csv.h"
 #include "swlio/core/exact_number.h"
 #include "swlio/core/lie.h"
 #include "swlio/core/time.h"
@@ -163,6 +164,15 @@ bool WriteRecording(const SimSetup& setup,
   if (!WriteGroundTruth(setup, dir / "groundtruth.tum", stats)) {
     *error = "cannot write groundtruth.tum";
     return false;
+  }
+  if (setup.world->actors) {
+    std::ofstream actors(dir / "actors.csv");
+    if (!WriteActorsCsv(
+            *setup.world->actors, SimDuration(setup),
+            [](double t_s) { return kFileHostStartNs + SecToNs(t_s); }, actors)) {
+      *error = "cannot write actors.csv";
+      return false;
+    }
   }
   std::ofstream manifest(dir / "manifest.yaml");
   manifest << ManifestYaml(setup, *stats, kFileHostStartNs, "file");

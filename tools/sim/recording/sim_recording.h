@@ -8,6 +8,7 @@
 ///   wheel_truth.csv  true base speed and yaw rate of each wheel frame: t_ns,v_x_mps,yaw_rate_radps
 ///   groundtruth.tum  IMU body frame in the world frame, host time (s), TUM format
 ///   manifest.yaml    scenario, seed, true extrinsic, clocks, sensor settings, counts
+///   actors.csv       people and vehicles at 10 Hz (only with them on: recording/actors_csv.h)
 /// imu.xbus carries GnssPvtData in the messages of the GNSS epochs (gnss_sim.h) unless
 /// imu.gnss_pvt_period_s is 0; can.log and wheel_truth.csv are left out when !wheel.enabled.
 /// Host times of a file recording start at kFileHostStartNs.

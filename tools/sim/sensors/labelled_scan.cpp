@@ -58,6 +58,7 @@ bool LabelledScanSource::Next(LabelledScan* out, double t_min_s) {
     out->scan.t_start_ns = start_ns;
     out->scan.t_end_ns = sweep.empty() ? start_ns : sweep.back().t_true_ns;
     out->cls.clear();
+    out->moving.clear();
     out->p_world.clear();
     out->T_world_lidar_end = LidarPose(NsToSec(out->scan.t_end_ns));
     const Eigen::Isometry3d T_end_world = out->T_world_lidar_end.inverse();
@@ -77,6 +78,7 @@ bool LabelledScanSource::Next(LabelledScan* out, double t_min_s) {
       p.dt_ns = r.t_true_ns - start_ns;
       out->scan.points.push_back(p);
       out->cls.push_back(r.cls);
+      out->moving.push_back(r.moving ? 1 : 0);
       out->p_world.push_back(r.p_world);
     }
     return true;

@@ -16,8 +16,11 @@
 namespace swlio::sim {
 
 struct LabelledScan {
-  Scan scan;                             ///< points in the LiDAR frame at `t_end_ns`
-  std::vector<SurfaceClass> cls;         ///< true class, one per point
+  Scan scan;                      ///< points in the LiDAR frame at `t_end_ns`
+  std::vector<SurfaceClass> cls;  ///< true class, one per point
+  /// One per point: 1 when it came from an actor that moves at some time during the drive (a
+  /// walking person, a driving vehicle, a parked one that leaves), else 0 (SimReturn::moving).
+  std::vector<uint8_t> moving;
   std::vector<Eigen::Vector3d> p_world;  ///< true hit point, one per point
   Eigen::Isometry3d T_world_lidar_end = Eigen::Isometry3d::Identity();
 };

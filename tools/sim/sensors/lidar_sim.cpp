@@ -96,6 +96,17 @@ void LidarSimulator::MakeDifop(SimPacket* out) {
   last_rx_ns_ = out->t_rx_ns;
 }
 
+void LidarSimulator::BeginActors(double t0_s, const Eigen::Isometry3d& pose) {
+  const double t1_s = t0_s + NsToSec(kMsopPeriodNs);
+  auto horizontal = [&](double t_s) {
+    const double alpha = SimAzimuthDeg(config_, t_s) * kDegToRad;
+    return Eigen::Vector2d((pose.linear() * SimRayDirection(config_, 0, alpha)).head<2>())
+        .normalized();
+  };
+  actor_rays_.BeginPacket(*world_->actors, t0_s, t1_s, pose.translation(), horizontal(t0_s),
+                          horizontal(t1_s), config_.max_range_m);
+}
+
 void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
   const uint64_t index = msop_index_++;
   const double t0 = PacketStartS(index);
@@ -104,8 +115,11 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
   out->t_header_s = t0;
   if (returns != nullptr) returns->clear();
   Eigen::Isometry3d pose_a = LidarPose(t0);
+  const bool actors = world_->actors != nullptr;
+  if (actors) BeginActors(t0, pose_a);
   for (int f = 0; f < kFiringsPerPacket; ++f) {
     const double t_seq = t0 + NsToSec(f * kFiringPeriodNs);
+    if (actors) actor_rays_.SetTime(t_seq);
     const Eigen::Isometry3d pose_b = LidarPose(t_seq + NsToSec(kFiringPeriodNs));
     const Eigen::Vector3d dphi = lie::Log(pose_a.linear().transpose() * pose_b.linear());
     auto& block = content.blocks[static_cast<size_t>(f / 2)];
@@ -120,7 +134,10 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
       const double alpha = SimAzimuthDeg(config_, t_fire) * kDegToRad;
       const Eigen::Vector3d dir = R * SimRayDirection(config_, static_cast<size_t>(laser), alpha);
       const Eigen::Vector3d lens = origin + R * SimLensCentre(config_, alpha);
-      const RayHit hit = world_->Cast(lens, dir, config_.max_range_m);
+      RayHit hit = world_->Cast(lens, dir, config_.max_range_m);
+      uint16_t actor = 0;
+      bool moving = false;
+      if (actors) actor_rays_.Cast(lens, dir, config_.max_range_m, &hit, &actor, &moving);
       double range = 0.0;
       if (hit.range_m > 0.0 && rng_.Uniform() >= config_.dropout) {
         range = hit.range_m + rng_.Normal(config_.range_sigma_m);
@@ -133,7 +150,8 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
       if (returns != nullptr) {
         returns->push_back({SecToNs(t_fire), static_cast<uint8_t>(f / 2),
                             static_cast<uint8_t>(slot), static_cast<uint8_t>(laser), range,
-                            hit.range_m, hit.cls, lens + std::max(hit.range_m, 0.0) * dir});
+                            hit.range_m, hit.cls, lens + std::max(hit.range_m, 0.0) * dir, actor,
+                            moving});
       }
     }
     pose_a = pose_b;

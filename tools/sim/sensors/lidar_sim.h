@@ -16,6 +16,7 @@
 #include "scenarios/trajectory.h"
 #include "sensors/imu_sim.h"
 #include "swlio/drivers/rs16_protocol.h"
+#include "world/actor_rays.h"
 #include "world/world.h"
 
 namespace swlio::sim {
@@ -63,6 +64,8 @@ struct SimReturn {
   double true_range_m = 0.0;  ///< from the lens centre to the surface
   SurfaceClass cls = SurfaceClass::kNone;
   Eigen::Vector3d p_world = Eigen::Vector3d::Zero();  ///< true hit point
+  uint16_t actor = 0;   ///< 0: the static world; else the id of the actor hit (world/actors.h)
+  bool moving = false;  ///< that actor moves at some time during the drive (ActorSet::Moving)
 };
 
 /// Motor azimuth at simulation time `t_s`, degrees in [0, 360), clockwise seen from above.
@@ -104,6 +107,8 @@ class LidarSimulator {
  private:
   void MakeMsop(SimPacket* out, std::vector<SimReturn>* returns);
   void MakeDifop(SimPacket* out);
+  /// Picks the actors this packet (starting at `t0_s`, LiDAR pose `pose`) may hit.
+  void BeginActors(double t0_s, const Eigen::Isometry3d& pose);
   Eigen::Isometry3d LidarPose(double t_s) const;
   int64_t MsopRxNs(uint64_t index) const;
 
@@ -111,6 +116,7 @@ class LidarSimulator {
   const Trajectory* trajectory_;
   LidarSimConfig config_;
   Rng rng_;
+  ActorRays actor_rays_;  ///< the actors a packet's rays may hit (world_->actors)
   uint64_t msop_index_ = 0;
   uint64_t difop_index_ = 0;
   int64_t last_rx_ns_ = 0;  ///< keeps receive times in order

@@ -113,6 +113,10 @@ const char* ClassName(SurfaceClass c) {
       return "trench";
     case SurfaceClass::kTree:
       return "tree";
+    case SurfaceClass::kPerson:
+      return "person";
+    case SurfaceClass::kVehicle:
+      return "vehicle";
   }
   return "unknown";
 }

@@ -6,12 +6,15 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "world/terrain.h"
 
 namespace swlio::sim {
+
+class ActorSet;
 
 enum class SurfaceClass : uint8_t {
   kNone = 0,
@@ -25,6 +28,8 @@ enum class SurfaceClass : uint8_t {
   kBusbar,
   kTrench,  ///< cable-trench covers
   kTree,
+  kPerson,   ///< a walking or standing person (world/actors.h)
+  kVehicle,  ///< a maintenance van or pickup, driving or parked (world/actors.h)
 };
 
 const char* ClassName(SurfaceClass c);
@@ -71,6 +76,9 @@ class World {
   float ground_reflectivity = 25.0f;
   Eigen::Vector2d bounds_min = Eigen::Vector2d::Zero();  ///< extent of the grid
   Eigen::Vector2d bounds_max = Eigen::Vector2d::Zero();
+  /// People and vehicles moving through the world (null: none). Cast() sees only the static
+  /// primitives; the LiDAR simulator adds the actors at each firing's time (actor_rays.h).
+  std::shared_ptr<const ActorSet> actors;
 
   void AddBox(const Box& b, SurfaceClass cls, float reflectivity);
   void AddCylinder(const Cylinder& c, SurfaceClass cls, float reflectivity);
