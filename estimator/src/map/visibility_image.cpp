@@ -45,7 +45,7 @@ VisibilityImage::VisibilityImage(const VisibilityConfig& config)
     : config_(config),
       rings_(static_cast<int>(config.rings)),
       columns_(static_cast<int>(config.columns)),
-      range_m_(static_cast<size_t>(config.rings * config.columns), 0.0f),
+      range_cm_(static_cast<size_t>(config.rings * config.columns), 0),
       ring_elevation_rad_(static_cast<size_t>(config.rings), 0.0f),
       ring_seen_(static_cast<size_t>(config.rings), 0) {}
 
@@ -53,7 +53,7 @@ void VisibilityImage::Build(std::span<const LidarPoint> points_lidar,
                             const Eigen::Isometry3d& T_world_lidar) {
   T_world_lidar_ = T_world_lidar;
   T_lidar_world_ = T_world_lidar.inverse();
-  std::fill(range_m_.begin(), range_m_.end(), 0.0f);
+  std::fill(range_cm_.begin(), range_cm_.end(), uint16_t{0});
   std::vector<double> sum(static_cast<size_t>(rings_), 0.0);
   std::vector<int64_t> count(static_cast<size_t>(rings_), 0);
   const float columns_per_rad = static_cast<float>(columns_) / (2.0f * std::numbers::pi_v<float>);
@@ -63,9 +63,10 @@ void VisibilityImage::Build(std::span<const LidarPoint> points_lidar,
     if (!(range > kMinReturnM) || !std::isfinite(range)) continue;
     const float azimuth = FastAtan2(-p.xyz_m.y(), p.xyz_m.x()) + std::numbers::pi_v<float>;
     const int column = std::clamp(static_cast<int>(azimuth * columns_per_rad), 0, columns_ - 1);
-    float& cell = range_m_[static_cast<size_t>(p.ring) * static_cast<size_t>(columns_) +
-                           static_cast<size_t>(column)];
-    if (cell == 0.0f || range < cell) cell = range;
+    uint16_t& cell = range_cm_[static_cast<size_t>(p.ring) * static_cast<size_t>(columns_) +
+                               static_cast<size_t>(column)];
+    const auto cm = static_cast<uint16_t>(std::clamp(std::lround(range * 100.0f), 1L, 65535L));
+    if (cell == 0 || cm < cell) cell = cm;
     sum[p.ring] += Elevation(p.xyz_m);
     ++count[p.ring];
   }

@@ -21,7 +21,7 @@ struct MapVisibilityConfig {
   bool enabled = true;
   int64_t votes_to_remove = 2;
   double check_radius_m = 40.0;
-  int64_t recent_nodes = 10;  ///< 58 kB each (16 × 900 floats)
+  int64_t recent_nodes = 10;  ///< 29 kB each (visibility_image.h)
 
   ConfigIssues Validate() const;
 };

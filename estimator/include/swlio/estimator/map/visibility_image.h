@@ -77,12 +77,16 @@ class VisibilityImage {
 
   const Eigen::Isometry3d& T_world_lidar() const { return T_world_lidar_; }
   /// Heap bytes held (the image and the ring table).
-  size_t bytes() const { return range_m_.capacity() * sizeof(float) + 3 * sizeof(float) * 64; }
+  size_t bytes() const {
+    return range_cm_.capacity() * sizeof(uint16_t) + ring_elevation_rad_.capacity() * 5;
+  }
 
  private:
+  /// Range of a cell in metres, 0 when it had no return.
   float RangeAt(int ring, int column) const {
-    return range_m_[static_cast<size_t>(ring) * static_cast<size_t>(columns_) +
-                    static_cast<size_t>(column)];
+    return static_cast<float>(range_cm_[static_cast<size_t>(ring) * static_cast<size_t>(columns_) +
+                                        static_cast<size_t>(column)]) *
+           0.01f;
   }
   int NearestRing(float elevation_rad) const;
   /// Range slope across rings at `column` around `ring` (m/rad), or < 0 when unknown.
@@ -93,7 +97,9 @@ class VisibilityImage {
   int columns_;
   Eigen::Isometry3d T_world_lidar_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d T_lidar_world_ = Eigen::Isometry3d::Identity();
-  std::vector<float> range_m_;  ///< nearest return per cell, 0 = none
+  /// Nearest return per cell in centimetres (to 655 m), 0 = none: half the bytes of a float,
+  /// for the keyframes queued to loop closure (up to 256 in swliod, 29 kB each).
+  std::vector<uint16_t> range_cm_;
   /// Mean elevation of each ring's returns (rad), and whether it had any.
   std::vector<float> ring_elevation_rad_;
   std::vector<uint8_t> ring_seen_;
