@@ -1,9 +1,10 @@
 // Moving objects out of the saved map (LoopClosureConfig::visibility, visibility_image.h) and
 // out of the local map (VoxelMap::VoteAndRemove, as the window uses it): simulated sweeps of
 // `short` with test-side movers (moving_boxes.h: a person crossing, a car passing, a car parked
-// then gone, a person walking beside), keyframes at the true poses, features from the window's
-// front end. Every feature's label is carried by its position: the saved map's points are the
-// features moved back into the world at the same poses, so each is looked up to the millimetre.
+// then gone, a person walking beside), and with the simulator's own people and vehicles;
+// keyframes at the true poses, features from the window's front end. Every feature's label is
+// carried by its position: the saved map's points are the features moved back into the world at the
+// same poses, so each is looked up to the millimetre.
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 #include <memory>
 #include <unordered_map>
 
+#include "disturb/apply_disturbances.h"
 #include "moving_boxes.h"
 #include "scenarios/sim_setup.h"
 #include "sensors/labelled_scan.h"
@@ -106,11 +108,18 @@ struct LocalMaps {
   VoxelMap planes, edges;
 };
 
-TEST(LoopClosureVisibility, MovingObjectsLeaveTheMapsAndStaticStructureStays) {
-  constexpr double kStartS = 1.0, kEndS = 26.0;
-  auto setup = sim::MakeSimSetup("short", 1, kEndS, std::nullopt, kStartS);
-  ASSERT_TRUE(setup.has_value());
-  const std::vector<test::MovingBox> boxes = test::RouteMovers(*setup, kStartS + 1.0);
+/// The four maps after a drive: keyframes at the true poses from `start_s` on, the boxes
+/// injected (none: the simulator's own actors, by LabelledScan::moving).
+struct DriveMaps {
+  Counts saved_on, saved_off, local_on, local_off;
+  size_t keyframes = 0, mover_features = 0;
+};
+
+DriveMaps Drive(const sim::SimSetup& setup_ref,
+                const std::vector<test::MovingBox>& boxes,
+                double start_s) {
+  const sim::SimSetup* setup = &setup_ref;
+
   const WindowEstimatorConfig window = WithWindowFeatures(WindowEstimatorConfig{});
   FrontEnd front_end(window.odometry.front_end);
   FrontEndOutput features;
@@ -129,7 +138,7 @@ TEST(LoopClosureVisibility, MovingObjectsLeaveTheMapsAndStaticStructureStays) {
   sim::LabelledScan ls;
   std::vector<uint16_t> mover;
   std::optional<Eigen::Isometry3d> last;
-  while (source.Next(&ls, kStartS)) {
+  while (source.Next(&ls, start_s)) {
     const Eigen::Isometry3d& T_world_lidar = ls.T_world_lidar_end;
     if (last) {
       const Eigen::Isometry3d d = last->inverse() * T_world_lidar;
@@ -150,6 +159,7 @@ TEST(LoopClosureVisibility, MovingObjectsLeaveTheMapsAndStaticStructureStays) {
       for (const FeaturePoint& f : *from) {
         to->push_back(f.xyz_m.cast<double>());
         const sim::SurfaceClass cls = ls.cls[f.source_index];
+        if (!ls.moving.empty() && ls.moving[f.source_index] != 0) mover[f.source_index] = 1;
         const Label label = mover[f.source_index] != 0
                                 ? static_cast<Label>(kMover + mover[f.source_index] - 1)
                                 : static_cast<Label>(cls);
@@ -178,13 +188,23 @@ TEST(LoopClosureVisibility, MovingObjectsLeaveTheMapsAndStaticStructureStays) {
       }
     }
   }
-  ASSERT_GT(keyframes, 50u);
-  ASSERT_GT(mover_features, 500u) << "the movers must be seen";
+  DriveMaps out;
+  out.keyframes = keyframes;
+  out.mover_features = mover_features;
+  out.saved_on = CountSavedMap(with.ToSavedMap(), index);
+  out.saved_off = CountSavedMap(without.ToSavedMap(), index);
+  out.local_on = CountLocalMap(local_with.planes, local_with.edges, index);
+  out.local_off = CountLocalMap(local_without.planes, local_without.edges, index);
+  std::printf("keyframes %zu, mover features %zu, removed from the stored clouds %zu\n", keyframes,
+              mover_features, with.stats().dynamic_removed);
+  return out;
+}
 
-  const Counts saved_on = CountSavedMap(with.ToSavedMap(), index);
-  const Counts saved_off = CountSavedMap(without.ToSavedMap(), index);
-  const Counts local_on = CountLocalMap(local_with.planes, local_with.edges, index);
-  const Counts local_off = CountLocalMap(local_without.planes, local_without.edges, index);
+void ExpectCleanMaps(const DriveMaps& d) {
+  ASSERT_GT(d.keyframes, 50u);
+  ASSERT_GT(d.mover_features, 500u) << "the movers must be seen";
+  const Counts &saved_on = d.saved_on, &saved_off = d.saved_off;
+  const Counts &local_on = d.local_on, &local_off = d.local_off;
   for (const auto& [name, c] : {std::pair{"saved map, removal on ", saved_on},
                                 std::pair{"saved map, removal off", saved_off},
                                 std::pair{"local map, removal on ", local_on},
@@ -202,8 +222,6 @@ TEST(LoopClosureVisibility, MovingObjectsLeaveTheMapsAndStaticStructureStays) {
     }
     std::printf("\n");
   }
-  std::printf("keyframes %zu, mover features %zu, removed from the stored clouds %zu\n", keyframes,
-              mover_features, with.stats().dynamic_removed);
   EXPECT_EQ(saved_on.unlabelled + saved_off.unlabelled, 0u) << "bookkeeping";
   // Without the removal the movers are in both maps (else this test could not fail).
   EXPECT_GT(saved_off.MoverShare(), 0.01);
@@ -219,6 +237,25 @@ TEST(LoopClosureVisibility, MovingObjectsLeaveTheMapsAndStaticStructureStays) {
   EXPECT_GE(kept(saved_on.thin, saved_off.thin), 0.98);
   EXPECT_GE(kept(local_on.static_points, local_off.static_points), 0.98);
   EXPECT_GE(kept(local_on.thin, local_off.thin), 0.98);
+}
+
+TEST(LoopClosureVisibility, InjectedMoversLeaveTheMapsAndStaticStructureStays) {
+  constexpr double kStartS = 1.0;
+  auto setup = sim::MakeSimSetup("short", 1, 26.0, std::nullopt, kStartS);
+  ASSERT_TRUE(setup.has_value());
+  ExpectCleanMaps(Drive(*setup, test::RouteMovers(*setup, kStartS + 1.0), kStartS));
+}
+
+// The simulator's own people and vehicles (swlio-sim --disturb people,vehicles), labelled by
+// the simulator (moving: they move at some time during the drive).
+TEST(LoopClosureVisibility, SimulatedActorsLeaveTheMapsAndStaticStructureStays) {
+  auto setup = sim::MakeSimSetup("short", 1, 30.0);
+  ASSERT_TRUE(setup.has_value());
+  std::string error;
+  const auto actors = sim::ParseDisturbanceList("people,vehicles", &error);
+  ASSERT_TRUE(actors.has_value()) << error;
+  sim::ApplyDisturbances(&*setup, *actors);
+  ExpectCleanMaps(Drive(*setup, {}, 1.0));
 }
 
 }  // namespace
