@@ -45,6 +45,9 @@ set(_swlio_release_only
   # the relocalization, look-alike bay and lost-pose cases stay.
   "\\.MapLocalizer\\.(NeverLocalizesInTheMapOfAnotherPlace|WaitsWhereEveryPlaceHasALookAlike)"
   "\\.MapLocalizer\\.(KeepsTrackingWhereTheSceneChanged|ThrottlesRelocalizationWhileAmbiguous)"
+  # Moving objects out of the maps: 25 s of `short` ray cast with injected movers (10 s in
+  # Release); VisibilityImage.* runs the same tests on hand-made sweeps under the sanitizers.
+  "\\.LoopClosureVisibility\\."
   # Three drives, each exported to a bag and run four times; the bag readers, the bag input
   # and the real bag's LiDAR-only run stay under ASan.
   "/BagInputOnDrive\\.")

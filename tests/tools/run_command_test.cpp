@@ -86,7 +86,7 @@ TEST_F(RunOnShortDrive, LidarOnlyFollowsTheSimulatedDrive) {
   ASSERT_EQ(code, 0) << out;
   std::string header;
   const size_t timing_lines = CountLines(dir / "t.csv", &header);
-  EXPECT_EQ(header, "t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms");
+  EXPECT_EQ(header, "t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms,map_ms");
   EXPECT_GE(timing_lines, 240u);  // one per sweep (10 Hz) plus the header
   EXPECT_GE(CountLines(dir / "est.tum", nullptr), 200u);
   EXPECT_EQ(CountLines(dir / "d.csv", &header), timing_lines);

@@ -46,6 +46,7 @@ struct Options {
   std::string wheel = "off", gnss = "off", out_enu;  ///< optional sensors (aux_sensors.h)
   std::string time_offset = "on";      ///< window.time_offset: on (estimated), fixed, off
   double time_offset_init_ms = 0.0;    ///< window.time_offset.initial_offset_s (ms)
+  std::string dynamic_removal = "on";  ///< moving objects out of the maps (visibility_image.h)
   std::string save_map, map_pcd, map;  ///< map files (loop closure writes, --localize reads)
   bool localize = false;
   std::string dir, out, timings, diagnostics, covariance, config, mode = "tightly-coupled";
@@ -69,9 +70,9 @@ struct Options {
 
 void WriteTimings(std::ostream& out, const OdometryResult& r, int64_t t_ns) {
   char line[256];
-  std::snprintf(line, sizeof line, "%lld,%zu,%.4f,%.4f,%.4f,%.4f", static_cast<long long>(t_ns),
-                r.points_in, r.times.frontend_ms, r.times.match_ms, r.times.optimize_ms,
-                r.times.total_ms);
+  std::snprintf(line, sizeof line, "%lld,%zu,%.4f,%.4f,%.4f,%.4f,%.4f",
+                static_cast<long long>(t_ns), r.points_in, r.times.frontend_ms, r.times.match_ms,
+                r.times.optimize_ms, r.times.total_ms, r.times.map_ms);
   out << line << '\n';
 }
 
@@ -373,7 +374,7 @@ int Run(const Options& opt) {
     }
   }
   tum << "# timestamp tx ty tz qx qy qz qw  (IMU frame, host time, sweep end)\n";
-  if (timings) timings << "t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms\n";
+  if (timings) timings << "t_ns,points,frontend_ms,match_ms,optimize_ms,total_ms,map_ms\n";
   if (diagnostics) diagnostics << kDiagnosticsHeader << '\n';
   if (covariance) covariance << CovarianceHeader() << '\n';
 
@@ -382,6 +383,10 @@ int Run(const Options& opt) {
   swlio::estimator::WindowEstimatorConfig window_config = daemon_config.window;
   window_config.odometry = config;
   ApplyWindowFlags(opt, &window_config);
+  if (opt.given.count("--dynamic-removal") > 0) {
+    window_config.visibility.enabled = opt.dynamic_removal == "on";
+    daemon_config.loop_closure.visibility.enabled = opt.dynamic_removal == "on";
+  }
   if (const auto issues = window_config.Validate(); !issues.empty()) {
     for (const auto& issue : issues)
       std::cerr << "swlio-run: " << issue.key << ": " << issue.reason << "\n";
@@ -602,6 +607,11 @@ int Main(int argc, char** argv) {
          "loop closure and pose graph (tightly-coupled; estimator.loop_closure in --config)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  app.add_option("--dynamic-removal", opt.dynamic_removal,
+                 "moving objects out of the local and saved maps by what later sweeps see "
+                 "through (estimator.window.visibility, estimator.loop_closure.visibility)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   app.add_option("--wheel", opt.wheel,
                  "wheel odometry from the recording's can.log (a bag: its Odometry or "
                  "TwistStamped topic) as a velocity factor (tightly-coupled; "
@@ -641,7 +651,8 @@ int Main(int argc, char** argv) {
       ->needs("--map");
   app.add_option("--timings", opt.timings,
                  "per-scan stage timings CSV (t_ns,points,frontend_ms,match_ms,optimize_ms,"
-                 "total_ms; thread CPU time, 0 for a stage that did not run)");
+                 "total_ms,map_ms; thread CPU time, 0 for a stage that did not run; map_ms: a "
+                 "keyframe's map upkeep, in total_ms)");
   app.add_option("--covariance", opt.covariance,
                  "per-sweep state and its marginal covariance CSV (tightly coupled mode; "
                  "see state_covariance.h for the order)");
@@ -656,7 +667,7 @@ int Main(int argc, char** argv) {
        {"--window-size", "--iterations", "--reassociations", "--lidar-sigma", "--bias-prior-acc",
         "--estimate-extrinsic", "--degenerate-eigenvalue", "--calibrate-extrinsic",
         "--lidar-floor-m", "--lidar-floor-tilt", "--lidar-floor-yaw", "--loop-closure", "--wheel",
-        "--gnss", "--time-offset", "--time-offset-init-ms"}) {
+        "--gnss", "--time-offset", "--time-offset-init-ms", "--dynamic-removal"}) {
     if (app.count(flag) > 0) opt.given.insert(flag);
   }
   return Run(opt);

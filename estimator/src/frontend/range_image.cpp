@@ -5,7 +5,6 @@
 #include <numbers>
 
 namespace swlio::estimator {
-namespace {
 
 // atan2 from an 11th-order odd minimax polynomial for atan on [−1, 1] (|error| < 1e-5 rad =
 // 0.0006°, against 0.2° columns) and octant folding; several times cheaper than std::atan2.
@@ -25,8 +24,6 @@ float FastAtan2(float y, float x) {
   if (x < 0.0f) a = std::numbers::pi_v<float> - a;
   return y < 0.0f ? -a : a;
 }
-
-}  // namespace
 
 ConfigIssues RangeImageConfig::Validate() const {
   ConfigIssues issues;

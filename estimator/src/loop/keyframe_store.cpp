@@ -26,8 +26,11 @@ void KeyframeStore::Add(const KeyframeCloud& keyframe, bool keep_cloud) {
   c.kept = true;
   c.planes_lidar = Compact(keyframe.planes_lidar);
   c.edges_lidar = Compact(keyframe.edges_lidar);
+  c.plane_scores.assign(c.planes_lidar.size(), 0);
+  c.edge_scores.assign(c.edges_lidar.size(), 0);
   ++kept_;
-  bytes_ += (c.planes_lidar.capacity() + c.edges_lidar.capacity()) * sizeof(Eigen::Vector3f);
+  bytes_ += (c.planes_lidar.capacity() + c.edges_lidar.capacity()) * sizeof(Eigen::Vector3f) +
+            c.plane_scores.capacity() + c.edge_scores.capacity();
 }
 
 std::vector<Eigen::Vector3d> KeyframeStore::Planes(size_t i, const Eigen::Isometry3d& T) const {

@@ -12,7 +12,7 @@ namespace {
 
 /// The keyframe's time and poses (the clouds go to the store).
 KeyframeCloud PosesOnly(const KeyframeCloud& keyframe) {
-  return {keyframe.t_ns, keyframe.T_world_imu, keyframe.T_imu_lidar, {}, {}};
+  return {keyframe.t_ns, keyframe.T_world_imu, keyframe.T_imu_lidar, {}, {}, nullptr};
 }
 
 }  // namespace
@@ -52,6 +52,7 @@ LoopClosureUpdate LoopClosure::AddKeyframe(const KeyframeCloud& keyframe) {
   const bool known_place = IsKnownPlace(newest, keyframe.t_ns);
   nodes_.push_back(PosesOnly(keyframe));
   store_.Add(keyframe, !known_place);
+  RemoveSeenThrough(newest, keyframe);
   descriptors_.Add(KeyframeDescriptor(config_.descriptor, keyframe));
   update.node_added = true;
   stats_.nodes = nodes_.size();
@@ -62,6 +63,35 @@ LoopClosureUpdate LoopClosure::AddKeyframe(const KeyframeCloud& keyframe) {
     if (gnss_since_optimize_ >= config_.gnss.optimize_every_fixes) OptimizeGraph(&update);
   }
   return update;
+}
+
+void LoopClosure::RemoveSeenThrough(size_t newest, const KeyframeCloud& keyframe) {
+  const MapVisibilityConfig& c = config_.visibility;
+  if (!c.enabled || keyframe.visibility == nullptr) return;
+  const VisibilityImage& image = *keyframe.visibility;
+  const auto remove_at = static_cast<int>(c.votes_to_remove);
+  // The older clouds in the map frame (graph poses), brought into the image's odometry world.
+  const Eigen::Isometry3d T_map_lidar = graph_.pose(newest) * keyframe.T_imu_lidar;
+  const Eigen::Isometry3d T_world_map = image.T_world_lidar() * T_map_lidar.inverse();
+  for (size_t k = 0; k < newest; ++k) {
+    if (!store_.has_cloud(k) ||
+        (graph_.pose(k).translation() - T_map_lidar.translation()).norm() > c.check_radius_m)
+      continue;
+    const Eigen::Isometry3d T = T_world_map * graph_.pose(k) * nodes_[k].T_imu_lidar;
+    stats_.dynamic_removed += store_.VoteAndRemove(
+        k, remove_at, [&](const Eigen::Vector3f& p) { return image.Test(T * p.cast<double>()); });
+  }
+  // The new cloud against the sweeps just before it (all in the odometry world, moments apart).
+  if (store_.has_cloud(newest)) {
+    const Eigen::Isometry3d T = keyframe.T_world_imu * keyframe.T_imu_lidar;
+    for (const std::shared_ptr<const VisibilityImage>& earlier : recent_images_) {
+      stats_.dynamic_removed += store_.VoteAndRemove(
+          newest, remove_at,
+          [&](const Eigen::Vector3f& p) { return earlier->Test(T * p.cast<double>()); });
+    }
+  }
+  recent_images_.push_back(keyframe.visibility);
+  while (recent_images_.size() > static_cast<size_t>(c.recent_nodes)) recent_images_.pop_front();
 }
 
 bool LoopClosure::IsKnownPlace(size_t newest, int64_t t_ns) const {

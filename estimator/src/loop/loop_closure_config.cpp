@@ -2,8 +2,17 @@
 
 namespace swlio::estimator {
 
+ConfigIssues MapVisibilityConfig::Validate() const {
+  ConfigIssues issues;
+  CheckInRange<int64_t>(issues, "votes_to_remove", votes_to_remove, 1, 100);
+  CheckInRange(issues, "check_radius_m", check_radius_m, 1.0, 1000.0);
+  CheckInRange<int64_t>(issues, "recent_nodes", recent_nodes, 0, 1000);
+  return issues;
+}
+
 ConfigIssues LoopClosureConfig::Validate() const {
   ConfigIssues issues;
+  if (visibility.enabled) AppendWithPrefix(issues, "visibility", visibility.Validate());
   CheckPositive(issues, "keyframe_distance_m", keyframe_distance_m);
   CheckPositive(issues, "keyframe_angle_rad", keyframe_angle_rad);
   CheckPositive(issues, "search_radius_m", search_radius_m);

@@ -47,6 +47,7 @@ size_t VoxelMap::Insert(const std::vector<Eigen::Vector3d>& points_world) {
       return (q - p).squaredNorm() < min_sq;
     });
     if (crowded) continue;
+    ScoresOf(v)[count] = 0;
     points[count++] = p;
     ++stored;
   }
@@ -181,6 +182,8 @@ size_t VoxelMap::RemoveFar(const Eigen::Vector3d& center_world) {
     if (kept != v) {
       const Eigen::Vector3d* from = PointsOf(v);
       std::copy(from, from + voxel.count, PointsOf(kept));  // kept < v: another voxel's slots
+      const int8_t* from_scores = ScoresOf(v);
+      std::copy(from_scores, from_scores + voxel.count, ScoresOf(kept));
       voxels_[kept] = voxel;
     }
     ++kept;
@@ -188,10 +191,16 @@ size_t VoxelMap::RemoveFar(const Eigen::Vector3d& center_world) {
   if (kept == voxels_.size()) return 0;
   voxels_.resize(kept);
   pool_.resize((kept + kChunkVoxels - 1) / kChunkVoxels);
+  scores_.resize(pool_.size());
   Reindex(slots_.size());
   points_ -= removed;
   revision_ = NextRevision();
   return removed;
+}
+
+void VoxelMap::Removed(size_t points) {
+  points_ -= points;
+  revision_ = NextRevision();
 }
 
 // The classic spatial hash (Teschner et al., 2003): the exclusive or of one term per axis.
@@ -229,6 +238,7 @@ uint32_t VoxelMap::FindOrAdd(const Key& key) {
   voxels_.push_back({key, 0});
   if (v / kChunkVoxels >= pool_.size()) {
     pool_.emplace_back(size_t{kChunkVoxels} * config_.max_points_per_voxel);
+    scores_.emplace_back(size_t{kChunkVoxels} * config_.max_points_per_voxel, int8_t{0});
   }
   return v;
 }

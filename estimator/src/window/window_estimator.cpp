@@ -410,11 +410,15 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   const Eigen::Isometry3d T_world_lidar = PoseFromParameters(newest.pose.data()) * T_imu_lidar();
   result.keyframe = IsKeyframe(T_world_lidar);
   if (result.keyframe) {
-    InsertFeatures(newest);
+    result.times.optimize_ms += timer.Lap();
+    std::shared_ptr<const VisibilityImage> image = InsertFeatures(newest, &out.dynamic_removed);
+    dynamic_removed_ += out.dynamic_removed;
     out.keyframe = std::make_shared<const KeyframeCloud>(
         KeyframeCloud{newest.t_ns, PoseFromParameters(newest.pose.data()), T_imu_lidar(),
-                      newest.planes_lidar, newest.edges_lidar});
+                      newest.planes_lidar, newest.edges_lidar, std::move(image)});
+    result.times.map_ms = timer.Lap();
   }
+  out.dynamic_removed_total = dynamic_removed_;
   result.state = StateOf(newest);
   result.match.T_world_lidar = T_world_lidar;
   result.match.iterations = out.solver_iterations;
@@ -436,8 +440,8 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   out.standstill_frames = standstill_frames_;
   out.time_offset = time_offset_.status();
   result.times.optimize_ms += timer.Lap();
-  result.times.total_ms =
-      result.times.frontend_ms + result.times.match_ms + result.times.optimize_ms;
+  result.times.total_ms = result.times.frontend_ms + result.times.match_ms +
+                          result.times.optimize_ms + result.times.map_ms;
   return out;
 }
 

@@ -22,6 +22,7 @@ ConfigIssues WindowEstimatorConfig::Validate() const {
     AppendWithPrefix(issues, "imu_noise_adapter", imu_noise_adapter.Validate());
   }
   if (time_offset.enabled) AppendWithPrefix(issues, "time_offset", time_offset.Validate());
+  if (visibility.enabled) AppendWithPrefix(issues, "visibility", visibility.Validate());
   CheckInRange<size_t>(issues, "window_size", window_size, 2, 50);
   CheckInRange(issues, "max_iterations", max_iterations, 1, 50);
   CheckInRange(issues, "reassociations", reassociations, 0, 5);

@@ -131,8 +131,27 @@ bool WindowEstimator::IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const {
          Eigen::AngleAxisd(moved.linear()).angle() >= config_.odometry.keyframe_angle_rad;
 }
 
-void WindowEstimator::InsertFeatures(const Frame& f) {
-  InsertKeyframe(PoseFromParameters(f.pose.data()) * T_imu_lidar(), f.planes_lidar, f.edges_lidar);
+std::shared_ptr<const VisibilityImage> WindowEstimator::InsertFeatures(const Frame& f,
+                                                                       size_t* removed) {
+  const Eigen::Isometry3d T_world_lidar = PoseFromParameters(f.pose.data()) * T_imu_lidar();
+  std::shared_ptr<VisibilityImage> image;
+  *removed = 0;
+  if (config_.visibility.enabled) {
+    // The sweep's free space before its own points go in: it sees through what moved away.
+    image = std::make_shared<VisibilityImage>(config_.visibility);
+    image->Build(deskewed_.points, T_world_lidar);
+    *removed = RemoveSeenThrough(*image);
+  }
+  InsertKeyframe(T_world_lidar, f.planes_lidar, f.edges_lidar);
+  return image;
+}
+
+size_t WindowEstimator::RemoveSeenThrough(const VisibilityImage& image) {
+  const Eigen::Vector3d centre = image.T_world_lidar().translation();
+  const auto remove_at = static_cast<int>(config_.visibility.votes_to_remove);
+  const auto test = [&image](const Eigen::Vector3d& p) { return image.Test(p); };
+  return plane_map_.VoteAndRemove(centre, config_.visibility.check_radius_m, remove_at, test) +
+         edge_map_.VoteAndRemove(centre, config_.visibility.check_radius_m, remove_at, test);
 }
 
 void WindowEstimator::InsertKeyframe(const Eigen::Isometry3d& T_world_lidar,

@@ -92,7 +92,7 @@ GnssRun Simulate(double jump_m, double correlation_time_s = 0.0) {
       loop.AddGnss(fix);
       next_fix_s += 0.25;
     }
-    loop.AddKeyframe(KeyframeCloud{t_ns, T_odom, Eigen::Isometry3d::Identity(), {}, {}});
+    loop.AddKeyframe(KeyframeCloud{t_ns, T_odom, Eigen::Isometry3d::Identity(), {}, {}, nullptr});
   }
   GnssRun r;
   r.stats = loop.stats();
@@ -179,7 +179,8 @@ TEST(GnssAssociator, GatesAndPlacesFixes) {
   T0.linear() = Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ()).toRotationMatrix();
   Eigen::Isometry3d T1 = T0;
   T1.translation() = Vec3(0.0, 1.2, 0.0);  // 1.2 m along its own x (world y) in 1.2 s
-  std::vector<KeyframeCloud> nodes = {{900'000'000, T0, Eigen::Isometry3d::Identity(), {}, {}}};
+  std::vector<KeyframeCloud> nodes = {
+      {900'000'000, T0, Eigen::Isometry3d::Identity(), {}, {}, nullptr}};
   a.AddOdometry(900'000'000, T0);
   EXPECT_TRUE(a.Take(nodes).empty());  // no odometry past the fixes yet
   a.AddOdometry(2'100'000'000, T1);

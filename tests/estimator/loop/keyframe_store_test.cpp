@@ -27,7 +27,8 @@ TEST(KeyframeStore, KeepsCloudsOnlyWhereAskedAndCountsTheirBytes) {
   EXPECT_EQ(store.clouds(), 2u);
   EXPECT_TRUE(store.has_cloud(0));
   EXPECT_FALSE(store.has_cloud(1));
-  EXPECT_EQ(store.bytes(), (120u + 10u) * 3u * sizeof(float));
+  // Each point and its visibility score (visibility_image.h).
+  EXPECT_EQ(store.bytes(), (120u + 10u) * (3u * sizeof(float) + sizeof(int8_t)));
   const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
   EXPECT_TRUE(store.Planes(1, I).empty());
   EXPECT_TRUE(store.Edges(1, I).empty());

@@ -6,7 +6,10 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <memory>
 #include <vector>
+
+#include "swlio/estimator/map/visibility_image.h"
 
 namespace swlio::estimator {
 
@@ -16,6 +19,10 @@ struct KeyframeCloud {
   Eigen::Isometry3d T_imu_lidar = Eigen::Isometry3d::Identity();
   std::vector<Eigen::Vector3d> planes_lidar;
   std::vector<Eigen::Vector3d> edges_lidar;
+  /// The free space its whole sweep saw (visibility_image.h; at T_world_imu · T_imu_lidar in
+  /// the odometry's world), for loop closure to keep moving objects out of the saved map; null
+  /// when the visibility test is off. Not kept with the node.
+  std::shared_ptr<const VisibilityImage> visibility;
 };
 
 /// A pose-graph node in the corrected map frame (loop_closure.h): the corrected keyframe path.

@@ -16,7 +16,10 @@ struct StageTimes {
   double frontend_ms = 0.0;  ///< de-skew, segmentation, features, voxel filter
   double match_ms = 0.0;     ///< scan-to-map registration (correspondences and solve)
   double optimize_ms = 0.0;  ///< window optimization (tightly coupled mode only)
-  double total_ms = 0.0;     ///< the whole scan update
+  /// A keyframe's local-map upkeep: moving objects out (visibility_image.h) and its features
+  /// in (tightly coupled mode only; 0 on other sweeps).
+  double map_ms = 0.0;
+  double total_ms = 0.0;  ///< the whole scan update
 };
 
 /// Stopwatch over an injected clock.

@@ -16,6 +16,9 @@
 
 namespace swlio::estimator {
 
+/// atan2(y, x) to |error| < 1e-5 rad (0.0006°), several times cheaper than std::atan2.
+float FastAtan2(float y, float x);
+
 struct RangeImageConfig {
   int64_t rings = 16;      ///< rows; a point's `ring` must be below this (≤ 64)
   int64_t columns = 1800;  ///< azimuth bins per turn: 1800 = 0.2° (RS16 at 10 Hz)

@@ -13,9 +13,11 @@
 
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "swlio/estimator/common/keyframe_cloud.h"
+#include "swlio/estimator/map/visibility_image.h"
 
 namespace swlio::estimator {
 
@@ -34,6 +36,16 @@ class KeyframeStore {
   /// Node i's points moved by `T` (e.g. into a submap's frame), in double.
   std::vector<Eigen::Vector3d> Planes(size_t i, const Eigen::Isometry3d& T) const;
   std::vector<Eigen::Vector3d> Edges(size_t i, const Eigen::Isometry3d& T) const;
+  /// Moving objects out (visibility_image.h): each of node i's points (LiDAR frame, float) is
+  /// given to `test` (Eigen::Vector3f → Visibility), its score updated (UpdateScore), and the
+  /// point dropped once the score reaches `remove_at`; the others keep their order. Returns
+  /// the points dropped.
+  template <typename Test>
+  size_t VoteAndRemove(size_t i, int remove_at, Test&& test) {
+    Cloud& c = clouds_[i];
+    return VoteAndRemove(&c.planes_lidar, &c.plane_scores, remove_at, test) +
+           VoteAndRemove(&c.edges_lidar, &c.edge_scores, remove_at, test);
+  }
   /// `visit(planes_lidar, edges_lidar)` on node i's stored points, without a copy.
   template <typename Fn>
   void Visit(size_t i, Fn&& visit) const {
@@ -45,7 +57,25 @@ class KeyframeStore {
     bool kept = false;
     std::vector<Eigen::Vector3f> planes_lidar;
     std::vector<Eigen::Vector3f> edges_lidar;
+    std::vector<int8_t> plane_scores, edge_scores;  ///< one per point (visibility_image.h)
   };
+  template <typename Test>
+  static size_t VoteAndRemove(std::vector<Eigen::Vector3f>* points,
+                              std::vector<int8_t>* scores,
+                              int remove_at,
+                              Test&& test) {
+    size_t kept = 0;
+    for (size_t j = 0; j < points->size(); ++j) {
+      const int8_t score = UpdateScore((*scores)[j], test((*points)[j]));
+      if (score >= remove_at) continue;
+      (*points)[kept] = (*points)[j];
+      (*scores)[kept++] = score;
+    }
+    const size_t removed = points->size() - kept;
+    points->resize(kept);
+    scores->resize(kept);
+    return removed;
+  }
   std::vector<Cloud> clouds_;
   size_t kept_ = 0;
   size_t bytes_ = 0;

@@ -72,6 +72,8 @@ struct LoopClosureStats {
   size_t gnss_switched_off = 0;
   size_t gnss_gated = 0;  ///< refused by the innovation gate (gnss_config.h)
   bool gnss_aligned = false;
+  /// Stored points the nodes' sweeps saw through and dropped (MapVisibilityConfig).
+  size_t dynamic_removed = 0;
 };
 
 class LoopClosure {
@@ -138,6 +140,8 @@ class LoopClosure {
   LoopCheck Verify(const LoopAttempt& attempt,
                    const Eigen::Isometry3d& guess,
                    const KeyframeCloud& keyframe) const;
+  /// Moving objects out of the stored clouds with the newest node's sweep (MapVisibilityConfig).
+  void RemoveSeenThrough(size_t newest, const KeyframeCloud& keyframe);
   /// Loop detection for the newest node (AddKeyframe's second half).
   void DetectLoop(const KeyframeCloud& keyframe, LoopClosureUpdate* update);
   /// Solves the graph and takes its correction at the newest node.
@@ -167,6 +171,8 @@ class LoopClosure {
   int gnss_since_optimize_ = 0;
   std::deque<double> gnss_innovations_;  ///< of the last accepted fixes, receiver σ units
   int gnss_refused_in_a_row_ = 0;
+  /// The last nodes' sweeps (MapVisibilityConfig::recent_nodes), oldest first.
+  std::deque<std::shared_ptr<const VisibilityImage>> recent_images_;
 };
 
 }  // namespace swlio::estimator

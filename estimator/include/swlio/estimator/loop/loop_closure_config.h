@@ -11,6 +11,21 @@
 
 namespace swlio::estimator {
 
+/// Moving objects out of the saved map (visibility_image.h). Each new node's sweep (its
+/// KeyframeCloud::visibility, made by the window with its own visibility settings) tests the
+/// stored clouds of the nodes within check_radius_m (map frame, so a loop's correction applies),
+/// and the new node's cloud is tested against the sweeps of the last `recent_nodes` nodes: a
+/// person standing where the robot saw free space a moment ago goes too. A point leaves its
+/// cloud after votes_to_remove seen-through tests with no confirmation in between.
+struct MapVisibilityConfig {
+  bool enabled = true;
+  int64_t votes_to_remove = 2;
+  double check_radius_m = 40.0;
+  int64_t recent_nodes = 10;  ///< 29 kB each (visibility_image.h)
+
+  ConfigIssues Validate() const;
+};
+
 struct LoopClosureConfig {
   /// Loop detection. Off, the pose graph still runs when `gnss.enabled` (GNSS edges only).
   bool enabled = true;
@@ -86,6 +101,7 @@ struct LoopClosureConfig {
   double output_max_rate_radps = 0.05;
   /// GNSS position factors on the nodes (off by default).
   GnssConfig gnss;
+  MapVisibilityConfig visibility;
 
   ConfigIssues Validate() const;
 };

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "swlio/core/config_issue.h"
+#include "swlio/estimator/map/visibility_image.h"
 
 namespace swlio::estimator {
 
@@ -47,6 +48,37 @@ class VoxelMap {
 
   /// Drops every voxel whose centre is farther than `radius_m` from `center_world`.
   size_t RemoveFar(const Eigen::Vector3d& center_world);
+
+  /// Moving objects out (visibility_image.h): every point of the voxels whose centre lies
+  /// within `radius_m` of `center_world` is given to `test` (Eigen::Vector3d → Visibility),
+  /// its score updated (UpdateScore), and the point removed once the score reaches
+  /// `remove_at`. Returns the points removed. Voxels are visited in creation order and the
+  /// survivors keep theirs: deterministic.
+  template <typename Test>
+  size_t VoteAndRemove(const Eigen::Vector3d& center_world,
+                       double radius_m,
+                       int remove_at,
+                       Test&& test) {
+    const double r2 = (radius_m + config_.voxel_m) * (radius_m + config_.voxel_m);
+    size_t removed = 0;
+    for (uint32_t v = 0; v < voxels_.size(); ++v) {
+      Voxel& voxel = voxels_[v];
+      if (voxel.count == 0 || (CentreOf(voxel.key) - center_world).squaredNorm() > r2) continue;
+      Eigen::Vector3d* points = PointsOf(v);
+      int8_t* scores = ScoresOf(v);
+      uint32_t kept = 0;
+      for (uint32_t i = 0; i < voxel.count; ++i) {
+        const int8_t score = UpdateScore(scores[i], test(points[i]));
+        if (score >= remove_at) continue;
+        points[kept] = points[i];
+        scores[kept++] = score;
+      }
+      removed += voxel.count - kept;
+      voxel.count = kept;
+    }
+    if (removed > 0) Removed(removed);
+    return removed;
+  }
 
   /// Every stored point, voxel by voxel in creation order (to carry a map into another frame).
   std::vector<Eigen::Vector3d> Points() const;
@@ -89,6 +121,11 @@ class VoxelMap {
     size_t size = 0;
   };
   Key KeyOf(const Eigen::Vector3d& p) const;
+  Eigen::Vector3d CentreOf(const Key& key) const {
+    return (Eigen::Vector3d(key.x, key.y, key.z) + Eigen::Vector3d::Constant(0.5)) *
+           config_.voxel_m;
+  }
+  void Removed(size_t points);  ///< counts and a new revision after VoteAndRemove
   static uint64_t AxisHash(size_t axis, int32_t cell);  ///< one axis's term of a key's hash
   size_t HomeOf(uint64_t hash) const;                   ///< the slot of a key's hash
   size_t Home(const Key& key) const;                    ///< first probe of `key` in slots_
@@ -109,6 +146,12 @@ class VoxelMap {
            size_t{voxel % kChunkVoxels} * config_.max_points_per_voxel;
   }
 
+  /// Voxel v's points' visibility scores (visibility_image.h), beside PointsOf(v).
+  int8_t* ScoresOf(uint32_t voxel) {
+    return scores_[voxel / kChunkVoxels].data() +
+           size_t{voxel % kChunkVoxels} * config_.max_points_per_voxel;
+  }
+
   VoxelMapConfig config_;
   // The voxels in a flat vector (in creation order) indexed by an open-addressing table with
   // linear probing (load ≤ 1/2): a query touches up to 27 cells, and std::unordered_map's
@@ -120,7 +163,8 @@ class VoxelMap {
   // process's peak was that moment), and kept its capacity after RemoveFar.
   std::vector<Voxel> voxels_;
   std::vector<std::vector<Eigen::Vector3d>> pool_;
-  std::vector<Slot> slots_;  ///< size a power of two
+  std::vector<std::vector<int8_t>> scores_;  ///< chunked as pool_
+  std::vector<Slot> slots_;                  ///< size a power of two
   int slot_bits_ = 0;
   size_t points_ = 0;
   uint64_t revision_;

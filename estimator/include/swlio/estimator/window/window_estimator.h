@@ -82,6 +82,10 @@ struct WindowResult {
   /// The LiDAR–IMU time offset applied to the IMU samples, its estimate and excitation
   /// (time_offset_estimator.h).
   TimeOffsetStatus time_offset;
+  /// Local-map points this sweep's keyframe saw through and removed (visibility_image.h), and
+  /// all so far.
+  size_t dynamic_removed = 0;
+  size_t dynamic_removed_total = 0;
   // The small fields together (no padding between them).
   /// Not kNone: this sweep's state was not believable (divergence_monitor.h), so the window
   /// re-initialized; the result is kInitializing and the state is not to be used.
@@ -180,7 +184,11 @@ class WindowEstimator {
   bool MovedFromLinearization(const Frame& frame) const;
   std::vector<double*> LidarBlocks(Frame* frame);
   bool IsKeyframe(const Eigen::Isometry3d& T_world_lidar) const;
-  void InsertFeatures(const Frame& frame);
+  /// The keyframe's features into the maps, after its sweep's free space took the moving
+  /// objects out of them; returns its visibility image (null when off) and counts the removed.
+  std::shared_ptr<const VisibilityImage> InsertFeatures(const Frame& frame, size_t* removed);
+  /// Map points `image` sees through (visibility_image.h) out of both maps; returns how many.
+  size_t RemoveSeenThrough(const VisibilityImage& image);
   /// The frame's wheel velocity factor from the samples around its time (window_wheel.cpp);
   /// true when it got one.
   bool AttachWheel(Frame* frame);
@@ -233,6 +241,7 @@ class WindowEstimator {
   std::deque<WheelOdometry> wheel_;   ///< the last second of wheel odometry
   size_t wheel_factors_ = 0, wheel_rejected_ = 0;
   size_t standstill_frames_ = 0;
+  size_t dynamic_removed_ = 0;
   FrontEnd front_end_;
   FrontEndOutput features_;
   Scan deskewed_;                        ///< the sweep being processed, de-skewed (reused)

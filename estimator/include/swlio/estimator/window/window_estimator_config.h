@@ -101,6 +101,10 @@ struct WindowEstimatorConfig {
   /// The LiDAR–IMU time offset estimated online and applied to the IMU samples (on by default;
   /// time_offset_estimator.h).
   TimeOffsetConfig time_offset;
+  /// Moving objects out of the local maps (visibility_image.h): each keyframe's sweep tests
+  /// the map points within check_radius_m, and points it sees through leave the maps; the
+  /// keyframe carries its image to loop closure (KeyframeCloud::visibility).
+  VisibilityConfig visibility;
   // Flags last (padding).
   /// Before the window solve, the newest frame is registered alone from the IMU prediction
   /// (ScanMatcher::Match, as the LiDAR-only mode does) and associated at that pose: the window
