@@ -53,7 +53,7 @@ void Excursion(
 
 /// Largest per-axis std of Hann means over kLowpassWindowNs, one every kLowpassHopNs.
 void LowpassStd(std::span<const ImuSample> samples, double* acc_std, double* gyro_std) {
-  constexpr int64_t kLowpassWindowNs = 200'000'000;
+  const int64_t kLowpassWindowNs = SecToNs(kStillLowpassWindowS);
   constexpr int64_t kLowpassHopNs = 25'000'000;
   std::vector<Vec3> acc, gyro;
   size_t begin = 0;

@@ -34,7 +34,9 @@ StaticInitializer::StaticInitializer(const EstimatorConfig& config)
 
 StaticInitializer::StaticInitializer(const EstimatorConfig& config, const Options& options)
     : gravity_mps2_(config.gravity_mps2),
-      duration_ns_(SecToNs(config.init_static_duration_s)),
+      // Plus the low-pass kernel (imu_stillness.h): its Hann taper barely sees the window's
+      // first 0.1 s, so the still time must begin that much earlier for motion there to count.
+      duration_ns_(SecToNs(config.init_static_duration_s + kStillLowpassWindowS)),
       options_(options) {}
 
 void StaticInitializer::Reset() {

@@ -25,6 +25,9 @@
 
 namespace swlio::estimator {
 
+/// The low-pass kernel's length (s): Hann means over this much time.
+inline constexpr double kStillLowpassWindowS = 0.2;
+
 struct ImuStillness {
   Eigen::Vector3d acc_mean_mps2 = Eigen::Vector3d::Zero();    ///< Hann-weighted
   Eigen::Vector3d gyro_mean_radps = Eigen::Vector3d::Zero();  ///< Hann-weighted

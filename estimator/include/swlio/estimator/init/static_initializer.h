@@ -2,7 +2,8 @@
 /// @file
 /// Static initialization from a standing start: gravity direction (R_world_imu with yaw = 0),
 /// gyro bias and the observable part of the accelerometer bias, from IMU samples buffered over
-/// `EstimatorConfig::init_static_duration_s` of stillness.
+/// `EstimatorConfig::init_static_duration_s` of stillness plus the stillness test's 0.2 s
+/// low-pass kernel (imu_stillness.h).
 ///
 /// At rest the accelerometer reads f = R_world_imuᵀ (0, 0, g) + b_a + noise and the gyro
 /// ω = b_g + noise (Earth rate, 7.3e-5 rad/s, is absorbed into b_g). So over a still window:
