@@ -373,6 +373,45 @@ void Bind(Section s, estimator::ImuNoiseAdapterConfig& c) {
   s.Finish();
 }
 
+void Bind(Section s, estimator::TimeOffsetConfig& c) {
+  s.Get("enabled", c.enabled);
+  s.Get("estimate", c.estimate);
+  s.Get("initial_offset_s", c.initial_offset_s);
+  s.Get("max_offset_s", c.max_offset_s);
+  s.Get("span_s", c.span_s);
+  s.Get("history_s", c.history_s);
+  s.Get("gate_sigma_s", c.gate_sigma_s);
+  s.Get("coarse_gate_sigma_s", c.coarse_gate_sigma_s);
+  s.Get("min_rows", c.min_rows);
+  s.Get("max_step_s", c.max_step_s);
+  s.Get("huber_rad", c.huber_rad);
+  s.Get("tilt_weight", c.tilt_weight);
+  s.Finish();
+}
+
+void Bind(Section s, estimator::VisibilityConfig& c) {
+  s.Get("enabled", c.enabled);
+  s.Get("rings", c.rings);
+  s.Get("columns", c.columns);
+  s.Get("min_range_m", c.min_range_m);
+  s.Get("max_range_m", c.max_range_m);
+  s.Get("beam_tolerance_m", c.beam_tolerance_m);
+  s.Get("margin_m", c.margin_m);
+  s.Get("margin_ratio", c.margin_ratio);
+  s.Get("neighbour_columns", c.neighbour_columns);
+  s.Get("votes_to_remove", c.votes_to_remove);
+  s.Get("check_radius_m", c.check_radius_m);
+  s.Finish();
+}
+
+void Bind(Section s, estimator::MapVisibilityConfig& c) {
+  s.Get("enabled", c.enabled);
+  s.Get("votes_to_remove", c.votes_to_remove);
+  s.Get("check_radius_m", c.check_radius_m);
+  s.Get("recent_nodes", c.recent_nodes);
+  s.Finish();
+}
+
 void Bind(Section s, estimator::StandstillConfig& c) {
   s.Get("enabled", c.enabled);
   s.Get("imu_window_s", c.imu_window_s);
@@ -458,6 +497,8 @@ void Bind(Section s, estimator::WindowEstimatorConfig& c) {
   Bind(s.Child("wheel"), c.wheel);
   Bind(s.Child("standstill"), c.standstill);
   Bind(s.Child("imu_noise_adapter"), c.imu_noise_adapter);
+  Bind(s.Child("time_offset"), c.time_offset);
+  Bind(s.Child("visibility"), c.visibility);
   s.Finish();
 }
 
@@ -477,6 +518,7 @@ void Bind(Section s, estimator::LoopClosureConfig& c) {
   s.Get("enabled", c.enabled);
   s.Get("descriptor_candidates", c.descriptor_candidates);
   s.Get("max_drift_ratio", c.max_drift_ratio);
+  Bind(s.Child("visibility"), c.visibility);
   Bind(s.Child("descriptor"), c.descriptor);
   s.Get("keyframe_distance_m", c.keyframe_distance_m);
   s.Get("keyframe_angle_rad", c.keyframe_angle_rad);

@@ -226,6 +226,48 @@ void Emit(ConfigWriter& w, const estimator::ImuNoiseAdapterConfig& c) {
   w.EndMap();
 }
 
+void Emit(ConfigWriter& w, const estimator::TimeOffsetConfig& c) {
+  w.BeginMap("time_offset");
+  w.Put("enabled", c.enabled);
+  w.Put("estimate", c.estimate);
+  w.Put("initial_offset_s", c.initial_offset_s);
+  w.Put("max_offset_s", c.max_offset_s);
+  w.Put("span_s", c.span_s);
+  w.Put("history_s", c.history_s);
+  w.Put("gate_sigma_s", c.gate_sigma_s);
+  w.Put("coarse_gate_sigma_s", c.coarse_gate_sigma_s);
+  w.Put("min_rows", c.min_rows);
+  w.Put("max_step_s", c.max_step_s);
+  w.Put("huber_rad", c.huber_rad);
+  w.Put("tilt_weight", c.tilt_weight);
+  w.EndMap();
+}
+
+void Emit(ConfigWriter& w, const estimator::VisibilityConfig& c) {
+  w.BeginMap("visibility");
+  w.Put("enabled", c.enabled);
+  w.Put("rings", c.rings);
+  w.Put("columns", c.columns);
+  w.Put("min_range_m", c.min_range_m);
+  w.Put("max_range_m", c.max_range_m);
+  w.Put("beam_tolerance_m", c.beam_tolerance_m);
+  w.Put("margin_m", c.margin_m);
+  w.Put("margin_ratio", c.margin_ratio);
+  w.Put("neighbour_columns", c.neighbour_columns);
+  w.Put("votes_to_remove", c.votes_to_remove);
+  w.Put("check_radius_m", c.check_radius_m);
+  w.EndMap();
+}
+
+void Emit(ConfigWriter& w, const estimator::MapVisibilityConfig& c) {
+  w.BeginMap("visibility");
+  w.Put("enabled", c.enabled);
+  w.Put("votes_to_remove", c.votes_to_remove);
+  w.Put("check_radius_m", c.check_radius_m);
+  w.Put("recent_nodes", c.recent_nodes);
+  w.EndMap();
+}
+
 /// The window's scalar options, in the shipped file's order.
 void EmitWindowOptions(ConfigWriter& w, const estimator::WindowEstimatorConfig& c) {
   w.Put("window_size", c.window_size);
@@ -269,6 +311,8 @@ void Emit(ConfigWriter& w, const estimator::WindowEstimatorConfig& c) {
   Emit(w, c.wheel);
   Emit(w, c.standstill);
   Emit(w, c.imu_noise_adapter);
+  Emit(w, c.time_offset);
+  Emit(w, c.visibility);
   w.EndMap();
 }
 
@@ -323,6 +367,7 @@ void Emit(ConfigWriter& w, const estimator::LoopClosureConfig& c) {
   w.Put("enabled", c.enabled);
   w.Put("descriptor_candidates", c.descriptor_candidates);
   w.Put("max_drift_ratio", c.max_drift_ratio);
+  Emit(w, c.visibility);
   Emit(w, c.descriptor);
   w.Put("keyframe_distance_m", c.keyframe_distance_m);
   w.Put("keyframe_angle_rad", c.keyframe_angle_rad);
