@@ -49,7 +49,8 @@ void EstimatorRunner::AddImu(const ImuSample& sample) {
     return;
   }
   window_->AddImu(sample);
-  newest_imu_t_ns_ = sample.t_ns;
+  // Coverage on the window's time base: the sample measured the motion of its stamp − offset.
+  newest_imu_t_ns_ = sample.t_ns - window_->imu_time_offset_ns();
   have_imu_ = true;
   ProcessCovered();
 }

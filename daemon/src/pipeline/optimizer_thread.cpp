@@ -136,6 +136,8 @@ void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& 
   wheel_rejected_ = result.wheel_rejected;
   standing_still_ = result.standstill;
   standstill_sweeps_ = result.standstill_frames;
+  time_offset_ = result.time_offset;
+  dynamic_removed_ = result.dynamic_removed_total;
   if (result.diverged != estimator::DivergenceReason::kNone) {
     recovering_ = true;
     last_divergence_ = result.diverged;
@@ -167,6 +169,7 @@ void OptimizerThread::OnResult(const Scan& scan, const estimator::WindowResult& 
   if (const estimator::WindowEstimator* w = runner_.window(); w != nullptr) {
     e.T_imu_lidar = w->T_imu_lidar();
     e.has_extrinsic = true;
+    e.imu_time_offset_ns = w->imu_time_offset_ns();
   }
   e.reset = result.diverged != estimator::DivergenceReason::kNone;
   q_.states_out->Push(e);
@@ -216,6 +219,8 @@ void OptimizerThread::Publish() {
   snapshot_.wheel_rejected = wheel_rejected_;
   snapshot_.standing_still = standing_still_;
   snapshot_.standstill_sweeps = standstill_sweeps_;
+  snapshot_.time_offset = time_offset_;
+  snapshot_.dynamic_removed = dynamic_removed_;
   snapshot_.recovering = recovering_;
   snapshot_.last_divergence = estimator::ToString(last_divergence_);
 }

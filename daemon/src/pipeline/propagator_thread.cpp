@@ -66,6 +66,7 @@ void PropagatorThread::ApplyStates() {
         e.status == estimator::OdometryStatus::kSkipped) {
       continue;  // no state
     }
+    imu_time_offset_ns_ = e.imu_time_offset_ns;
     if (propagator_.SetState(e.state)) {
       covariance_ = e.covariance;
       ++states_;
@@ -86,7 +87,10 @@ void PropagatorThread::Handle(const ImuRaw& raw) {
     if (fix) q_.gnss_out->Push(*fix);
     (fix ? gnss_fixes_ : gnss_unusable_)++;
   }
-  const std::optional<estimator::ImuRateOutput> out = propagator_.Add(*sample);
+  // On the estimator's time base: the sample measured the motion of its stamp − the offset.
+  ImuSample measured = *sample;
+  measured.t_ns -= imu_time_offset_ns_;
+  const std::optional<estimator::ImuRateOutput> out = propagator_.Add(measured);
   if (!out) return;
   ImuRatePose pose;
   pose.state = out->state;

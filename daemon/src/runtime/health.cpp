@@ -252,7 +252,14 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
       {"sweep_age_s", SweepAge(s)},
       {"last_divergence", s.optimizer.last_divergence},
       {"standing_still", s.optimizer.standing_still ? "true" : "false"},
-      {"standstill_sweeps", Count(s.optimizer.standstill_sweeps)}};
+      {"standstill_sweeps", Count(s.optimizer.standstill_sweeps)},
+      {"imu_time_offset_ms", Num(s.optimizer.time_offset.offset_s * 1e3, "%.2f")},
+      {"imu_time_offset_estimate_ms", Num(s.optimizer.time_offset.estimate_s * 1e3, "%.2f")},
+      {"imu_time_offset_sigma_ms",
+       s.optimizer.time_offset.sigma_s < 0.0 ? "unknown"
+                                             : Num(s.optimizer.time_offset.sigma_s * 1e3, "%.2f")},
+      {"imu_time_offset_updates", Count(s.optimizer.time_offset.updates)},
+      {"moving_points_removed", Count(s.optimizer.dynamic_removed)}};
   if (s.optimizer.wheel_factors + s.optimizer.wheel_rejected > 0) {
     d.values.push_back({"wheel_factors", Count(s.optimizer.wheel_factors)});
     d.values.push_back({"wheel_rejected", Count(s.optimizer.wheel_rejected)});

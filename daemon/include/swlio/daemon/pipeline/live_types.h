@@ -58,6 +58,9 @@ struct SweepEstimate {
   /// configured): /tf_static follows it. Meaningless unless has_extrinsic.
   Eigen::Isometry3d T_imu_lidar = Eigen::Isometry3d::Identity();
   bool has_extrinsic = false;
+  /// The LiDAR–IMU time offset the estimator applies to the IMU samples (a sample stamped t
+  /// measured the motion of t − offset): the IMU-rate output applies it too.
+  int64_t imu_time_offset_ns = 0;
   /// The estimator re-initialized (its state diverged): the IMU-rate output must stop
   /// propagating the old state until the next estimate.
   bool reset = false;

@@ -54,6 +54,11 @@ struct OptimizerCounters {
   bool standing_still = false;     ///< the newest sweep's frame was taken for rest
   uint64_t standstill_sweeps = 0;  ///< frames with a zero-velocity factor so far
   uint64_t reinitializations = 0;  ///< the estimator found its state diverged and restarted
+  /// The LiDAR–IMU time offset applied to the IMU samples, its estimate and how many sweeps
+  /// updated it (estimator/window/time_offset_estimator.h).
+  estimator::TimeOffsetStatus time_offset;
+  /// Local-map points later sweeps saw through (moving objects) and removed, so far.
+  uint64_t dynamic_removed = 0;
   bool recovering = false;         ///< re-initializing after the last one
   /// How long the IMU alone has carried the state (IMU samples newer than the last processed
   /// sweep by more than kImuOnlyDegradedNs: the LiDAR is out); the state then reads degraded.
@@ -109,6 +114,8 @@ class OptimizerThread {
   uint64_t reinitializations_ = 0;
   uint64_t wheel_factors_ = 0, wheel_rejected_ = 0;
   uint64_t standstill_sweeps_ = 0;
+  estimator::TimeOffsetStatus time_offset_;
+  uint64_t dynamic_removed_ = 0;
   int64_t newest_imu_t_ns_ = 0;  ///< daemon time
   int64_t last_sweep_t_ns_ = 0;  ///< end of the last processed sweep, daemon time
   double last_ms_ = 0.0;

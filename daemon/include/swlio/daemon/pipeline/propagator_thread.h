@@ -110,6 +110,7 @@ class PropagatorThread {
   uint64_t states_ = 0;
   uint64_t gnss_fixes_ = 0, gnss_unusable_ = 0;
   int64_t last_sample_t_ns_ = 0;
+  int64_t imu_time_offset_ns_ = 0;  ///< the estimator's, from its last SweepEstimate
   // The snapshot health reads (relaxed atomics; fields may be from adjacent updates).
   std::atomic<uint64_t> a_samples_{0}, a_dropped_{0}, a_invalid_{0}, a_poses_{0},
       a_poses_coalesced_{0}, a_states_{0}, a_jumps_{0}, a_gnss_fixes_{0}, a_gnss_unusable_{0};
