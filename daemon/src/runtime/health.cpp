@@ -255,9 +255,9 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
       {"standstill_sweeps", Count(s.optimizer.standstill_sweeps)},
       {"imu_time_offset_ms", Num(s.optimizer.time_offset.offset_s * 1e3, "%.2f")},
       {"imu_time_offset_estimate_ms", Num(s.optimizer.time_offset.estimate_s * 1e3, "%.2f")},
-      {"imu_time_offset_sigma_ms",
-       s.optimizer.time_offset.sigma_s < 0.0 ? "unknown"
-                                             : Num(s.optimizer.time_offset.sigma_s * 1e3, "%.2f")},
+      {"imu_time_offset_sigma_ms", s.optimizer.time_offset.sigma_s < 0.0
+                                       ? "unknown"
+                                       : Num(s.optimizer.time_offset.sigma_s * 1e3, "%.2f")},
       {"imu_time_offset_updates", Count(s.optimizer.time_offset.updates)},
       {"moving_points_removed", Count(s.optimizer.dynamic_removed)}};
   if (s.optimizer.wheel_factors + s.optimizer.wheel_rejected > 0) {

@@ -59,7 +59,7 @@ struct OptimizerCounters {
   estimator::TimeOffsetStatus time_offset;
   /// Local-map points later sweeps saw through (moving objects) and removed, so far.
   uint64_t dynamic_removed = 0;
-  bool recovering = false;         ///< re-initializing after the last one
+  bool recovering = false;  ///< re-initializing after the last one
   /// How long the IMU alone has carried the state (IMU samples newer than the last processed
   /// sweep by more than kImuOnlyDegradedNs: the LiDAR is out); the state then reads degraded.
   double imu_only_s = 0.0;
