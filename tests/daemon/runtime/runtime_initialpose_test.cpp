@@ -143,7 +143,8 @@ TEST(RuntimeInitialPose, AHintLocalizesWithinTwoSecondsAndAWrongOneIsRefused) {
       writer->PublishPose(InitialPose(right));
     }
     SleepUntilSim(start_ns, speed, 7.5);
-    const std::string wrong = std::to_string(start.x) + " " + std::to_string(start.y + 30.0) + " " +
+    // 20 m off, inside the map's 30 m reach (submap_radius_m), so the scan is what refuses it.
+    const std::string wrong = std::to_string(start.x) + " " + std::to_string(start.y + 20.0) + " " +
                               std::to_string(start.yaw * 180.0 / M_PI + 90.0);
     wrong_ctl = control::Call(socket, {control::Command::kRelocalize, wrong}, 20000);
   });
@@ -200,7 +201,7 @@ TEST(RuntimeInitialPose, AHintLocalizesWithinTwoSecondsAndAWrongOneIsRefused) {
   EXPECT_GT(after_s, 0.0);
   EXPECT_LT(after_s, 2.0);
   EXPECT_LT(std::hypot(first.x - start.x, first.y - start.y), 0.1);
-  // swlioctl relocalize 30 m off and turned: refused, with the reason; still localized.
+  // swlioctl relocalize 20 m off and turned: refused, with the reason; still localized.
   ASSERT_EQ(wrong_ctl.error, control::CallError::kNone) << wrong_ctl.detail;
   EXPECT_EQ(wrong_ctl.reply.status, control::ReplyStatus::kRefused);
   EXPECT_THAT(wrong_ctl.reply.message, HasSubstr("does not fit the map"));
