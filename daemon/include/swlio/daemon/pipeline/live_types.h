@@ -53,14 +53,14 @@ struct SweepEstimate {
   int degenerate_directions = 0;
   double update_ms = 0.0;       ///< the whole update (front end + window), thread CPU
   int64_t scan_last_rx_ns = 0;  ///< host receive time of the sweep's last packet
-  bool keyframe = false;        ///< the sweep's features went into the local map
-  /// The LiDAR–IMU extrinsic the estimator used for this sweep (refined online when
-  /// configured): /tf_static follows it. Meaningless unless has_extrinsic.
-  Eigen::Isometry3d T_imu_lidar = Eigen::Isometry3d::Identity();
-  bool has_extrinsic = false;
   /// The LiDAR–IMU time offset the estimator applies to the IMU samples (a sample stamped t
   /// measured the motion of t − offset): the IMU-rate output applies it too.
   int64_t imu_time_offset_ns = 0;
+  /// The LiDAR–IMU extrinsic the estimator used for this sweep (refined online when
+  /// configured): /tf_static follows it. Meaningless unless has_extrinsic.
+  Eigen::Isometry3d T_imu_lidar = Eigen::Isometry3d::Identity();
+  bool keyframe = false;  ///< the sweep's features went into the local map
+  bool has_extrinsic = false;
   /// The estimator re-initialized (its state diverged): the IMU-rate output must stop
   /// propagating the old state until the next estimate.
   bool reset = false;
