@@ -62,10 +62,13 @@ std::optional<DisturbanceSet> ParseDisturbanceList(const std::string& list, std:
       }
     }
     if (!known) {
-      std::string names;
-      for (Disturbance d : AllDisturbances()) names += std::string(" ") + DisturbanceName(d);
       if (error != nullptr) {
-        *error = "unknown disturbance '" + name + "' (known:" + names + ", all, none)";
+        std::string& e = *error;
+        e = "unknown disturbance '";
+        e += name;
+        e += "' (known:";
+        for (Disturbance d : AllDisturbances()) (e += ' ') += DisturbanceName(d);
+        e += ", all, none)";
       }
       return std::nullopt;
     }
