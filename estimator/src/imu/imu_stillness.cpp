@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "swlio/core/time.h"
+#include "swlio/estimator/imu/imu_moments.h"
 
 namespace swlio::estimator {
 namespace {
@@ -82,14 +83,6 @@ void LowpassStd(std::span<const ImuSample> samples, double* acc_std, double* gyr
   *gyro_std = largest_std(gyro);
 }
 
-double LargestStd(std::span<const ImuSample> samples, bool gyro) {
-  Vec3 mean = Vec3::Zero(), sq = Vec3::Zero();
-  for (const ImuSample& s : samples) mean += gyro ? s.gyro_radps : s.acc_mps2;
-  mean /= static_cast<double>(samples.size());
-  for (const ImuSample& s : samples) sq += ((gyro ? s.gyro_radps : s.acc_mps2) - mean).cwiseAbs2();
-  return (sq / std::max(1.0, static_cast<double>(samples.size()) - 1.0)).cwiseSqrt().maxCoeff();
-}
-
 }  // namespace
 
 ImuStillness ComputeImuStillness(std::span<const ImuSample> samples) {
@@ -107,8 +100,10 @@ ImuStillness ComputeImuStillness(std::span<const ImuSample> samples) {
       samples, s.gyro_mean_radps, [](const ImuSample& x) { return x.gyro_radps; },
       &s.angle_excursion_rad, &unused_rms);
   LowpassStd(samples, &s.acc_lowpass_std_mps2, &s.gyro_lowpass_std_radps);
-  s.acc_std_mps2 = LargestStd(samples, false);
-  s.gyro_std_radps = LargestStd(samples, true);
+  s.acc_std_mps2 =
+      ComputeImuMoments(samples, [](const ImuSample& x) { return x.acc_mps2; }).std.maxCoeff();
+  s.gyro_std_radps =
+      ComputeImuMoments(samples, [](const ImuSample& x) { return x.gyro_radps; }).std.maxCoeff();
   return s;
 }
 
