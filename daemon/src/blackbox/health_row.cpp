@@ -20,7 +20,8 @@ const char* const kHealthCsvHeader =
     "estimator_max_update_ms,estimator_degenerate_directions,estimator_reinitializations,"
     "estimator_skipped_behind,estimator_imu_only_s,estimator_map_points,loop_nodes,loop_accepted,"
     "loop_rejected,loop_correction_m,loc_state,loc_tracked,loc_lost,loc_hints,poses,"
-    "queue_max_fill,queue_dropped,wall_clock_steps,cpu_s,rss_mb";
+    "queue_max_fill,queue_dropped,wall_clock_steps,cpu_s,rss_mb,imu_time_offset_ms,"
+    "imu_time_offset_sigma_ms,moving_points_removed";
 
 ProcessUsage ReadProcessUsage() {
   ProcessUsage u;
@@ -119,6 +120,19 @@ void EstimatorColumns(const HealthSnapshot& s, std::string* row) {
   Col(row, l.hints);
 }
 
+/// The LiDAR–IMU time offset applied to the IMU samples, its σ (empty before the estimator has
+/// rows) and the moving points taken out of the maps (cumulative).
+void TimeOffsetColumns(const HealthSnapshot& s, std::string* row) {
+  const estimator::TimeOffsetStatus& t = s.optimizer.time_offset;
+  Col(row, t.offset_s * 1e3);
+  if (t.sigma_s < 0.0) {
+    Col(row, std::string());
+  } else {
+    Col(row, t.sigma_s * 1e3);
+  }
+  Col(row, s.optimizer.dynamic_removed);
+}
+
 }  // namespace
 
 std::string HealthCsvRow(const HealthSnapshot& s,
@@ -137,6 +151,7 @@ std::string HealthCsvRow(const HealthSnapshot& s,
   std::snprintf(cpu, sizeof cpu, "%.3f", usage.cpu_s);
   Col(&row, std::string(cpu));
   Col(&row, usage.rss_mb);
+  TimeOffsetColumns(s, &row);
   return row;
 }
 

@@ -19,7 +19,7 @@ HEADER = (
     "estimator_reinitializations,estimator_skipped_behind,estimator_imu_only_s,"
     "estimator_map_points,loop_nodes,loop_accepted,loop_rejected,loop_correction_m,loc_state,"
     "loc_tracked,loc_lost,loc_hints,poses,queue_max_fill,queue_dropped,wall_clock_steps,cpu_s,"
-    "rss_mb"
+    "rss_mb,imu_time_offset_ms,imu_time_offset_sigma_ms,moving_points_removed"
 )
 UTC0 = calendar.timegm(time.strptime("2026-12-04T14:32:00", "%Y-%m-%dT%H:%M:%S"))
 
@@ -90,6 +90,9 @@ def health_rows(t0_s=100.0, rows=40, gap=(20, 3), checksum_at=None, reinit_at=No
                     0,
                     round(c["cpu"], 2),
                     88.5,
+                    -0.8 - 0.01 * i,
+                    "" if i < 5 else 0.3,
+                    120 * i,
                 )
             )
         )

@@ -198,6 +198,7 @@ class Render(unittest.TestCase):
     def test_incident(self):
         dom = self.check_page("incident", min_svgs=12)
         self.assertIn("daemon odometry (odometry.tum)", dom)
+        self.assertIn("LiDAR-IMU time offset", dom)  # health.csv's imu_time_offset_ms
         self.assertRegex(
             dom,
             r"LiDAR</td><td><span class=\"badge failed\">failed</span></td>"

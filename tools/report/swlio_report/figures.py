@@ -128,7 +128,16 @@ def clock_plots(f):
         "Clock jumps (increase over the span)",
         "count",
     )
-    return [offsets, drift, jumps, wall_clock_plot(f)]
+    time_offset = f.plot(
+        [
+            {"label": "applied", "points": f.column("imu_time_offset_ms")},
+            {"label": "sigma", "points": f.column("imu_time_offset_sigma_ms"), "color": "#7f7f7f"},
+        ],
+        "LiDAR-IMU time offset (IMU stamps late by)",
+        "ms",
+        floor_zero=False,
+    )
+    return [offsets, drift, time_offset, jumps, wall_clock_plot(f)]
 
 
 def wall_clock_steps(inputs):
