@@ -18,6 +18,8 @@ ConfigIssues SegmentationConfig::Validate() const {
   AppendWithPrefix(issues, "image", image.Validate());
   CheckInRange<int64_t>(issues, "ground_max_ring", ground_max_ring, 0, image.rings - 1);
   CheckInRange(issues, "ground_max_slope_deg", ground_max_slope_deg, 0.5, 45.0);
+  CheckInRange<int64_t>(issues, "ground_max_missing_rings", ground_max_missing_rings, 0,
+                        image.rings - 2);
   CheckInRange(issues, "ground_foot_gap_m", ground_foot_gap_m, 0.0, 2.0);
   CheckInRange(issues, "mount_roll_deg", mount_roll_deg, -30.0, 30.0);
   CheckInRange(issues, "mount_pitch_deg", mount_pitch_deg, -30.0, 30.0);
@@ -64,17 +66,25 @@ void Segmenter::Segment(const Scan& scan,
 }
 
 // Ground (LeGO-LOAM): for each column, the ring pair (r, r+1) is ground when the levelled
-// difference vector rises less than ground_max_slope_deg; both cells are marked.
+// difference vector rises less than ground_max_slope_deg; both cells are marked. Where ring
+// r+1 has no return in the column, r pairs with the next ring up that has one (at most
+// ground_max_missing_rings skipped, up to ground_max_ring): a lone missing return then costs
+// only its own point, not also the ground label of its neighbours above and below.
 void Segmenter::MarkGround() {
   const int columns = image_.columns();
   const int max_ring = static_cast<int>(config_.ground_max_ring);
+  const int max_skip = static_cast<int>(config_.ground_max_missing_rings);
   for (int c = 0; c < columns; ++c) {
     for (int r = 0; r < max_ring; ++r) {
       const int lower = image_.Cell(r, c);
-      const int upper = image_.Cell(r + 1, c);
-      if (image_.Index(lower) == RangeImage::kEmpty || image_.Index(upper) == RangeImage::kEmpty) {
-        continue;
+      if (image_.Index(lower) == RangeImage::kEmpty) continue;
+      int upper_ring = r + 1;
+      while (upper_ring < max_ring && upper_ring - r <= max_skip &&
+             image_.Index(image_.Cell(upper_ring, c)) == RangeImage::kEmpty) {
+        ++upper_ring;
       }
+      const int upper = image_.Cell(upper_ring, c);
+      if (image_.Index(upper) == RangeImage::kEmpty) continue;
       const Eigen::Vector3f d = R_level_lidar_ * (image_.Xyz(upper) - image_.Xyz(lower));
       if (std::abs(d.z()) <= tan_ground_ * d.head<2>().norm()) {
         cell_label_[static_cast<size_t>(lower)] = kLabelGround;
