@@ -15,6 +15,7 @@ constexpr int64_t kMaxImuGapNs = 20'000'000;  ///< a wider gap between samples: 
 constexpr int64_t kStepDNs = 500'000;         ///< central difference in d (0.5 ms)
 constexpr double kStepBiasRadps = 1e-3;       ///< central difference in b_g
 constexpr int64_t kImuKeptNs = 3 * kNsPerSec;
+constexpr size_t kRowsPerSolve = 300;
 
 int64_t ToNs(double s) { return static_cast<int64_t>(std::llround(s * 1e9)); }
 
@@ -157,6 +158,10 @@ void TimeOffsetEstimator::FormRows() {
   if (!row) return;
   rows_.push_back(*row);
   while (rows_.front().t_ns < row->t_ns - ToNs(config_.history_s)) rows_.pop_front();
+  // A long history moves little with one row: solve every rows/kRowsPerSolve-th row, so a
+  // sweep costs about kRowsPerSolve rows' worth however long the history.
+  if (++rows_since_solve_ * kRowsPerSolve < rows_.size()) return;
+  rows_since_solve_ = 0;
   Solve();
 }
 
@@ -250,15 +255,19 @@ Eigen::Matrix4d TimeOffsetEstimator::CorrelatedScoreCovariance(const Eigen::Vect
     scores_.push_back(w * (axis_w.asDiagonal() * row.J).transpose() * e);
   }
   // Newey and West (Econometrica 55(3), 1987, eq. 2): the scores' covariance with their lagged
-  // cross terms, Bartlett-weighted (positive semi-definite).
-  const int lags = config_.correlated_rows;
+  // cross terms, Bartlett-weighted (positive semi-definite). A_k = Σ_{l=1..L} (1 − l/(L+1))
+  // s_{k−l} from the running sums U = Σ s_{k−l} and V = Σ l s_{k−l}: one pass over the rows.
+  const size_t lags = static_cast<size_t>(config_.correlated_rows);
+  const double L1 = static_cast<double>(lags) + 1.0;
   Eigen::Matrix4d S = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d U = Eigen::Vector4d::Zero(), V = Eigen::Vector4d::Zero();
   for (size_t k = 0; k < scores_.size(); ++k) {
-    S += scores_[k] * scores_[k].transpose();
-    for (int l = 1; l <= lags && static_cast<size_t>(l) <= k; ++l) {
-      const Eigen::Matrix4d cross = scores_[k] * scores_[k - static_cast<size_t>(l)].transpose();
-      S += (1.0 - l / (lags + 1.0)) * (cross + cross.transpose());
-    }
+    const Eigen::Vector4d A = U - V / L1;
+    const Eigen::Matrix4d cross = scores_[k] * A.transpose();
+    S += scores_[k] * scores_[k].transpose() + cross + cross.transpose();
+    const Eigen::Vector4d dropped = k >= lags ? scores_[k - lags] : Eigen::Vector4d::Zero();
+    V += scores_[k] + U - L1 * dropped;
+    U += scores_[k] - dropped;
   }
   return S;
 }

@@ -161,6 +161,7 @@ class TimeOffsetEstimator {
   double target_s_;                              ///< the last estimate that passed the gate
   int64_t offset_ns_;
   bool pending_end_ = false;  ///< the newest registration has not ended a row yet
+  size_t rows_since_solve_ = 0;
   TimeOffsetStatus status_;
 };
 
