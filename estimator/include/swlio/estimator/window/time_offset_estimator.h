@@ -14,21 +14,23 @@
 /// over the span, is what makes d observable (a constant turn or a straight line say nothing).
 /// Jacobians by central differences of the integration (5 integrations of ~120 samples).
 /// The last `history_s` of rows form a small least squares over [d, b_g] (4 unknowns, Huber
-/// weights, two reweightings), each row kept at its own linearization point. A row is kept
-/// only while the applied offset stays within `operating_point_tolerance_s` of the one its
-/// registrations were made at: a registration leans toward the IMU it was de-skewed and
-/// predicted with, so rows of an earlier operating point pull the estimate back toward it (the
-/// estimate then converges by iterating: each operating point's rows move the applied offset,
-/// which drops them). At a settled operating point the rows of the whole history are fused
-/// (the turns of a patrol minutes apart), not replaced by the last minute's. σ_d is the
-/// sandwich H⁻¹ S H⁻¹ (b_g marginalized), S the rows' scores with their correlation over
-/// `correlated_rows` neighbours (Newey–West: rows share registrations and gyro spans, a turn's
-/// registration errors run together), never below the σ of independent rows scaled by the
-/// residuals' robust RMS. Only when σ_d ≤ `gate_sigma_s` (the motion constrains d), or when
-/// it is ≤ `coarse_gate_sigma_s` and the estimate is over 3σ_d from the target, does the
-/// estimate become the target, and the applied offset walks to it by at most `max_step_s` per
-/// sweep (the IMU samples of the window
-/// stay in order and its factors change smoothly). Pure library: no clock.
+/// weights, two reweightings), each row kept at its own linearization point. Each row keeps
+/// the offset applied when its registrations were made (its operating point): a registration
+/// leans toward the IMU it was de-skewed and predicted with (measured 12–20 % of an unapplied
+/// offset on `aggressive` 42), so rows of another operating point pull the estimate toward it.
+/// The rows within `operating_point_tolerance_s` of the offset applied now are solved alone
+/// first; once they pass the gate below, the others are dropped; until then all rows are solved
+/// (a start, a walk: the estimate converges by iterating). At a settled operating point the
+/// turns of the whole history are fused (a patrol's corners minutes apart), not replaced by the
+/// last minute's. σ_d is the sandwich H⁻¹ S H⁻¹ (b_g marginalized), S the rows' scores with
+/// their correlation over `correlated_rows` neighbours (Newey–West: rows share registrations
+/// and gyro spans, a turn's registration errors run together), never below the σ of
+/// independent rows scaled by the residuals' robust RMS. Beyond 300 rows a solve runs every
+/// rows/300-th row. Only when σ_d ≤ `gate_sigma_s` (the motion constrains d), or when it is
+/// ≤ `coarse_gate_sigma_s` and the estimate is over 3σ_d from the target, does the estimate
+/// become the target, and the applied offset walks to it by at most `max_step_s` per sweep (the
+/// IMU samples of the window stay in order and its factors change smoothly). Pure library: no
+/// clock.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -70,10 +72,10 @@ struct TimeOffsetConfig {
   double huber_rad = 2e-3;
   /// Weight of the residual's roll/pitch rows against its yaw row (about the IMU's z axis).
   double tilt_weight = 1.0;
-  /// Rows whose registrations were made at an applied offset further than this from the one
-  /// applied now are dropped: a registration leans toward the IMU it was de-skewed and
-  /// predicted with (measured on `aggressive` 42 with 10 ms left unapplied: the estimate came
-  /// out 12–20 % short of the truth), so rows of another operating point pull toward it.
+  /// Rows whose registrations were made at an applied offset within this of the one applied
+  /// now are this operating point's; the others are dropped once these alone pass the gate. A
+  /// registration leans toward the IMU it was de-skewed and predicted with (measured on
+  /// `aggressive` 42 with 10 ms left unapplied: the estimate came out 12–20 % short).
   double operating_point_tolerance_s = 1e-3;
   /// σ_d from the rows' scores with their correlation over this many neighbours (Newey–West):
   /// rows share registrations and gyro spans (3 at span 0.3 s, 10 Hz) and a turn's
