@@ -240,6 +240,8 @@ void Emit(ConfigWriter& w, const estimator::TimeOffsetConfig& c) {
   w.Put("max_step_s", c.max_step_s);
   w.Put("huber_rad", c.huber_rad);
   w.Put("tilt_weight", c.tilt_weight);
+  w.Put("operating_point_tolerance_s", c.operating_point_tolerance_s);
+  w.Put("correlated_rows", c.correlated_rows);
   w.EndMap();
 }
 

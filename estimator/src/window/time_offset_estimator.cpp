@@ -15,6 +15,7 @@ constexpr int64_t kMaxImuGapNs = 20'000'000;  ///< a wider gap between samples: 
 constexpr int64_t kStepDNs = 500'000;         ///< central difference in d (0.5 ms)
 constexpr double kStepBiasRadps = 1e-3;       ///< central difference in b_g
 constexpr int64_t kImuKeptNs = 3 * kNsPerSec;
+constexpr size_t kRowsPerSolve = 300;
 
 int64_t ToNs(double s) { return static_cast<int64_t>(std::llround(s * 1e9)); }
 
@@ -39,6 +40,8 @@ ConfigIssues TimeOffsetConfig::Validate() const {
   CheckInRange(issues, "max_step_s", max_step_s, 0.0, 1e-3);
   CheckPositive(issues, "huber_rad", huber_rad);
   CheckInRange(issues, "tilt_weight", tilt_weight, 0.0, 1.0);
+  CheckInRange(issues, "operating_point_tolerance_s", operating_point_tolerance_s, 1e-4, 0.05);
+  CheckInRange(issues, "correlated_rows", correlated_rows, 0, 1000);
   return issues;
 }
 
@@ -96,6 +99,7 @@ std::optional<TimeOffsetEstimator::Row> TimeOffsetEstimator::MakeRow(const Regis
                                                                      const Registration& b) const {
   Row row;
   row.t_ns = b.t_ns;
+  row.applied_ns = (a.applied_ns + b.applied_ns) / 2;
   row.x_lin << target_s_, x_.tail<3>();
   const Eigen::Quaterniond dq_lidar = a.q_world_imu.conjugate() * b.q_world_imu;
   const int64_t d_ns = ToNs(target_s_);
@@ -125,7 +129,7 @@ std::optional<TimeOffsetEstimator::Row> TimeOffsetEstimator::MakeRow(const Regis
 void TimeOffsetEstimator::AddRegistration(int64_t t_ns, const Eigen::Quaterniond& q_world_imu) {
   if (!config_.enabled || !config_.estimate) return;
   if (!registrations_.empty() && t_ns <= registrations_.back().t_ns) return;
-  registrations_.push_back({t_ns, q_world_imu.normalized()});
+  registrations_.push_back({t_ns, offset_ns_, q_world_imu.normalized()});
   pending_end_ = true;
   FormRows();
   Step();
@@ -154,14 +158,50 @@ void TimeOffsetEstimator::FormRows() {
   if (!row) return;
   rows_.push_back(*row);
   while (rows_.front().t_ns < row->t_ns - ToNs(config_.history_s)) rows_.pop_front();
+  // A long history moves little with one row: solve every rows/kRowsPerSolve-th row, so a
+  // sweep costs about kRowsPerSolve rows' worth however long the history.
+  if (++rows_since_solve_ * kRowsPerSolve < rows_.size()) return;
+  rows_since_solve_ = 0;
   Solve();
 }
 
+bool TimeOffsetEstimator::AtThisOperatingPoint(const Row& row) const {
+  return std::llabs(row.applied_ns - offset_ns_) <= ToNs(config_.operating_point_tolerance_s);
+}
+
 void TimeOffsetEstimator::Solve() {
+  // The rows made at the offset applied now, once they alone pass the gate, replace the
+  // others; before that all rows (a start or a walk: the nearer operating points lean less).
+  Fit fit = FitRows(true);
+  const bool settled = fit.rows >= config_.min_rows && fit.sigma_s <= config_.gate_sigma_s;
+  if (settled) {
+    std::erase_if(rows_, [&](const Row& row) { return !AtThisOperatingPoint(row); });
+  } else {
+    fit = FitRows(false);
+  }
+  status_.rows = fit.rows;
+  status_.residual_rms_rad = fit.rms_rad;
+  status_.excitation_radps = fit.excitation_radps;
+  status_.sigma_s = fit.sigma_s;
+  status_.estimate_s = std::clamp(fit.x(0), -config_.max_offset_s, config_.max_offset_s);
+  const double sigma_s = status_.sigma_s;
+  const bool constrained =
+      sigma_s <= config_.gate_sigma_s || (sigma_s <= config_.coarse_gate_sigma_s &&
+                                          std::abs(status_.estimate_s - target_s_) > 3.0 * sigma_s);
+  status_.gated = fit.rows >= config_.min_rows && constrained && std::isfinite(fit.x(0));
+  x_.tail<3>() = fit.x.tail<3>();
+  if (!status_.gated) return;
+  x_(0) = target_s_ = status_.estimate_s;
+  ++status_.updates;
+}
+
+TimeOffsetEstimator::Fit TimeOffsetEstimator::FitRows(bool this_operating_point_only) {
   using Mat4 = Eigen::Matrix4d;
   using Vec4 = Eigen::Vector4d;
-  Vec4 x = x_;
-  x(0) = target_s_;
+  Fit fit;
+  fit.x = x_;
+  fit.x(0) = target_s_;
+  Vec4& x = fit.x;
   const Eigen::Vector3d axis_w(config_.tilt_weight, config_.tilt_weight, 1.0);
   // A weak prior on b_g about its last value keeps the axes a yaw-only fit leaves open solvable.
   const Mat4 prior = Eigen::Vector4d(0.0, 1e-2, 1e-2, 1e-2).asDiagonal();
@@ -172,7 +212,9 @@ void TimeOffsetEstimator::Solve() {
     H = Mat4::Identity() * 1e-12 + prior;
     Vec4 g = prior * (x - x_);
     weighted_sq = excitation_sq = 0.0;
+    fit.rows = 0;
     for (const Row& row : rows_) {
+      if (this_operating_point_only && !AtThisOperatingPoint(row)) continue;
       const Eigen::Vector3d e = axis_w.asDiagonal() * (row.r + row.J * (x - row.x_lin));
       const Eigen::Matrix<double, 3, 4> J = axis_w.asDiagonal() * row.J;
       const double norm = e.norm();
@@ -181,28 +223,53 @@ void TimeOffsetEstimator::Solve() {
       g += w * J.transpose() * e;
       weighted_sq += w * e.squaredNorm();
       excitation_sq += J.col(0).squaredNorm();
+      ++fit.rows;
     }
+    if (fit.rows == 0) return fit;
     x -= H.ldlt().solve(g);
   }
-  const double n = static_cast<double>(rows_.size());
+  const double n = static_cast<double>(fit.rows);
   const double rows_per = config_.tilt_weight > 0.0 ? 3.0 : 1.0;
   const double dof = std::max(1.0, rows_per * n - 4.0);
-  const double rms_rad = std::sqrt(weighted_sq / dof);
+  fit.rms_rad = std::sqrt(weighted_sq / dof);
+  fit.excitation_radps = std::sqrt(excitation_sq / n);
   const Mat4 H_inv = H.ldlt().solve(Mat4::Identity());
-  status_.rows = rows_.size();
-  status_.residual_rms_rad = rms_rad;
-  status_.excitation_radps = std::sqrt(excitation_sq / n);
-  status_.sigma_s = rms_rad * std::sqrt(std::max(0.0, H_inv(0, 0)));
-  status_.estimate_s = std::clamp(x(0), -config_.max_offset_s, config_.max_offset_s);
-  const double sigma_s = status_.sigma_s;
-  const bool constrained =
-      sigma_s <= config_.gate_sigma_s || (sigma_s <= config_.coarse_gate_sigma_s &&
-                                          std::abs(status_.estimate_s - target_s_) > 3.0 * sigma_s);
-  status_.gated = rows_.size() >= config_.min_rows && constrained && std::isfinite(x(0));
-  x_.tail<3>() = x.tail<3>();
-  if (!status_.gated) return;
-  x_(0) = target_s_ = status_.estimate_s;
-  ++status_.updates;
+  // The sandwich H⁻¹ S H⁻¹ with the rows' correlation; never below the σ of independent rows
+  // scaled by their RMS (with few rows the lagged sums cancel toward zero).
+  const double sigma_independent_s = fit.rms_rad * std::sqrt(std::max(0.0, H_inv(0, 0)));
+  const Mat4 S = CorrelatedScoreCovariance(x, this_operating_point_only);
+  const double sigma_correlated_s = std::sqrt(std::max(0.0, (H_inv * S * H_inv)(0, 0)));
+  fit.sigma_s = std::max(sigma_independent_s, sigma_correlated_s);
+  return fit;
+}
+
+Eigen::Matrix4d TimeOffsetEstimator::CorrelatedScoreCovariance(const Eigen::Vector4d& x,
+                                                               bool this_operating_point_only) {
+  const Eigen::Vector3d axis_w(config_.tilt_weight, config_.tilt_weight, 1.0);
+  scores_.clear();
+  for (const Row& row : rows_) {
+    if (this_operating_point_only && !AtThisOperatingPoint(row)) continue;
+    const Eigen::Vector3d e = axis_w.asDiagonal() * (row.r + row.J * (x - row.x_lin));
+    const double norm = e.norm();
+    const double w = norm <= config_.huber_rad ? 1.0 : config_.huber_rad / norm;
+    scores_.push_back(w * (axis_w.asDiagonal() * row.J).transpose() * e);
+  }
+  // Newey and West (Econometrica 55(3), 1987, eq. 2): the scores' covariance with their lagged
+  // cross terms, Bartlett-weighted (positive semi-definite). A_k = Σ_{l=1..L} (1 − l/(L+1))
+  // s_{k−l} from the running sums U = Σ s_{k−l} and V = Σ l s_{k−l}: one pass over the rows.
+  const size_t lags = static_cast<size_t>(config_.correlated_rows);
+  const double L1 = static_cast<double>(lags) + 1.0;
+  Eigen::Matrix4d S = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d U = Eigen::Vector4d::Zero(), V = Eigen::Vector4d::Zero();
+  for (size_t k = 0; k < scores_.size(); ++k) {
+    const Eigen::Vector4d A = U - V / L1;
+    const Eigen::Matrix4d cross = scores_[k] * A.transpose();
+    S += scores_[k] * scores_[k].transpose() + cross + cross.transpose();
+    const Eigen::Vector4d dropped = k >= lags ? scores_[k - lags] : Eigen::Vector4d::Zero();
+    V += scores_[k] + U - L1 * dropped;
+    U += scores_[k] - dropped;
+  }
+  return S;
 }
 
 void TimeOffsetEstimator::Step() {
