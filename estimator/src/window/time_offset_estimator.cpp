@@ -165,6 +165,17 @@ void TimeOffsetEstimator::FormRows() {
   Solve();
 }
 
+TimeOffsetEstimator::WeightedRow TimeOffsetEstimator::Weigh(const Row& row,
+                                                            const Eigen::Vector4d& x) const {
+  const Eigen::Vector3d axis_w(config_.tilt_weight, config_.tilt_weight, 1.0);
+  WeightedRow out;
+  out.e = axis_w.asDiagonal() * (row.r + row.J * (x - row.x_lin));
+  out.J = axis_w.asDiagonal() * row.J;
+  const double norm = out.e.norm();
+  out.w = norm <= config_.huber_rad ? 1.0 : config_.huber_rad / norm;
+  return out;
+}
+
 bool TimeOffsetEstimator::AtThisOperatingPoint(const Row& row) const {
   return std::llabs(row.applied_ns - offset_ns_) <= ToNs(config_.operating_point_tolerance_s);
 }
@@ -202,7 +213,6 @@ TimeOffsetEstimator::Fit TimeOffsetEstimator::FitRows(bool this_operating_point_
   fit.x = x_;
   fit.x(0) = target_s_;
   Vec4& x = fit.x;
-  const Eigen::Vector3d axis_w(config_.tilt_weight, config_.tilt_weight, 1.0);
   // A weak prior on b_g about its last value keeps the axes a yaw-only fit leaves open solvable.
   const Mat4 prior = Eigen::Vector4d(0.0, 1e-2, 1e-2, 1e-2).asDiagonal();
   Mat4 H;
@@ -215,10 +225,7 @@ TimeOffsetEstimator::Fit TimeOffsetEstimator::FitRows(bool this_operating_point_
     fit.rows = 0;
     for (const Row& row : rows_) {
       if (this_operating_point_only && !AtThisOperatingPoint(row)) continue;
-      const Eigen::Vector3d e = axis_w.asDiagonal() * (row.r + row.J * (x - row.x_lin));
-      const Eigen::Matrix<double, 3, 4> J = axis_w.asDiagonal() * row.J;
-      const double norm = e.norm();
-      const double w = norm <= config_.huber_rad ? 1.0 : config_.huber_rad / norm;
+      const auto [e, J, w] = Weigh(row, x);
       H += w * J.transpose() * J;
       g += w * J.transpose() * e;
       weighted_sq += w * e.squaredNorm();
@@ -245,14 +252,11 @@ TimeOffsetEstimator::Fit TimeOffsetEstimator::FitRows(bool this_operating_point_
 
 Eigen::Matrix4d TimeOffsetEstimator::CorrelatedScoreCovariance(const Eigen::Vector4d& x,
                                                                bool this_operating_point_only) {
-  const Eigen::Vector3d axis_w(config_.tilt_weight, config_.tilt_weight, 1.0);
   scores_.clear();
   for (const Row& row : rows_) {
     if (this_operating_point_only && !AtThisOperatingPoint(row)) continue;
-    const Eigen::Vector3d e = axis_w.asDiagonal() * (row.r + row.J * (x - row.x_lin));
-    const double norm = e.norm();
-    const double w = norm <= config_.huber_rad ? 1.0 : config_.huber_rad / norm;
-    scores_.push_back(w * (axis_w.asDiagonal() * row.J).transpose() * e);
+    const auto [e, J, w] = Weigh(row, x);
+    scores_.push_back(w * J.transpose() * e);
   }
   // Newey and West (Econometrica 55(3), 1987, eq. 2): the scores' covariance with their lagged
   // cross terms, Bartlett-weighted (positive semi-definite). A_k = Σ_{l=1..L} (1 − l/(L+1))

@@ -146,6 +146,14 @@ class TimeOffsetEstimator {
     double excitation_radps = 0.0;
     size_t rows = 0;
   };
+  /// A row's residual and Jacobian at x, roll/pitch rows scaled by `tilt_weight`, and its Huber
+  /// weight: what the fit and the score covariance both use.
+  struct WeightedRow {
+    Eigen::Vector3d e;
+    Eigen::Matrix<double, 3, 4> J;
+    double w = 1.0;
+  };
+  WeightedRow Weigh(const Row& row, const Eigen::Vector4d& x) const;
   bool AtThisOperatingPoint(const Row& row) const;
   void Solve();
   Fit FitRows(bool this_operating_point_only);
