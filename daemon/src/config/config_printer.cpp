@@ -241,6 +241,7 @@ void Emit(ConfigWriter& w, const estimator::TimeOffsetConfig& c) {
   w.Put("huber_rad", c.huber_rad);
   w.Put("tilt_weight", c.tilt_weight);
   w.Put("operating_point_tolerance_s", c.operating_point_tolerance_s);
+  w.Put("initial_sigma_s", c.initial_sigma_s);
   w.Put("correlated_rows", c.correlated_rows);
   w.EndMap();
 }

@@ -42,6 +42,7 @@ ConfigIssues TimeOffsetConfig::Validate() const {
   CheckInRange(issues, "tilt_weight", tilt_weight, 0.0, 1.0);
   CheckInRange(issues, "operating_point_tolerance_s", operating_point_tolerance_s, 1e-4, 0.05);
   CheckInRange(issues, "correlated_rows", correlated_rows, 0, 1000);
+  CheckInRange(issues, "initial_sigma_s", initial_sigma_s, 0.0, 0.05);
   return issues;
 }
 
@@ -65,6 +66,12 @@ void TimeOffsetEstimator::AddImu(const ImuSample& sample) {
 ImuSample TimeOffsetEstimator::Shifted(ImuSample sample) const {
   sample.t_ns -= offset_ns_;
   return sample;
+}
+
+double TimeOffsetEstimator::applied_sigma_s() const {
+  if (!config_.enabled || !config_.estimate || config_.initial_sigma_s <= 0.0) return 0.0;
+  if (status_.updates == 0) return config_.initial_sigma_s;
+  return std::hypot(gated_sigma_s_, target_s_ - static_cast<double>(offset_ns_) * 1e-9);
 }
 
 void TimeOffsetEstimator::ForgetRows() {
@@ -203,6 +210,7 @@ void TimeOffsetEstimator::Solve() {
   x_.tail<3>() = fit.x.tail<3>();
   if (!status_.gated) return;
   x_(0) = target_s_ = status_.estimate_s;
+  gated_sigma_s_ = sigma_s;
   ++status_.updates;
 }
 

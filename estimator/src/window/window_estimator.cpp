@@ -260,7 +260,9 @@ bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) {
   const ImuNoiseConfig noise = noise_adapter_.Effective();
   to->pre = std::make_unique<Preintegrator>(noise, from.BiasGyro(), from.BiasAcc());
   if (to->pre->Integrate(s, from.t_ns, to->t_ns) != PreintegrationStatus::kOk) return false;
-  to->SetImu(ImuFactor::Create(to->pre->result(), noise, config_.odometry.estimator.gravity_mps2));
+  to->pre_time_shift_jacobian = TimeShiftJacobian(to->pre->result(), s.front(), s.back());
+  to->pre_offset_sigma_s = time_offset_.applied_sigma_s();
+  to->MakeImu(noise, config_.odometry.estimator.gravity_mps2);
   return to->imu != nullptr;
 }
 

@@ -14,6 +14,7 @@
 #include "swlio/estimator/imu/gravity_tilt_imu_factor.h"
 #include "swlio/estimator/imu/imu_factor.h"
 #include "swlio/estimator/imu/preintegration.h"
+#include "swlio/estimator/imu/time_shift_jacobian.h"
 #include "swlio/estimator/registration/neighbour_cache.h"
 #include "swlio/estimator/wheel/wheel_velocity_factor.h"
 #include "swlio/estimator/window/marginalization_prior.h"
@@ -34,10 +35,21 @@ struct WindowEstimator::Frame {
   Eigen::Isometry3d T_linearized = Eigen::Isometry3d::Identity();  ///< pose of lidar_linear
   size_t plane_factors = 0, line_factors = 0;
   std::unique_ptr<Preintegrator> pre;  ///< previous frame → this one
+  /// How `pre` moves with an error of the applied LiDAR–IMU time offset, and that offset's σ
+  /// when the samples were shifted (time_shift_jacobian.h).
+  Vec9 pre_time_shift_jacobian = Vec9::Zero();
+  double pre_offset_sigma_s = 0.0;
   std::unique_ptr<ImuFactor> imu;      ///< null for the first frame (or a failed interval)
   std::unique_ptr<GravityTiltImuFactor> imu_tilt;     ///< `imu` in the map frame (estimated tilt)
   std::unique_ptr<WheelVelocityFactor> wheel;         ///< null without a wheel measurement
   std::unique_ptr<ZeroVelocityFactor> zero_velocity;  ///< null unless at rest (standstill.h)
+
+  /// The IMU factor from `pre`, its covariance widened by the time offset's uncertainty.
+  void MakeImu(const ImuNoiseConfig& noise, double gravity_mps2) {
+    SetImu(ImuFactor::Create(
+        WithTimeOffsetUncertainty(pre->result(), pre_time_shift_jacobian, pre_offset_sigma_s),
+        noise, gravity_mps2));
+  }
 
   void SetImu(std::unique_ptr<ImuFactor> factor) {
     imu = std::move(factor);

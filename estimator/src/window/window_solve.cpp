@@ -155,8 +155,7 @@ void WindowEstimator::Reintegrate() {
     const Frame& p = *frames_[k - 1];
     if (f.pre == nullptr || !f.pre->NeedsReintegration(p.BiasGyro(), p.BiasAcc())) continue;
     f.pre->Reintegrate(p.BiasGyro(), p.BiasAcc());
-    f.SetImu(ImuFactor::Create(f.pre->result(), noise_adapter_.Effective(),
-                               config_.odometry.estimator.gravity_mps2));
+    f.MakeImu(noise_adapter_.Effective(), config_.odometry.estimator.gravity_mps2);
   }
 }
 

@@ -43,6 +43,9 @@ struct OffsetRun {
   TimeOffsetStatus status;
   double max_step_s = 0.0;     ///< the largest change of the applied offset between sweeps
   double first_update_s = -1;  ///< drive time of the first gated estimate
+  /// The largest |applied − true offset| / applied_sigma_s() over the sweeps, and the last σ.
+  double max_applied_z = 0.0;
+  double applied_sigma_s = 0.0;
 };
 
 /// `aggressive` seed 42 for `duration_s`, its IMU measuring the motion `offset_s` before its
@@ -82,6 +85,11 @@ OffsetRun Drive(double offset_s,
     run.max_step_s = std::max(run.max_step_s, std::abs(estimator.status().offset_s - before_s));
     if (run.first_update_s < 0.0 && estimator.status().updates > 0)
       run.first_update_s = NsToSec(t_ns);
+    run.applied_sigma_s = estimator.applied_sigma_s();
+    if (run.applied_sigma_s > 0.0) {
+      const double error_s = std::abs(estimator.status().offset_s - offset_s);
+      run.max_applied_z = std::max(run.max_applied_z, error_s / run.applied_sigma_s);
+    }
   }
   run.status = estimator.status();
   return run;
@@ -139,6 +147,29 @@ TEST(TimeOffsetEstimator, ItsSigmaCoversTheErrorWithCorrelatedRegistrationErrors
   }
   EXPECT_LT(std::sqrt(z_sq / draws), 1.25);
   EXPECT_GT(std::sqrt(z_sq / draws), 0.4);
+}
+
+TEST(TimeOffsetEstimator, TheAppliedSigmaCoversTheAppliedError) {
+  // What the window's IMU factors are widened by when initial_sigma_s is set
+  // (time_shift_jacobian.h): that σ before the first estimate, then the estimate's σ with the
+  // walk still to go. 10 ms off with 5 ms initially is 2σ; the walk must not claim more
+  // certainty than it has.
+  TimeOffsetConfig config;
+  config.initial_sigma_s = 0.005;
+  for (const double offset_s : {-0.010, 0.005, 0.010}) {
+    const OffsetRun run = Drive(offset_s, 35.0, 5e-4, config);
+    std::cout << "offset " << offset_s * 1e3 << " ms: largest error/sigma " << run.max_applied_z
+              << ", sigma at the end " << run.applied_sigma_s * 1e3 << " ms\n";
+    EXPECT_LT(run.max_applied_z, 3.0);
+    EXPECT_GT(run.applied_sigma_s, 0.0);
+    EXPECT_LT(run.applied_sigma_s, TimeOffsetConfig{}.gate_sigma_s);
+  }
+  EXPECT_EQ(TimeOffsetEstimator(config).applied_sigma_s(), config.initial_sigma_s);
+  TimeOffsetConfig known = config;
+  known.estimate = false;
+  EXPECT_EQ(TimeOffsetEstimator(known).applied_sigma_s(), 0.0);
+  // Off by default: the factors stay as if the offset were known.
+  EXPECT_EQ(Drive(0.010, 35.0, 5e-4, TimeOffsetConfig{}).applied_sigma_s, 0.0);
 }
 
 TEST(TimeOffsetEstimator, WithoutRotationChangesTheGateHoldsTheOffset) {
@@ -203,6 +234,10 @@ TEST(TimeOffsetConfig, ValidateNamesTheBadKeys) {
   start.initial_offset_s = 0.06;  // beyond the limit
   ASSERT_EQ(start.Validate().size(), 1u);
   EXPECT_EQ(start.Validate()[0].key, "initial_offset_s");
+  TimeOffsetConfig sigma;
+  sigma.initial_sigma_s = -1e-3;
+  ASSERT_EQ(sigma.Validate().size(), 1u);
+  EXPECT_EQ(sigma.Validate()[0].key, "initial_sigma_s");
 }
 
 }  // namespace

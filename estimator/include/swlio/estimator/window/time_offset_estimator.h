@@ -81,6 +81,15 @@ struct TimeOffsetConfig {
   /// rows share registrations and gyro spans (3 at span 0.3 s, 10 Hz) and a turn's
   /// registration errors run together.
   int correlated_rows = 10;
+  /// How far the offset may be off before the first estimate (s, one σ; 0: off). When set, the
+  /// window's IMU factors carry the applied offset's uncertainty (time_shift_jacobian.h) until
+  /// it settles, so an IMU applied at the wrong time does not bend the window where its rates
+  /// change. Off by default: each factor is widened on its own, though the shift's effect
+  /// telescopes along the chain (ω_j − ω_i of neighbours cancel), so it throws away IMU
+  /// information. Measured (issue 36): 10 ms brings an aggressive start 10 ms off to within
+  /// 10 % of the offset known; 5 ms costs 8–36 % on `loop943` (the offset ≈ 0, first
+  /// estimate after ~75 s of slow driving).
+  double initial_sigma_s = 0.0;
 
   ConfigIssues Validate() const;
 };
@@ -114,6 +123,10 @@ class TimeOffsetEstimator {
   void ForgetRows();
 
   int64_t offset_ns() const { return offset_ns_; }
+  /// How far the applied offset may be from the truth (s, one σ): 0 when it is not estimated
+  /// (a known calibration) or `initial_sigma_s` is 0, `initial_sigma_s` before the first
+  /// estimate, then the last gated estimate's σ together with the walk still to go.
+  double applied_sigma_s() const;
   const TimeOffsetStatus& status() const { return status_; }
 
   /// Gyro rotation over stamps [a_ns, b_ns] with `bias` removed: rates linear between samples,
@@ -169,6 +182,7 @@ class TimeOffsetEstimator {
   std::vector<Eigen::Vector4d> scores_;          ///< reused by CorrelatedScoreCovariance
   Eigen::Vector4d x_ = Eigen::Vector4d::Zero();  ///< [d, b_g], the last solution
   double target_s_;                              ///< the last estimate that passed the gate
+  double gated_sigma_s_ = 0.0;                   ///< σ of that estimate
   int64_t offset_ns_;
   bool pending_end_ = false;  ///< the newest registration has not ended a row yet
   size_t rows_since_solve_ = 0;
