@@ -39,7 +39,7 @@ struct WindowEstimator::Frame {
   /// when the samples were shifted (time_shift_jacobian.h).
   Vec9 pre_time_shift_jacobian = Vec9::Zero();
   double pre_offset_sigma_s = 0.0;
-  std::unique_ptr<ImuFactor> imu;      ///< null for the first frame (or a failed interval)
+  std::unique_ptr<ImuFactor> imu;  ///< null for the first frame (or a failed interval)
   std::unique_ptr<GravityTiltImuFactor> imu_tilt;     ///< `imu` in the map frame (estimated tilt)
   std::unique_ptr<WheelVelocityFactor> wheel;         ///< null without a wheel measurement
   std::unique_ptr<ZeroVelocityFactor> zero_velocity;  ///< null unless at rest (standstill.h)

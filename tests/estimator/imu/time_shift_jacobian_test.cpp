@@ -17,7 +17,9 @@ namespace {
 
 /// [δφ; δv; δp] of the interval integrated with every stamp earlier by shift_ns (the samples
 /// then cover [t_i + shift, t_j + shift]) against the unshifted one.
-Vec9 ShiftedMinusNominal(const std::vector<ImuSample>& imu, int64_t t_i, int64_t t_j,
+Vec9 ShiftedMinusNominal(const std::vector<ImuSample>& imu,
+                         int64_t t_i,
+                         int64_t t_j,
                          int64_t shift_ns) {
   std::vector<ImuSample> shifted = imu;
   for (ImuSample& s : shifted) s.t_ns -= shift_ns;
