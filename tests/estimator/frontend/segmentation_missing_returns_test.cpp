@@ -5,9 +5,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "disturb/apply_disturbances.h"
 #include "scenarios/sim_setup.h"
+#include "segment_labels.h"
 #include "sensors/labelled_scan.h"
 #include "swlio/estimator/frontend/segmentation.h"
 #include "synthetic_scan.h"
@@ -48,15 +50,13 @@ TEST(SegmenterMissingReturns, GroundPairsSkipRingsWithoutAReturn) {
   auto count = [&](int64_t max_missing_rings, size_t* wall_as_ground) {
     SegmentationConfig config;
     config.ground_max_missing_rings = max_missing_rings;
-    Segmenter segmenter(config);
-    SegmentationResult r;
-    segmenter.Segment(scan, &r);
+    const std::vector<int32_t> labels = test::SegmentLabels(config, scan);
     size_t ground_lost = 0;
     *wall_as_ground = 0;
     for (size_t i = 0; i < scan.points.size(); ++i) {
       const bool on_wall = scan.points[i].xyz_m.z() > -0.999f;
-      if (on_wall) *wall_as_ground += r.labels[i] == kLabelGround;
-      if (!on_wall) ground_lost += r.labels[i] != kLabelGround;
+      if (on_wall) *wall_as_ground += labels[i] == kLabelGround;
+      if (!on_wall) ground_lost += labels[i] != kLabelGround;
     }
     return ground_lost;
   };
@@ -93,13 +93,11 @@ struct GroundErrors {
 GroundErrors Errors(const sim::LabelledScan& ls, int64_t max_missing_rings) {
   SegmentationConfig config;
   config.ground_max_missing_rings = max_missing_rings;
-  Segmenter segmenter(config);
-  SegmentationResult r;
-  segmenter.Segment(ls.scan, &r);
+  const std::vector<int32_t> labels = test::SegmentLabels(config, ls.scan);
   GroundErrors e;
-  for (size_t i = 0; i < r.labels.size(); ++i) {
+  for (size_t i = 0; i < labels.size(); ++i) {
     const bool truth = ls.cls[i] == sim::SurfaceClass::kGround;
-    const bool labelled = r.labels[i] == kLabelGround;
+    const bool labelled = labels[i] == kLabelGround;
     e.missed += truth && !labelled;
     e.false_ground += !truth && labelled;
   }

@@ -4,7 +4,9 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <vector>
 
+#include "segment_labels.h"
 #include "swlio/estimator/frontend/segmentation.h"
 #include "synthetic_scan.h"
 
@@ -60,14 +62,12 @@ TEST(Segmenter, MarksFlatGroundAndNotTheFootOfAWall) {
   auto wrong = [&](double foot_gap_m) {
     SegmentationConfig config;
     config.ground_foot_gap_m = foot_gap_m;
-    Segmenter segmenter(config);
-    SegmentationResult r;
-    segmenter.Segment(scan, &r);
+    const std::vector<int32_t> labels = test::SegmentLabels(config, scan);
     size_t count = 0;
     for (size_t i = 0; i < scan.points.size(); ++i) {
       const float horizontal = scan.points[i].xyz_m.head<2>().norm();
       const bool on_wall = horizontal > 24.9f && scan.points[i].xyz_m.z() > -0.999f;
-      if ((r.labels[i] == kLabelGround) == on_wall) ++count;
+      if ((labels[i] == kLabelGround) == on_wall) ++count;
     }
     return count;
   };
