@@ -71,7 +71,7 @@ ImuSample TimeOffsetEstimator::Shifted(ImuSample sample) const {
 double TimeOffsetEstimator::applied_sigma_s() const {
   if (!config_.enabled || !config_.estimate || config_.initial_sigma_s <= 0.0) return 0.0;
   if (status_.updates == 0) return config_.initial_sigma_s;
-  return std::hypot(gated_sigma_s_, target_s_ - static_cast<double>(offset_ns_) * 1e-9);
+  return std::hypot(gated_sigma_s_, target_s_ - status_.offset_s);
 }
 
 void TimeOffsetEstimator::ForgetRows() {
@@ -288,7 +288,7 @@ void TimeOffsetEstimator::Step() {
   const int64_t step_ns = ToNs(config_.max_step_s);
   const int64_t to_ns = ToNs(target_s_);
   offset_ns_ += std::clamp(to_ns - offset_ns_, -step_ns, step_ns);
-  status_.offset_s = static_cast<double>(offset_ns_) * 1e-9;
+  status_.offset_s = NsToSec(offset_ns_);
 }
 
 }  // namespace swlio::estimator
