@@ -80,12 +80,13 @@ constexpr const char* kDiagnosticsHeader =
     "t_ns,status,converged,iterations,plane_inliers,edge_inliers,cost,"
     "hessian_eig_min,hessian_eig_max,degenerate_directions,planes,edges,uncovered,keyframe,"
     "vel_x,vel_y,vel_z,bias_acc_x,bias_acc_y,bias_acc_z,bias_gyro_x,bias_gyro_y,bias_gyro_z,"
-    "time_offset_ms,time_offset_estimate_ms,time_offset_sigma_ms";
+    "time_offset_ms,time_offset_estimate_ms,time_offset_sigma_ms,window_time_offset_ms";
 
 /// One line per sweep: what the registration reported (degeneracy: the smallest eigenvalue of
 /// the 6×6 Gauss–Newton Hessian against the largest), then the state's velocity (world, m/s)
 /// and biases (m/s², rad/s), then the LiDAR–IMU time offset applied, its estimate and σ (ms;
-/// σ negative before the estimator has rows; time_offset_estimator.h).
+/// σ negative before the estimator has rows; time_offset_estimator.h), and the window's own
+/// estimate (empty unless window_prior_sigma_s is set).
 void WriteDiagnostics(std::ostream& out,
                       const OdometryResult& r,
                       const swlio::estimator::TimeOffsetStatus& offset,
@@ -103,9 +104,14 @@ void WriteDiagnostics(std::ostream& out,
                 x.vel_world.y(), x.vel_world.z(), x.bias_acc.x(), x.bias_acc.y(), x.bias_acc.z(),
                 x.bias_gyro.x(), x.bias_gyro.y(), x.bias_gyro.z());
   out << line;
-  std::snprintf(line, sizeof line, ",%.4f,%.4f,%.4f\n", offset.offset_s * 1e3,
+  std::snprintf(line, sizeof line, ",%.4f,%.4f,%.4f,", offset.offset_s * 1e3,
                 offset.estimate_s * 1e3, offset.sigma_s < 0.0 ? -1.0 : offset.sigma_s * 1e3);
   out << line;
+  if (offset.window_offset_s) {
+    std::snprintf(line, sizeof line, "%.4f", *offset.window_offset_s * 1e3);
+    out << line;
+  }
+  out << '\n';
 }
 
 /// Header of --covariance: the newest state and its marginal covariance P (state_covariance.h:
@@ -193,11 +199,16 @@ struct Summary {
     std::snprintf(json, sizeof json,
                   ", \"time_offset\": {\"applied_ms\": %.4f, \"estimate_ms\": %.4f, "
                   "\"sigma_ms\": %.4f, \"excitation_radps\": %.4f, \"rows\": %zu, "
-                  "\"updates\": %zu}",
+                  "\"updates\": %zu",
                   time_offset.offset_s * 1e3, time_offset.estimate_s * 1e3,
                   time_offset.sigma_s < 0.0 ? -1.0 : time_offset.sigma_s * 1e3,
                   time_offset.excitation_radps, time_offset.rows, time_offset.updates);
-    return json;
+    std::string out = json;
+    if (time_offset.window_offset_s) {
+      std::snprintf(json, sizeof json, ", \"window_ms\": %.4f", *time_offset.window_offset_s * 1e3);
+      out += json;
+    }
+    return out + "}";
   }
   void Print() const {
     const double n = std::max<double>(1.0, static_cast<double>(tracked + failed));

@@ -388,6 +388,7 @@ void Bind(Section s, estimator::TimeOffsetConfig& c) {
   s.Get("tilt_weight", c.tilt_weight);
   s.Get("operating_point_tolerance_s", c.operating_point_tolerance_s);
   s.Get("initial_sigma_s", c.initial_sigma_s);
+  s.Get("window_prior_sigma_s", c.window_prior_sigma_s);
   s.Get("correlated_rows", c.correlated_rows);
   s.Finish();
 }

@@ -242,6 +242,7 @@ void Emit(ConfigWriter& w, const estimator::TimeOffsetConfig& c) {
   w.Put("tilt_weight", c.tilt_weight);
   w.Put("operating_point_tolerance_s", c.operating_point_tolerance_s);
   w.Put("initial_sigma_s", c.initial_sigma_s);
+  w.Put("window_prior_sigma_s", c.window_prior_sigma_s);
   w.Put("correlated_rows", c.correlated_rows);
   w.EndMap();
 }

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <numbers>
+#include <optional>
 
 namespace swlio::daemon {
 namespace {
@@ -260,6 +261,9 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
                                        : Num(s.optimizer.time_offset.sigma_s * 1e3, "%.2f")},
       {"imu_time_offset_updates", Count(s.optimizer.time_offset.updates)},
       {"moving_points_removed", Count(s.optimizer.dynamic_removed)}};
+  if (const std::optional<double>& w = s.optimizer.time_offset.window_offset_s) {
+    d.values.push_back({"imu_time_offset_window_ms", Num(*w * 1e3, "%.2f")});
+  }
   if (s.optimizer.wheel_factors + s.optimizer.wheel_rejected > 0) {
     d.values.push_back({"wheel_factors", Count(s.optimizer.wheel_factors)});
     d.values.push_back({"wheel_rejected", Count(s.optimizer.wheel_rejected)});

@@ -43,6 +43,7 @@ ConfigIssues TimeOffsetConfig::Validate() const {
   CheckInRange(issues, "operating_point_tolerance_s", operating_point_tolerance_s, 1e-4, 0.05);
   CheckInRange(issues, "correlated_rows", correlated_rows, 0, 1000);
   CheckInRange(issues, "initial_sigma_s", initial_sigma_s, 0.0, 0.05);
+  CheckInRange(issues, "window_prior_sigma_s", window_prior_sigma_s, 0.0, 0.05);
   return issues;
 }
 

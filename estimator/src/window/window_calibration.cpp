@@ -38,7 +38,7 @@ bool WindowEstimator::ApplyCalibration(const ExtrinsicCalibration& calibration) 
   // the window restarts from the newest frame as it stands.
   while (frames_.size() > 1) frames_.pop_front();
   f.lidar_linear.reset();
-  f.imu.reset();
+  f.ResetImu();
   f.pre.reset();
   SetRestartPrior(&f);
   return true;

@@ -108,6 +108,7 @@ WindowEstimator::WindowEstimator(const WindowEstimatorConfig& config, NowNsFn no
       huber_(config_.huber_m / config_.lidar_sigma_m),
       extrinsic_(kPoseSize),
       gravity_tilt_(kGravityTiltSize, 0.0),
+      window_offset_s_(1, config_.time_offset.initial_offset_s),
       divergence_(config_.divergence) {
   PoseToParameters(config_.odometry.T_imu_lidar, extrinsic_.data());
   ResetExtrinsicPrior();
@@ -261,8 +262,9 @@ bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) {
   to->pre = std::make_unique<Preintegrator>(noise, from.BiasGyro(), from.BiasAcc());
   if (to->pre->Integrate(s, from.t_ns, to->t_ns) != PreintegrationStatus::kOk) return false;
   to->pre_time_shift_jacobian = TimeShiftJacobian(to->pre->result(), s.front(), s.back());
-  to->pre_offset_sigma_s = time_offset_.applied_sigma_s();
-  to->MakeImu(noise, config_.odometry.estimator.gravity_mps2);
+  to->pre_applied_offset_s = NsToSec(time_offset_.offset_ns());
+  to->pre_offset_sigma_s = OffsetInWindow() ? 0.0 : time_offset_.applied_sigma_s();
+  to->MakeImu(ImuFactorOptions());
   return to->imu != nullptr;
 }
 
@@ -294,6 +296,7 @@ void WindowEstimator::SetInitialPrior(Frame* f) {
   }
   prior_.prior = GaussianPrior(blocks, W);
   prior_.rank = n + n_tilt;
+  if (offset_free_) SetOffsetPrior();
 }
 
 void WindowEstimator::SetRestartPrior(Frame* f) {
@@ -378,6 +381,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   if (registered) out.standstill = AttachStandstill(frame.get(), *registered);
   result.times.match_ms = timer.Lap();
   frames_.push_back(std::move(frame));
+  if (OffsetInWindow() && !offset_free_ && time_offset_.status().updates > 0) FreeOffset();
   while (imu_.size() > 1 && imu_[1].t_ns <= scan.t_end_ns) imu_.pop_front();
 
   Frame& newest = *frames_.back();
@@ -441,6 +445,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   out.wheel_rejected = wheel_rejected_;
   out.standstill_frames = standstill_frames_;
   out.time_offset = time_offset_.status();
+  if (offset_free_) out.time_offset.window_offset_s = window_offset_s_[0];
   result.times.optimize_ms += timer.Lap();
   result.times.total_ms = result.times.frontend_ms + result.times.match_ms +
                           result.times.optimize_ms + result.times.map_ms;

@@ -14,6 +14,7 @@
 #include "swlio/estimator/imu/gravity_tilt_imu_factor.h"
 #include "swlio/estimator/imu/imu_factor.h"
 #include "swlio/estimator/imu/preintegration.h"
+#include "swlio/estimator/imu/time_offset_imu_factor.h"
 #include "swlio/estimator/imu/time_shift_jacobian.h"
 #include "swlio/estimator/registration/neighbour_cache.h"
 #include "swlio/estimator/wheel/wheel_velocity_factor.h"
@@ -22,6 +23,14 @@
 #include "swlio/estimator/window/window_estimator.h"
 
 namespace swlio::estimator {
+
+/// How a frame's IMU factor is made from its pre-integration.
+struct WindowEstimator::FrameImuOptions {
+  ImuNoiseConfig noise;
+  double gravity_mps2 = 0.0;
+  bool gravity_tilt = false;   ///< the map's tilt is a parameter (imu_tilt)
+  bool window_offset = false;  ///< the time offset is a parameter (imu_offset)
+};
 
 struct WindowEstimator::Frame {
   int64_t t_ns = 0;
@@ -35,25 +44,45 @@ struct WindowEstimator::Frame {
   Eigen::Isometry3d T_linearized = Eigen::Isometry3d::Identity();  ///< pose of lidar_linear
   size_t plane_factors = 0, line_factors = 0;
   std::unique_ptr<Preintegrator> pre;  ///< previous frame → this one
-  /// How `pre` moves with an error of the applied LiDAR–IMU time offset, and that offset's σ
-  /// when the samples were shifted (time_shift_jacobian.h).
+  /// How `pre` moves with an error of the LiDAR–IMU time offset, the offset its samples were
+  /// shifted with, and that offset's σ then (time_shift_jacobian.h).
   Vec9 pre_time_shift_jacobian = Vec9::Zero();
+  double pre_applied_offset_s = 0.0;
   double pre_offset_sigma_s = 0.0;
   std::unique_ptr<ImuFactor> imu;  ///< null for the first frame (or a failed interval)
-  std::unique_ptr<GravityTiltImuFactor> imu_tilt;     ///< `imu` in the map frame (estimated tilt)
+  std::unique_ptr<GravityTiltImuFactor> imu_tilt;  ///< `imu` in the map frame (estimated tilt)
+  /// `imu` or `imu_tilt` with the window's time offset (time_offset_imu_factor.h); null unless
+  /// the window estimates the offset.
+  std::unique_ptr<TimeOffsetImuFactor> imu_offset;
   std::unique_ptr<WheelVelocityFactor> wheel;         ///< null without a wheel measurement
   std::unique_ptr<ZeroVelocityFactor> zero_velocity;  ///< null unless at rest (standstill.h)
 
-  /// The IMU factor from `pre`, its covariance widened by the time offset's uncertainty.
-  void MakeImu(const ImuNoiseConfig& noise, double gravity_mps2) {
-    SetImu(ImuFactor::Create(
+  /// The IMU factor from `pre`, its covariance widened by the time offset's uncertainty (if
+  /// any), and with the window's offset block where that is free.
+  void MakeImu(const FrameImuOptions& o) {
+    imu = ImuFactor::Create(
         WithTimeOffsetUncertainty(pre->result(), pre_time_shift_jacobian, pre_offset_sigma_s),
-        noise, gravity_mps2));
+        o.noise, o.gravity_mps2);
+    imu_tilt = imu != nullptr ? std::make_unique<GravityTiltImuFactor>(imu.get()) : nullptr;
+    imu_offset.reset();
+    if (imu == nullptr || !o.window_offset) return;
+    const ceres::CostFunction* inner =
+        o.gravity_tilt ? static_cast<const ceres::CostFunction*>(imu_tilt.get()) : imu.get();
+    imu_offset = std::make_unique<TimeOffsetImuFactor>(inner, *imu, pre_time_shift_jacobian,
+                                                       pre_applied_offset_s);
   }
 
-  void SetImu(std::unique_ptr<ImuFactor> factor) {
-    imu = std::move(factor);
-    imu_tilt = imu != nullptr ? std::make_unique<GravityTiltImuFactor>(imu.get()) : nullptr;
+  /// The cost function the window adds between the previous frame and this one.
+  const ceres::CostFunction* ImuCost(bool gravity_tilt) const {
+    if (imu_offset != nullptr) return imu_offset.get();
+    if (gravity_tilt) return imu_tilt.get();
+    return imu.get();
+  }
+
+  void ResetImu() {
+    imu_offset.reset();
+    imu_tilt.reset();
+    imu.reset();
   }
 
   Eigen::Vector3d BiasAcc() const { return Eigen::Map<const Eigen::Vector3d>(&speed_bias[3]); }

@@ -32,6 +32,14 @@ void WindowEstimator::BuildProblem(ceres::Problem& problem) {
   }
   if (config_.estimate_gravity_tilt)
     problem.AddParameterBlock(gravity_tilt_.data(), kGravityTiltSize);
+  if (offset_free_) {
+    problem.AddParameterBlock(window_offset_s_.data(), 1);
+    problem.SetParameterLowerBound(window_offset_s_.data(), 0, -config_.time_offset.max_offset_s);
+    problem.SetParameterUpperBound(window_offset_s_.data(), 0, config_.time_offset.max_offset_s);
+    if (offset_prior_ != nullptr) {
+      problem.AddResidualBlock(offset_prior_.get(), nullptr, window_offset_s_.data());
+    }
+  }
   for (size_t k = 0; k < frames_.size(); ++k) {
     Frame& f = *frames_[k];
     problem.AddParameterBlock(f.pose.data(), kPoseSize, &manifold_);
@@ -42,7 +50,10 @@ void WindowEstimator::BuildProblem(ceres::Problem& problem) {
     if (f.lidar_linear != nullptr) {
       problem.AddResidualBlock(f.lidar_linear.get(), nullptr, LidarBlocks(&f));
     }
-    if (k > 0 && f.imu != nullptr) AddImuResidual(problem, *frames_[k - 1], f);
+    if (k > 0 && f.imu != nullptr) {
+      auto [cost, blocks] = ImuTerm(*frames_[k - 1], f);
+      problem.AddResidualBlock(const_cast<ceres::CostFunction*>(cost), nullptr, blocks);
+    }
     if (f.wheel != nullptr) {
       problem.AddResidualBlock(f.wheel.get(), nullptr, f.pose.data(), f.speed_bias.data());
     }
@@ -55,14 +66,18 @@ void WindowEstimator::BuildProblem(ceres::Problem& problem) {
   }
 }
 
-void WindowEstimator::AddImuResidual(ceres::Problem& problem, Frame& p, Frame& f) {
-  if (config_.estimate_gravity_tilt) {
-    problem.AddResidualBlock(f.imu_tilt.get(), nullptr, p.pose.data(), p.speed_bias.data(),
-                             f.pose.data(), f.speed_bias.data(), gravity_tilt_.data());
-  } else {
-    problem.AddResidualBlock(f.imu.get(), nullptr, p.pose.data(), p.speed_bias.data(),
-                             f.pose.data(), f.speed_bias.data());
-  }
+WindowEstimator::FrameImuOptions WindowEstimator::ImuFactorOptions() const {
+  return {noise_adapter_.Effective(), config_.odometry.estimator.gravity_mps2,
+          config_.estimate_gravity_tilt, offset_free_};
+}
+
+std::pair<const ceres::CostFunction*, std::vector<double*>> WindowEstimator::ImuTerm(Frame& p,
+                                                                                     Frame& f) {
+  std::vector<double*> blocks = {p.pose.data(), p.speed_bias.data(), f.pose.data(),
+                                 f.speed_bias.data()};
+  if (config_.estimate_gravity_tilt) blocks.push_back(gravity_tilt_.data());
+  if (f.imu_offset != nullptr) blocks.push_back(window_offset_s_.data());
+  return {f.ImuCost(config_.estimate_gravity_tilt), std::move(blocks)};
 }
 
 int WindowEstimator::Solve(WindowResult* result) {
@@ -117,6 +132,7 @@ StateCovariance WindowEstimator::NewestCovariance() {
   ceres::Problem::EvaluateOptions eo;
   if (config_.estimate_extrinsic) eo.parameter_blocks.push_back(extrinsic_.data());
   if (config_.estimate_gravity_tilt) eo.parameter_blocks.push_back(gravity_tilt_.data());
+  if (offset_free_) eo.parameter_blocks.push_back(window_offset_s_.data());
   for (const auto& f : frames_) {  // the newest frame's blocks come last
     eo.parameter_blocks.push_back(f->pose.data());
     eo.parameter_blocks.push_back(f->speed_bias.data());
@@ -155,7 +171,7 @@ void WindowEstimator::Reintegrate() {
     const Frame& p = *frames_[k - 1];
     if (f.pre == nullptr || !f.pre->NeedsReintegration(p.BiasGyro(), p.BiasAcc())) continue;
     f.pre->Reintegrate(p.BiasGyro(), p.BiasAcc());
-    f.MakeImu(noise_adapter_.Effective(), config_.odometry.estimator.gravity_mps2);
+    f.MakeImu(ImuFactorOptions());
   }
 }
 
@@ -184,19 +200,21 @@ void WindowEstimator::Marginalize() {
   if (config_.estimate_gravity_tilt) {
     m.AddParameterBlock(gravity_tilt_.data(), kGravityTiltSize, nullptr, BlockRole::kKeep);
   }
-  if (f1.imu != nullptr && config_.estimate_gravity_tilt) {
-    m.AddResidualBlock(f1.imu_tilt.get(), nullptr,
-                       {f0.pose.data(), f0.speed_bias.data(), f1.pose.data(), f1.speed_bias.data(),
-                        gravity_tilt_.data()});
-  } else if (f1.imu != nullptr) {
-    m.AddResidualBlock(
-        f1.imu.get(), nullptr,
-        {f0.pose.data(), f0.speed_bias.data(), f1.pose.data(), f1.speed_bias.data()});
+  if (offset_free_) {
+    m.AddParameterBlock(window_offset_s_.data(), 1, nullptr, BlockRole::kKeep);
+    if (offset_prior_ != nullptr) {
+      m.AddResidualBlock(offset_prior_.get(), nullptr, {window_offset_s_.data()});
+    }
+  }
+  if (f1.imu != nullptr) {
+    auto [cost, blocks] = ImuTerm(f0, f1);
+    m.AddResidualBlock(cost, nullptr, std::move(blocks));
   }
   if (prior_.prior != nullptr) m.AddResidualBlock(prior_.prior.get(), nullptr, prior_.kept_blocks);
   MarginalizationResult next = m.Marginalize();
   if (next.status == MarginalizationStatus::kOk) {
     prior_ = std::move(next);
+    offset_prior_.reset();  // folded into prior_
   } else {
     ++marginalization_failures_;
     SetRestartPrior(&f1);  // nothing carried over: restart from frame 1 as it stands

@@ -107,5 +107,23 @@ TEST(HealthReporter, CountsTheDdsSamplesAndWarnsOfARefusedHint) {
   EXPECT_EQ(Value(*later, "last_hint"), "refused: no map node within 30 m");
 }
 
+// The LiDAR–IMU time offset: the applied one always, the window's own only where it estimates
+// one (estimator.window.time_offset.window_prior_sigma_s).
+TEST(HealthReporter, ReportsTheWindowsTimeOffsetOnlyWhereItIsEstimated) {
+  HealthSnapshot s;
+  s.optimizer.time_offset.offset_s = -0.0051;
+  HealthReporter r;
+  const ipc::DiagnosticArray a = r.Diagnostics(s);
+  const ipc::DiagnosticStatus* e = Find(a, "swlio: estimator");
+  ASSERT_NE(e, nullptr);
+  EXPECT_EQ(Value(*e, "imu_time_offset_ms"), "-5.10");
+  EXPECT_EQ(Value(*e, "imu_time_offset_window_ms"), "(absent)");
+  s.optimizer.time_offset.window_offset_s = -0.00497;
+  const ipc::DiagnosticArray b = r.Diagnostics(s);
+  const ipc::DiagnosticStatus* w = Find(b, "swlio: estimator");
+  ASSERT_NE(w, nullptr);
+  EXPECT_EQ(Value(*w, "imu_time_offset_window_ms"), "-4.97");
+}
+
 }  // namespace
 }  // namespace swlio::daemon

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -29,12 +30,13 @@ Scan AtItsEnd(Scan scan) {
 }
 
 struct OffsetWindow {
-  OffsetWindow(const sim::SimSetup& setup, double offset_s) {
+  OffsetWindow(const sim::SimSetup& setup, double offset_s, double window_prior_sigma_s = 0.0) {
     sim::ImuSimConfig imu_config = setup.imu;
     imu_config.time_offset_s = offset_s;
     imu = test::ToImuSamples(sim::SimulateImu(*setup.trajectory, imu_config, 42));
     WindowEstimatorConfig config;
     config.odometry.T_imu_lidar = setup.lidar.T_imu_lidar;
+    config.time_offset.window_prior_sigma_s = window_prior_sigma_s;
     window = std::make_unique<WindowEstimator>(config);
   }
   /// The samples up to `t_ns` (stamps), then the sweep.
@@ -74,9 +76,43 @@ TEST(TimeOffsetWindow, AnUnknownOffsetIsFoundAndAppliedOnAnAggressiveDrive) {
     EXPECT_NEAR(s.estimate_s, truth, 5e-4) << name;
     EXPECT_NEAR(s.offset_s, truth, 5e-4) << name;
     EXPECT_GT(s.updates, 0u) << name;
+    EXPECT_FALSE(s.window_offset_s.has_value()) << name;  // not asked for
   }
   EXPECT_EQ(diverged, 0u);
   EXPECT_GT(tracked, 2u * 330u);  // 38 s after the standing start, both windows
+}
+
+// The window's own offset parameter (window_prior_sigma_s): free from the estimator's first
+// estimate on, it must hold the truth as well as the estimator beside it, and be reported.
+TEST(TimeOffsetWindow, TheWindowsOwnOffsetHoldsTheTruth) {
+  auto setup = sim::MakeSimSetup("aggressive", 42, 40.0);
+  ASSERT_TRUE(setup.has_value());
+  const double truth_s = -0.008;
+  OffsetWindow w(*setup, truth_s, 0.005);
+  sim::LabelledScanSource source(*setup);
+  sim::LabelledScan ls;
+  WindowResult r;
+  size_t diverged = 0, reported = 0;
+  double worst_after_30s = 0.0;
+  while (source.Next(&ls)) {
+    r = w.Add(AtItsEnd(ls.scan));
+    diverged += r.diverged != DivergenceReason::kNone ? 1 : 0;
+    if (!r.time_offset.window_offset_s) continue;
+    ++reported;
+    if (NsToSec(ls.scan.t_end_ns) > 31.0) {
+      worst_after_30s =
+          std::max(worst_after_30s, std::abs(*r.time_offset.window_offset_s - truth_s));
+    }
+  }
+  std::cout << "window offset at the end " << r.time_offset.window_offset_s.value_or(0.0) * 1e3
+            << " ms (truth " << truth_s * 1e3 << "), worst after 30 s " << worst_after_30s * 1e3
+            << " ms, reported in " << reported << " results\n";
+  EXPECT_EQ(diverged, 0u);
+  EXPECT_GT(reported, 200u);  // from the first estimate (~9 s) on
+  ASSERT_TRUE(r.time_offset.window_offset_s.has_value());
+  EXPECT_GT(worst_after_30s, 0.0);
+  EXPECT_LT(worst_after_30s, 5e-4);
+  EXPECT_NEAR(r.time_offset.offset_s, truth_s, 5e-4);
 }
 
 }  // namespace

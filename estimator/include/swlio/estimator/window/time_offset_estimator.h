@@ -90,6 +90,10 @@ struct TimeOffsetConfig {
   /// 10 % of the offset known; 5 ms costs 8–36 % on `loop943` (the offset ≈ 0, first
   /// estimate after ~75 s of slow driving).
   double initial_sigma_s = 0.0;
+  /// σ of the prior on the window's own offset parameter, shared by its IMU factors
+  /// (time_offset_imu_factor.h), about `initial_offset_s` (s; 0: the window takes the applied
+  /// offset as exact).
+  double window_prior_sigma_s = 0.0;
 
   ConfigIssues Validate() const;
 };
@@ -106,6 +110,8 @@ struct TimeOffsetStatus {
   size_t updates = 0;             ///< sweeps so far at which the gate passed
   bool enabled = false;
   bool gated = false;  ///< the last solve passed the gate (the estimate is the target)
+  /// The window's own offset parameter (window_prior_sigma_s), where it is estimated.
+  std::optional<double> window_offset_s;
 };
 
 class TimeOffsetEstimator {

@@ -159,8 +159,22 @@ class WindowEstimator {
   Eigen::MatrixXd CorrelatedInitialPriorW(const Frame& frame) const;
   void StartFromBootstrap();
   State StateOf(const Frame& frame) const;
-  /// Frame i's IMU factor as the problem takes it (with the gravity tilt block or not).
-  void AddImuResidual(ceres::Problem& problem, Frame& prev, Frame& frame);
+  /// True when the window is to estimate the time offset itself (window_prior_sigma_s): its
+  /// IMU factors then share an offset block (time_offset_imu_factor.h) from the first
+  /// estimate of the TimeOffsetEstimator beside it on (FreeOffset; until then the applied
+  /// offset stands, as without the option).
+  bool OffsetInWindow() const;
+  /// The offset block starts at that estimate, with a prior of window_prior_sigma_s about it,
+  /// and the window's IMU factors are made again with it.
+  void FreeOffset();
+  /// offset_prior_ about the block's value (a new start of prior_ holds nothing of it).
+  void SetOffsetPrior();
+  /// How Frame::MakeImu makes the IMU factors now (noise, gravity, tilt and offset blocks).
+  struct FrameImuOptions;
+  FrameImuOptions ImuFactorOptions() const;
+  /// Frame's IMU factor (from `prev`) as the problem takes it, with its parameter blocks (the
+  /// gravity tilt block and the time-offset block as configured).
+  std::pair<const ceres::CostFunction*, std::vector<double*>> ImuTerm(Frame& prev, Frame& frame);
   static ceres::Problem::Options ProblemOptions();
   /// The window's blocks and residuals (extrinsic, frames, IMU, LiDAR rows, priors).
   void BuildProblem(ceres::Problem& problem);
@@ -251,8 +265,11 @@ class WindowEstimator {
   ScanMatcher matcher_;
   PoseManifold manifold_;
   ceres::HuberLoss huber_;
-  std::vector<double> extrinsic_;     ///< T_imu_lidar block (7)
-  std::vector<double> gravity_tilt_;  ///< map tilt against gravity (gravity_tilt_imu_factor.h)
+  std::vector<double> extrinsic_;        ///< T_imu_lidar block (7)
+  std::vector<double> gravity_tilt_;     ///< map tilt against gravity (gravity_tilt_imu_factor.h)
+  std::vector<double> window_offset_s_;  ///< the IMU factors' time offset (OffsetInWindow)
+  /// Its prior until a marginalization folds it into prior_; null otherwise.
+  std::unique_ptr<MarginalizationPrior> offset_prior_;
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
   std::unique_ptr<ExtrinsicCalibrationRun> calibration_;  ///< null when off or done
   std::unique_ptr<ExtrinsicCalibration> calibrated_;      ///< null until applied
@@ -270,6 +287,7 @@ class WindowEstimator {
   bool initialized_ = false;
   bool have_keyframe_ = false;
   bool started_static_ = false;  ///< the last initialization was a standing start
+  bool offset_free_ = false;     ///< window_offset_s_ is a parameter (FreeOffset)
 };
 
 }  // namespace swlio::estimator
