@@ -263,7 +263,7 @@ bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) {
   if (to->pre->Integrate(s, from.t_ns, to->t_ns) != PreintegrationStatus::kOk) return false;
   to->pre_time_shift_jacobian = TimeShiftJacobian(to->pre->result(), s.front(), s.back());
   to->pre_applied_offset_s = NsToSec(time_offset_.offset_ns());
-  to->pre_offset_sigma_s = OffsetInWindow() ? 0.0 : time_offset_.applied_sigma_s();
+  to->pre_offset_sigma_s = offset_free_ ? 0.0 : time_offset_.applied_sigma_s();
   to->MakeImu(ImuFactorOptions());
   return to->imu != nullptr;
 }

@@ -22,7 +22,10 @@ void WindowEstimator::FreeOffset() {
   window_offset_s_[0] = time_offset_.status().estimate_s;
   SetOffsetPrior();
   for (size_t k = 1; k < frames_.size(); ++k) {
-    if (frames_[k]->imu != nullptr) frames_[k]->MakeImu(ImuFactorOptions());
+    Frame& f = *frames_[k];
+    if (f.imu == nullptr) continue;
+    f.pre_offset_sigma_s = 0.0;  // the block carries the offset's uncertainty from now on
+    f.MakeImu(ImuFactorOptions());
   }
 }
 

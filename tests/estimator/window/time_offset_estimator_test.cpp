@@ -238,6 +238,10 @@ TEST(TimeOffsetConfig, ValidateNamesTheBadKeys) {
   sigma.initial_sigma_s = -1e-3;
   ASSERT_EQ(sigma.Validate().size(), 1u);
   EXPECT_EQ(sigma.Validate()[0].key, "initial_sigma_s");
+  TimeOffsetConfig window;
+  window.window_prior_sigma_s = 0.06;
+  ASSERT_EQ(window.Validate().size(), 1u);
+  EXPECT_EQ(window.Validate()[0].key, "window_prior_sigma_s");
 }
 
 }  // namespace
