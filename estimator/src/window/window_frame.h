@@ -73,7 +73,7 @@ struct WindowEstimator::Frame {
   }
 
   /// The cost function the window adds between the previous frame and this one.
-  const ceres::CostFunction* ImuCost(bool gravity_tilt) const {
+  ceres::CostFunction* ImuCost(bool gravity_tilt) {
     if (imu_offset != nullptr) return imu_offset.get();
     if (gravity_tilt) return imu_tilt.get();
     return imu.get();

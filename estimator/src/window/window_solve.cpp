@@ -52,7 +52,7 @@ void WindowEstimator::BuildProblem(ceres::Problem& problem) {
     }
     if (k > 0 && f.imu != nullptr) {
       auto [cost, blocks] = ImuTerm(*frames_[k - 1], f);
-      problem.AddResidualBlock(const_cast<ceres::CostFunction*>(cost), nullptr, blocks);
+      problem.AddResidualBlock(cost, nullptr, blocks);
     }
     if (f.wheel != nullptr) {
       problem.AddResidualBlock(f.wheel.get(), nullptr, f.pose.data(), f.speed_bias.data());
@@ -71,8 +71,7 @@ WindowEstimator::FrameImuOptions WindowEstimator::ImuFactorOptions() const {
           config_.estimate_gravity_tilt, offset_free_};
 }
 
-std::pair<const ceres::CostFunction*, std::vector<double*>> WindowEstimator::ImuTerm(Frame& p,
-                                                                                     Frame& f) {
+std::pair<ceres::CostFunction*, std::vector<double*>> WindowEstimator::ImuTerm(Frame& p, Frame& f) {
   std::vector<double*> blocks = {p.pose.data(), p.speed_bias.data(), f.pose.data(),
                                  f.speed_bias.data()};
   if (config_.estimate_gravity_tilt) blocks.push_back(gravity_tilt_.data());

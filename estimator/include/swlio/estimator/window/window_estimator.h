@@ -174,7 +174,7 @@ class WindowEstimator {
   FrameImuOptions ImuFactorOptions() const;
   /// Frame's IMU factor (from `prev`) as the problem takes it, with its parameter blocks (the
   /// gravity tilt block and the time-offset block as configured).
-  std::pair<const ceres::CostFunction*, std::vector<double*>> ImuTerm(Frame& prev, Frame& frame);
+  std::pair<ceres::CostFunction*, std::vector<double*>> ImuTerm(Frame& prev, Frame& frame);
   static ceres::Problem::Options ProblemOptions();
   /// The window's blocks and residuals (extrinsic, frames, IMU, LiDAR rows, priors).
   void BuildProblem(ceres::Problem& problem);
