@@ -71,8 +71,11 @@ ImuSample TimeOffsetEstimator::Shifted(ImuSample sample) const {
 
 double TimeOffsetEstimator::applied_sigma_s() const {
   if (!config_.enabled || !config_.estimate || config_.initial_sigma_s <= 0.0) return 0.0;
-  if (status_.updates == 0) return config_.initial_sigma_s;
-  return std::hypot(gated_sigma_s_, target_s_ - status_.offset_s);
+  if (status_.updates > 0) return std::hypot(gated_sigma_s_, target_s_ - status_.offset_s);
+  if (status_.rows < config_.min_rows || !std::isfinite(status_.sigma_s))
+    return config_.initial_sigma_s;
+  return std::min(config_.initial_sigma_s,
+                  std::hypot(status_.sigma_s, status_.estimate_s - status_.offset_s));
 }
 
 void TimeOffsetEstimator::ForgetRows() {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <random>
 #include <vector>
 
 #include "sim_imu_util.h"
@@ -35,14 +36,12 @@ Vec9 ShiftedMinusNominal(const std::vector<ImuSample>& imu,
   return d;
 }
 
-/// The interval's first and last samples as the pre-integration holds them (at its bounds).
-std::pair<ImuSample, ImuSample> Ends(const std::vector<ImuSample>& imu, int64_t t_i, int64_t t_j) {
-  const auto at = [&](int64_t t) {
-    const auto it = std::lower_bound(imu.begin(), imu.end(), t,
-                                     [](const ImuSample& s, int64_t v) { return s.t_ns < v; });
-    return *it;
-  };
-  return {at(t_i), at(t_j)};
+/// The samples within [t_i, t_j], as the window's interval holds them (one-sided at its ends).
+std::vector<ImuSample> Interval(const std::vector<ImuSample>& imu, int64_t t_i, int64_t t_j) {
+  std::vector<ImuSample> out;
+  for (const ImuSample& s : imu)
+    if (s.t_ns >= t_i && s.t_ns <= t_j) out.push_back(s);
+  return out;
 }
 
 TEST(TimeShiftJacobian, MatchesShiftedIntegrationOnAggressiveMotion) {
@@ -56,8 +55,9 @@ TEST(TimeShiftJacobian, MatchesShiftedIntegrationOnAggressiveMotion) {
     const int64_t t_i = SecToNs(t0), t_j = SecToNs(t0 + 0.1);
     Preintegrator pre(ImuNoiseConfig{}, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
     ASSERT_EQ(pre.Integrate(imu, t_i, t_j), PreintegrationStatus::kOk);
-    const auto [first, last] = Ends(imu, t_i, t_j);
-    const Vec9 predicted = TimeShiftJacobian(pre.result(), first, last) * eps_s;
+    const std::vector<ImuSample> interval = Interval(imu, t_i, t_j);
+    const Vec9 predicted =
+        TimeShiftJacobian(pre.result(), EndRates(interval, t_i), EndRates(interval, t_j)) * eps_s;
     const Vec9 measured = ShiftedMinusNominal(imu, t_i, t_j, SecToNs(eps_s));
     worst = std::max(worst, (predicted - measured).norm() / (measured.norm() + 1e-6));
     signal = std::max(signal, measured.segment<3>(kRowR).norm());
@@ -65,6 +65,45 @@ TEST(TimeShiftJacobian, MatchesShiftedIntegrationOnAggressiveMotion) {
   EXPECT_GT(signal, 1e-4);  // the motion changes its rate: a shift shows
   EXPECT_LT(worst, 0.1);    // first order within 10 %
   std::cout << "worst relative error " << worst << "\n";
+}
+
+// A line through the samples near an end: exact on a steady change, and a quarter or so of one
+// sample's noise variance at 400 Hz (16 samples: (4·16 − 2) / (16·17) = 0.23).
+TEST(TimeShiftJacobian, EndRatesFollowATrendWithLessNoiseThanOneSample) {
+  const int64_t dt_ns = 2'500'000, t_end_ns = 100'000'000;
+  std::vector<ImuSample> ramp;
+  for (int64_t t = 0; t <= t_end_ns; t += dt_ns) {
+    ImuSample s;
+    s.t_ns = t;
+    s.gyro_radps = Eigen::Vector3d(0.1, -0.2, 0.3) + 2.0 * NsToSec(t) * Eigen::Vector3d::Ones();
+    s.acc_mps2 = Eigen::Vector3d(1.0, 0.0, 9.8) - 5.0 * NsToSec(t) * Eigen::Vector3d::UnitX();
+    ramp.push_back(s);
+  }
+  for (const int64_t t : {int64_t{0}, t_end_ns}) {
+    const ImuSample fit = EndRates(ramp, t);
+    const ImuSample& truth = t == 0 ? ramp.front() : ramp.back();
+    EXPECT_LT((fit.gyro_radps - truth.gyro_radps).norm(), 1e-9);
+    EXPECT_LT((fit.acc_mps2 - truth.acc_mps2).norm(), 1e-9);
+    EXPECT_EQ(fit.t_ns, t);
+  }
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  double sq = 0.0;
+  int n = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::vector<ImuSample> noisy = ramp;
+    for (ImuSample& s : noisy) s.gyro_radps.x() += noise(rng);
+    const double err = EndRates(noisy, t_end_ns).gyro_radps.x() - ramp.back().gyro_radps.x();
+    sq += err * err;
+    ++n;
+  }
+  const double variance_ratio = sq / n;  // one sample's variance is 1
+  EXPECT_GT(variance_ratio, 0.15);
+  EXPECT_LT(variance_ratio, 0.32);
+  std::cout << "end-rate variance / one sample's: " << variance_ratio << "\n";
+  // Too few samples near the end: the nearest one.
+  const std::vector<ImuSample> two(ramp.begin(), ramp.begin() + 2);
+  EXPECT_EQ(EndRates(two, 0).gyro_radps, ramp.front().gyro_radps);
 }
 
 TEST(TimeShiftJacobian, UncertaintyAddsAlongTheJacobianOnly) {

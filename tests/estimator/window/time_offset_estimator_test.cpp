@@ -46,6 +46,8 @@ struct OffsetRun {
   /// The largest |applied − true offset| / applied_sigma_s() over the sweeps, and the last σ.
   double max_applied_z = 0.0;
   double applied_sigma_s = 0.0;
+  /// The smallest applied_sigma_s() before the first gated estimate (0: none came before it).
+  double min_sigma_before_update_s = 0.0;
 };
 
 /// `aggressive` seed 42 for `duration_s`, its IMU measuring the motion `offset_s` before its
@@ -86,6 +88,10 @@ OffsetRun Drive(double offset_s,
     if (run.first_update_s < 0.0 && estimator.status().updates > 0)
       run.first_update_s = NsToSec(t_ns);
     run.applied_sigma_s = estimator.applied_sigma_s();
+    if (estimator.status().updates == 0 && run.applied_sigma_s > 0.0 &&
+        (run.min_sigma_before_update_s == 0.0 ||
+         run.applied_sigma_s < run.min_sigma_before_update_s))
+      run.min_sigma_before_update_s = run.applied_sigma_s;
     if (run.applied_sigma_s > 0.0) {
       const double error_s = std::abs(estimator.status().offset_s - offset_s);
       run.max_applied_z = std::max(run.max_applied_z, error_s / run.applied_sigma_s);
@@ -165,6 +171,22 @@ TEST(TimeOffsetEstimator, TheAppliedSigmaCoversTheAppliedError) {
     EXPECT_LT(run.applied_sigma_s, TimeOffsetConfig{}.gate_sigma_s);
   }
   EXPECT_EQ(TimeOffsetEstimator(config).applied_sigma_s(), config.initial_sigma_s);
+  // With a wide prior the rows narrow it before the gate passes where they agree with the
+  // offset applied (0 here); where they see it far off it stays wide; it covers the error.
+  TimeOffsetConfig wide = config;
+  wide.initial_sigma_s = 0.010;
+  for (const double offset_s : {-0.010, 0.0, 0.010}) {
+    const OffsetRun run = Drive(offset_s, 35.0, 5e-4, wide);
+    std::cout << "offset " << offset_s * 1e3 << " ms, prior 10 ms: smallest sigma before the gate "
+              << run.min_sigma_before_update_s * 1e3 << " ms, first update at "
+              << run.first_update_s << " s, largest error/sigma " << run.max_applied_z << "\n";
+    EXPECT_GT(run.min_sigma_before_update_s, 0.0);
+    if (offset_s == 0.0)
+      EXPECT_LT(run.min_sigma_before_update_s, 0.1 * wide.initial_sigma_s);
+    else
+      EXPECT_GT(run.min_sigma_before_update_s, 0.3 * std::abs(offset_s));
+    EXPECT_LT(run.max_applied_z, 3.0);
+  }
   TimeOffsetConfig known = config;
   known.estimate = false;
   EXPECT_EQ(TimeOffsetEstimator(known).applied_sigma_s(), 0.0);

@@ -13,14 +13,31 @@
 /// the offset is unsettled does not pull the window with the error it carries.
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <vector>
 
 #include "swlio/core/types.h"
 #include "swlio/estimator/imu/preintegration.h"
 
 namespace swlio::estimator {
 
-/// ∂[δφ; δv; δp]/∂ε (per second) of `pim`, whose first and last samples are `first` and `last`.
+/// ∂[δφ; δv; δp]/∂ε (per second) of `pim`, with `first` and `last` the rate and specific force
+/// at its start and end (EndRates: one raw sample's white noise would enter J).
 Vec9 TimeShiftJacobian(const PreintegratedImu& pim, const ImuSample& first, const ImuSample& last);
+
+/// The span EndRates fits over: 16 samples of a 400 Hz IMU.
+inline constexpr int64_t kEndRatesSpanNs = 40'000'000;
+
+/// The rate and specific force at `t_ns` (stamped so), from a straight line fitted by least
+/// squares to the samples (sorted by time) within `span_ns` of it; the nearest sample where
+/// fewer than three are. J from raw samples carries their white noise: at 400 Hz one sample's
+/// variance is the noise density² · 400 Hz, and σ_d² J Jᵀ then doubles a 0.1 s interval's
+/// covariance at σ_d = 10 ms on a drive whose motion hardly changes. The line's end keeps a
+/// steady change of the motion unbiased and has about a quarter of one sample's variance
+/// ((4n − 2) / (n (n + 1)) for n samples).
+ImuSample EndRates(const std::vector<ImuSample>& samples,
+                   int64_t t_ns,
+                   int64_t span_ns = kEndRatesSpanNs);
 
 /// `pim` with σ_d² J Jᵀ added to its covariance (J = TimeShiftJacobian).
 PreintegratedImu WithTimeOffsetUncertainty(PreintegratedImu pim, const Vec9& J, double sigma_s);

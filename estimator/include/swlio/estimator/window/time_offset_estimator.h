@@ -86,9 +86,9 @@ struct TimeOffsetConfig {
   /// it settles, so an IMU applied at the wrong time does not bend the window where its rates
   /// change. Off by default: each factor is widened on its own, though the shift's effect
   /// telescopes along the chain (ω_j − ω_i of neighbours cancel), so it throws away IMU
-  /// information. Measured (issue 36): 10 ms brings an aggressive start 10 ms off to within
-  /// 10 % of the offset known; 5 ms costs 8–36 % on `loop943` (the offset ≈ 0, first
-  /// estimate after ~75 s of slow driving).
+  /// information. Measured (issue 36, bench/README "The field"): 10 ms costs 3–32 % on
+  /// `loop943` seeds 1–3 (the offset ≈ 0) and does not bring the twelve `aggressive` starts
+  /// 5–10 ms off closer to the offset known than the default does.
   double initial_sigma_s = 0.0;
   /// The window's own offset parameter, shared by its IMU factors (time_offset_imu_factor.h):
   /// free from this estimator's first gated estimate on, with a prior of this σ about that
@@ -132,8 +132,10 @@ class TimeOffsetEstimator {
 
   int64_t offset_ns() const { return offset_ns_; }
   /// How far the applied offset may be from the truth (s, one σ): 0 when it is not estimated
-  /// (a known calibration) or `initial_sigma_s` is 0, `initial_sigma_s` before the first
-  /// estimate, then the last gated estimate's σ together with the walk still to go.
+  /// (a known calibration) or `initial_sigma_s` is 0. Before the first gated estimate, what the
+  /// rows say so far (the fit's σ together with its distance from the applied offset, once
+  /// `min_rows` are in), never more than `initial_sigma_s`: a slow drive narrows it long before
+  /// the gate passes. Afterwards the last gated estimate's σ together with the walk still to go.
   double applied_sigma_s() const;
   const TimeOffsetStatus& status() const { return status_; }
 
