@@ -250,11 +250,18 @@ void Recorder::Finish() {
     if (files_ && !files_->Close()) StopOnFailure();
     return;
   }
-  if (files_) CloseSegment(setup_.time.ToDaemon(MonotonicNowNs()));
+  const int64_t t_ns = setup_.time.ToDaemon(MonotonicNowNs());
+  if (files_) CloseSegment(t_ns);
   store_->CloseAll();
+  // The last segment's size on disk (its manifest, what it took since the last bound) is
+  // known only now: the ring, the stop mark below included, ends within max_disk_mb too.
+  const RecordConfig& c = setup_.config->record;
+  const uint64_t max_bytes = static_cast<uint64_t>(c.max_disk_mb) * 1'000'000;
+  ring_->Trim(t_ns, {SecToNs(c.ring_minutes * 60.0), max_bytes - kCleanStopMarkBytes}, 0,
+              store_->KeepFromNs());
   // Also after a stop on a full disk: this run's segments are no crash's (and a disk still
   // full could not hold them as an incident).
-  std::ofstream(ring_dir_ / kCleanStopMark) << "swliod stopped cleanly\n";
+  std::ofstream(ring_dir_ / kCleanStopMark) << kCleanStopText;
 }
 
 RecorderCounters Recorder::counters() const {

@@ -104,6 +104,35 @@ TEST(LidarStage, ALargerStepBackIsNotHidden) {
   EXPECT_EQ(stage.counters().overlaps_absorbed, 0u);
 }
 
+// Jumps the stage's clock model counted over 10 s of packets (750/s), packet k received
+// rx_delay_ns(k) after it left.
+template <typename Delay>
+uint64_t ClockJumpsOver10s(const drivers::LidarConfig& config, Delay rx_delay_ns) {
+  LidarStage stage(config);
+  HostSweep sweep;
+  for (int k = 0; k < 7500; ++k) {
+    stage.Add(Msop(k), kHost0 + int64_t{k} * kPacketNs + 1'323'000 + rx_delay_ns(k));
+    while (stage.Pop(&sweep)) {
+    }
+  }
+  return stage.clock().jumps;
+}
+
+// A reader starved for 2.5 s on a busy host finds the datagrams queued in its socket, 400 ms
+// late: with the default 8 MiB buffer (8.7 s of RS16 datagrams) that is a backlog, not a clock
+// that stepped back. A buffer of 256 KiB cannot hold 400 ms, so there the same lag is a jump (two:
+// into it and out of it); and a step back by 20 s, more than any buffer holds, is one whatever
+// the buffer.
+TEST(LidarStage, ALagTheReceiveBufferCanHoldIsNotAClockJump) {
+  const auto starved = [](int k) { return 200'000 + (k >= 3000 && k < 4875 ? 400'000'000 : 0); };
+  const auto stepped = [](int k) { return 200'000 + (k >= 3000 ? int64_t{20'000'000'000} : 0); };
+  drivers::LidarConfig config;
+  EXPECT_EQ(ClockJumpsOver10s(config, starved), 0u);
+  EXPECT_EQ(ClockJumpsOver10s(config, stepped), 1u);
+  config.rcvbuf_bytes = 256 * 1024;
+  EXPECT_EQ(ClockJumpsOver10s(config, starved), 2u);  // into the lag, and out of it
+}
+
 TEST(LidarStage, RejectsAnUnknownModel) {
   drivers::LidarConfig config;
   config.model = "hdl64";

@@ -39,6 +39,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "swlio/core/types.h"
@@ -166,5 +167,7 @@ class Recorder {
 
 /// The file in ring/ that says the last run stopped cleanly (its segments are no incident).
 inline constexpr const char* kCleanStopMark = "clean-stop";
+inline constexpr std::string_view kCleanStopText = "swliod stopped cleanly\n";
+inline constexpr uint64_t kCleanStopMarkBytes = kCleanStopText.size();
 
 }  // namespace swlio::daemon

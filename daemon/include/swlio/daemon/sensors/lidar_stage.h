@@ -8,7 +8,8 @@
 /// times are mapped with the model as it stands when the sweep completes (causal, as live).
 /// The RS16 header time is the packet's first firing and the packet is sent after its last:
 /// that span (23 firing sequences + 15 channel slots ≈ 1.32 ms, RS-LiDAR-16 manual §9.2 timing)
-/// is the fixed latency removed.
+/// is the fixed latency removed. Datagrams as late as the socket's receive buffer can hold (a
+/// starved reader's backlog) are not a clock jump unless that lasts as long (docs/scheduling.md).
 
 #include <cstdint>
 #include <memory>
