@@ -261,10 +261,13 @@ bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) {
   const ImuNoiseConfig noise = noise_adapter_.Effective();
   to->pre = std::make_unique<Preintegrator>(noise, from.BiasGyro(), from.BiasAcc());
   if (to->pre->Integrate(s, from.t_ns, to->t_ns) != PreintegrationStatus::kOk) return false;
-  to->pre_time_shift_jacobian =
-      TimeShiftJacobian(to->pre->result(), EndRates(s, from.t_ns), EndRates(s, to->t_ns));
   to->pre_applied_offset_s = NsToSec(time_offset_.offset_ns());
   to->pre_offset_sigma_s = offset_free_ ? 0.0 : time_offset_.applied_sigma_s();
+  // J only where the offset's uncertainty widens this factor or the window estimates it.
+  to->pre_time_shift_jacobian =
+      to->pre_offset_sigma_s > 0.0 || OffsetInWindow()
+          ? TimeShiftJacobian(to->pre->result(), EndRates(s, from.t_ns), EndRates(s, to->t_ns))
+          : Vec9::Zero();
   to->MakeImu(ImuFactorOptions());
   return to->imu != nullptr;
 }
