@@ -615,9 +615,9 @@ int Main(int argc, char** argv) {
       ->required();
   app.add_option(
          "--loop-closure", opt.loop_closure,
-         "loop closure and pose graph (tightly-coupled; estimator.loop_closure in --config)")
-      ->check(CLI::IsMember({"on", "off"}))
-      ->capture_default_str();
+         "loop closure and pose graph (tightly-coupled); absent: estimator.loop_closure.enabled "
+         "of --config, on by default")
+      ->check(CLI::IsMember({"on", "off"}));
   app.add_option("--dynamic-removal", opt.dynamic_removal,
                  "moving objects out of the local and saved maps by what later sweeps see "
                  "through (estimator.window.visibility, estimator.loop_closure.visibility)")
