@@ -189,19 +189,22 @@ void Recorder::Housekeep() {
   if (files_ && files_->failed()) StopOnFailure();
 }
 
+RingBounds Recorder::Bounds() const {
+  const RecordConfig& c = setup_.config->record;
+  return {SecToNs(c.ring_minutes * 60.0), static_cast<uint64_t>(c.max_disk_mb) * 1'000'000};
+}
+
 void Recorder::BoundRing(int64_t now_ns) {
   if (!ring_) return;
   const int64_t t_ns = setup_.time.ToDaemon(now_ns);
-  const RecordConfig& c = setup_.config->record;
-  const uint64_t max_bytes = static_cast<uint64_t>(c.max_disk_mb) * 1'000'000;
-  if (files_ &&
-      (t_ns - segment_start_ns_ >= SecToNs(c.segment_s) || files_->bytes() >= max_bytes / 4)) {
+  const RingBounds bounds = Bounds();
+  if (files_ && (t_ns - segment_start_ns_ >= SecToNs(setup_.config->record.segment_s) ||
+                 files_->bytes() >= bounds.max_bytes / 4)) {
     Rotate(t_ns);
   }
   const uint64_t open_bytes = files_ ? files_->bytes() : 0;
-  if (ring_->bytes() + open_bytes > max_bytes || now_ns >= next_trim_ns_) {
-    ring_->Trim(t_ns, {SecToNs(c.ring_minutes * 60.0), max_bytes}, open_bytes,
-                store_->KeepFromNs());
+  if (ring_->bytes() + open_bytes > bounds.max_bytes || now_ns >= next_trim_ns_) {
+    ring_->Trim(t_ns, bounds, open_bytes, store_->KeepFromNs());
     next_trim_ns_ = now_ns + 1'000'000'000;
   }
   ring_bytes_.store(ring_->bytes() + open_bytes, std::memory_order_relaxed);
@@ -255,10 +258,9 @@ void Recorder::Finish() {
   store_->CloseAll();
   // The last segment's size on disk (its manifest, what it took since the last bound) is
   // known only now: the ring, the stop mark below included, ends within max_disk_mb too.
-  const RecordConfig& c = setup_.config->record;
-  const uint64_t max_bytes = static_cast<uint64_t>(c.max_disk_mb) * 1'000'000;
-  ring_->Trim(t_ns, {SecToNs(c.ring_minutes * 60.0), max_bytes - kCleanStopMarkBytes}, 0,
-              store_->KeepFromNs());
+  RingBounds bounds = Bounds();
+  bounds.max_bytes -= kCleanStopMarkBytes;
+  ring_->Trim(t_ns, bounds, 0, store_->KeepFromNs());
   // Also after a stop on a full disk: this run's segments are no crash's (and a disk still
   // full could not hold them as an incident).
   std::ofstream(ring_dir_ / kCleanStopMark) << kCleanStopText;

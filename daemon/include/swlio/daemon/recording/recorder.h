@@ -134,6 +134,8 @@ class Recorder {
   /// After every drain: rotation, and the ring's bounds as soon as its bytes exceed them (by
   /// span every second).
   void BoundRing(int64_t now_ns);
+  /// The ring's bounds from record.ring_minutes and record.max_disk_mb.
+  RingBounds Bounds() const;
   void TakeSideInputs();
   void Rotate(int64_t t_ns);
   void CloseSegment(int64_t t_ns);
