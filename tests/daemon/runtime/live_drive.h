@@ -48,10 +48,11 @@ struct LiveDrive {
   std::function<void(int64_t start_ns, double speed)> on_sim_start;
   /// Every test its own DDS domain, or one test's subscriber takes another's samples (the ipc
   /// tests publish edge values such as NaN and DBL_MAX: a CI-like run of ctest -j2 saw them
-  /// arrive here). tests/ipc uses 101..138 and 163..164 (DdsSecurity); the daemon tests 140..161:
+  /// arrive here). tests/ipc uses 101..138 and 163..164 (DdsSecurity); the daemon tests 140..162,
+  /// 165 and 166:
   /// Runtime.* 140, RuntimeFaults.* 141..153 and 156, SwliodCommand 154, Runtime.AWallClockStep…
   /// 157, RuntimeControl.* 159, RuntimeFastDdsTf.* 161, RuntimeInitialPose.* 162,
-  /// RuntimeBlackBox.* 165; not live drives:
+  /// RuntimeBlackBox.Keeps… 165, RuntimeBlackBox.AFullDisk… 166; not live drives:
   /// MapPublisher 155, PublisherThreadTf 158 and 160. Benchmarks use 200 and up
   /// (bench/daemon_latency.cpp).
   uint32_t dds_domain = 140;

@@ -206,7 +206,7 @@ TEST(RuntimeBlackBox, AFullDiskStopsTheRingAndNothingElse) {
     GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
   test::LiveDrive drive;
   drive.duration_s = 12.0;
-  drive.dds_domain = 165;
+  drive.dds_domain = 166;
   drive.adjust_config = [&](DaemonConfig* c) {
     c->record.ring = true;
     c->record.directory = box.string();
