@@ -1,10 +1,11 @@
 // The black box on a live drive (issue 35): the simulator injects three faults at known times
 // (a LiDAR outage at 8 s, an IMU unplug at 20 s, a blind LiDAR at 31 s that makes the estimator
-// diverge); exactly those three incidents are kept (besides any of the estimator falling behind
-// on this shared machine), each around its fault with the span asked for, while the ring stays
-// within max_disk_mb. An incident then replays byte-identically with swlio-replay
-// --deterministic and follows what the daemon estimated live, and swlio-report names the failed
-// subsystem in its summary. A full disk stops the ring and nothing else.
+// diverge); exactly those three incidents are kept (besides those of this shared machine's
+// load: the estimator falling behind, or the simulator itself seconds late), each around its
+// fault with the span asked for, while the ring stays within max_disk_mb. An incident then
+// replays byte-identically with swlio-replay --deterministic and follows what the daemon
+// estimated live, and swlio-report names the failed subsystem in its summary. A full disk stops
+// the ring and nothing else.
 
 #include <gtest/gtest.h>
 #include <sys/mount.h>
@@ -140,20 +141,45 @@ TEST(RuntimeBlackBox, KeepsExactlyTheInjectedFaultsAndReplaysThem) {
   EXPECT_GT(r.final.recorder.segments_deleted, 0u);
   EXPECT_FALSE(r.final.recorder.stopped) << r.final.recorder.error;
 
-  // An estimator that fell behind is an incident of its own, the load of this shared machine's
-  // (other tests beside this one), not one of the injected faults: shown and set aside.
+  // The injected faults: each one's incident, and when its event may come (simulation s). A
+  // simulator that sent late (a starved machine) injected its fault that much later.
+  const std::vector<std::string> expected = {"lidar_silent", "imu_silent", "divergence"};
+  std::array<std::pair<double, double>, 3> when = {{{8.9, 10.1}, {20.0, 21.6}, {31.5, 35.0}}};
+  for (auto& [from_s, to_s] : when) {
+    const double late_s = r.stats.WorstLatenessMs(from_s - 2.0, to_s) * 1e-3 * r.speed;
+    if (late_s > 0.0)
+      std::cout << "[ note ] the simulator sent " << late_s << " s late by " << to_s << " s\n";
+    to_s += late_s;
+  }
+  auto injected = [&](const Incident& i, double t_s) {
+    for (size_t k = 0; k < expected.size(); ++k) {
+      if (i.reason == expected[k] && t_s >= when[k].first && t_s <= when[k].second) return true;
+    }
+    return false;
+  };
+  // Two kinds of incident are this shared machine's load (other tests beside this one), not
+  // the daemon's: shown and set aside. An estimator that fell behind; and an incident no fault
+  // explains where the simulator itself had sent 200 ms late or more in the 3 s before: its
+  // sensors really went silent, or their clocks stepped, for the daemon (seen under
+  // `stress-ng --cpu 6`: the simulator seconds late, an extra imu_silent or clock_jump).
   std::vector<Incident> kept;
   std::vector<std::string> reasons;
   for (const Incident& i : Incidents(box / "incidents")) {
-    std::cout << "[ incident ] " << i.dir.filename().string() << " at " << sim_time(i.t_event_ns)
-              << " s, kept " << sim_time(i.start_ns) << " .. " << sim_time(i.end_ns) << " s\n"
+    const double t_s = sim_time(i.t_event_ns);
+    std::cout << "[ incident ] " << i.dir.filename().string() << " at " << t_s << " s, kept "
+              << sim_time(i.start_ns) << " .. " << sim_time(i.end_ns) << " s\n"
               << i.yaml;
     if (i.reason == "estimator_behind") continue;
+    const double sim_late_ms = r.stats.WorstLatenessMs(t_s - 3.0, t_s);
+    if (!injected(i, t_s) && sim_late_ms >= 200.0) {
+      std::cout << "[ note ] set aside: " << i.reason << " at " << t_s << " s, the simulator sent "
+                << sim_late_ms << " ms late before it\n";
+      continue;
+    }
     kept.push_back(i);
     reasons.push_back(i.reason);
   }
-  ASSERT_EQ(reasons, (std::vector<std::string>{"lidar_silent", "imu_silent", "divergence"}));
-  const std::array<std::pair<double, double>, 3> when = {{{8.9, 10.1}, {20.0, 21.6}, {31.5, 35.0}}};
+  ASSERT_EQ(reasons, expected);
   for (size_t i = 0; i < kept.size(); ++i) {
     const Incident& k = kept[i];
     EXPECT_GE(sim_time(k.t_event_ns), when[i].first) << k.reason;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <thread>
 
 #include "live/sim_live.h"
@@ -85,6 +86,51 @@ TEST(SimLive, StreamsEveryPacketAndFrameToLoopbackAndPty) {
 }
 
 TEST(SimLive, PrecastStreamsTheSamePacketsAndFrames) { ExpectEveryPacketAndFrameArrives(true); }
+
+// A simulator held up for 400 ms before its first send: the samples due in its first 0.6 s of
+// driving (at 2x) go out late, in one span from the start whose worst lateness is the hold-up.
+TEST(SimLive, LateSpansMarkWhereTheSimulatorFellBehind) {
+  std::string error;
+  drivers::UdpReceiverOptions uo;
+  uo.bind_address = "127.0.0.1";
+  uo.port = test::QuietUdpPort();
+  auto msop = drivers::UdpReceiver::Open(uo, &error);
+  ASSERT_TRUE(msop) << error;
+  const auto dir = test::MakeTempDir("live-late");
+  LiveOptions options;
+  options.msop_port = msop->bound_port();
+  options.difop_port = test::QuietUdpPort();
+  options.speed = 2.0;
+  options.pty_link = (dir / "imu.pty").string();
+  options.precast = true;
+  options.on_start = [](int64_t) { std::this_thread::sleep_for(std::chrono::milliseconds(400)); };
+  auto setup = MakeSimSetup("short", 11, 1.0);
+  ASSERT_TRUE(setup);
+  volatile bool stop = false;
+  LiveStats stats;
+  ASSERT_TRUE(RunLive(*setup, options, &stop, &stats, &error)) << error;
+  ASSERT_FALSE(stats.late_spans.empty());
+  const LiveStats::LateSpan& first = stats.late_spans.front();
+  EXPECT_LT(first.from_s, 0.01);  // the first sample
+  // Sent 400 ms after the start, a sample due at t s of driving (t / 2 s of host time) is more
+  // than 100 ms late up to t = 0.6 s, less what catching up takes.
+  EXPECT_GT(first.to_s, 0.2);
+  EXPECT_LT(first.to_s, 0.8);
+  EXPECT_GE(first.worst_ms, 400.0);
+  EXPECT_GE(stats.max_lateness_ms, first.worst_ms - 0.01);  // that one is kept as a float
+  EXPECT_EQ(stats.WorstLatenessMs(0.0, 0.05), first.worst_ms);
+}
+
+TEST(SimLive, WorstLatenessIsThatOfTheSpansOverlappingTheInterval) {
+  LiveStats stats;
+  stats.late_spans = {{1.0, 2.0, 300.0}, {5.0, 5.5, 150.0}, {6.0, 9.0, 2000.0}};
+  EXPECT_EQ(stats.WorstLatenessMs(0.0, 0.9), 0.0);
+  EXPECT_EQ(stats.WorstLatenessMs(0.0, 1.0), 300.0);
+  EXPECT_EQ(stats.WorstLatenessMs(2.0, 5.2), 300.0);
+  EXPECT_EQ(stats.WorstLatenessMs(2.1, 5.2), 150.0);
+  EXPECT_EQ(stats.WorstLatenessMs(3.0, 7.0), 2000.0);
+  EXPECT_EQ(stats.WorstLatenessMs(9.1, 20.0), 0.0);
+}
 
 }  // namespace
 }  // namespace swlio::sim

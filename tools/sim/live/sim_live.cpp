@@ -174,6 +174,22 @@ void SummarizeLateness(std::vector<float>* lateness_ms, LiveStats* stats) {
                                             static_cast<float>(LiveStats::kLateMs)));
 }
 
+/// Opens or extends LiveStats::late_spans with a send due at simulation time t_s.
+void TrackLateSpans(double t_s, double late_ms, bool* in_span, LiveStats* stats) {
+  if (late_ms <= LiveStats::kStallMs) {
+    *in_span = false;
+    return;
+  }
+  std::vector<LiveStats::LateSpan>& spans = stats->late_spans;
+  if (!*in_span) {
+    if (spans.size() >= LiveStats::kMaxLateSpans) return;
+    spans.push_back({t_s, t_s, late_ms});
+    *in_span = true;
+  }
+  spans.back().to_s = t_s;
+  spans.back().worst_ms = std::max(spans.back().worst_ms, late_ms);
+}
+
 /// imu_writes.csv: per IMU sample, when it was taken and when its frame went into the pty (host
 /// CLOCK_MONOTONIC ns; 0: never written). Pose age from the serial line to a subscriber is
 /// measured against it (scripts/live_figures.py).
@@ -199,6 +215,14 @@ void Report(const SerialBacklog& backlog, LiveStats* stats) {
 }
 
 }  // namespace
+
+double LiveStats::WorstLatenessMs(double from_s, double to_s) const {
+  double worst = 0.0;
+  for (const LateSpan& span : late_spans) {
+    if (span.to_s >= from_s && span.from_s <= to_s) worst = std::max(worst, span.worst_ms);
+  }
+  return worst;
+}
 
 bool RunLive(const SimSetup& setup,
              const LiveOptions& options,
@@ -252,12 +276,15 @@ bool RunLive(const SimSetup& setup,
   backlog.ReportWritesTo(options.imu_write_ns != nullptr ? options.imu_write_ns : &written_ns);
   std::vector<float> lateness_ms;
   lateness_ms.reserve(imu.size() + 1024);
+  bool in_late_span = false;
   while (!*stop && (have_packet || i < imu.size())) {
     const bool lidar_first = have_packet && (i >= imu.size() || packet.t_rx_ns <= imu[i].t_rx_ns);
     const int64_t due = host_ns(lidar_first ? packet.t_rx_ns : imu[i].t_rx_ns);
     SleepWriting(due, ep.pty_master, &backlog);
-    lateness_ms.push_back(static_cast<float>(static_cast<double>(MonotonicNs() - due) * 1e-6));
+    const double late_ms = static_cast<double>(MonotonicNs() - due) * 1e-6;
+    lateness_ms.push_back(static_cast<float>(late_ms));
     const double t_s = NsToSec(lidar_first ? packet.t_rx_ns : imu[i].t_rx_ns);
+    TrackLateSpans(t_s, late_ms, &in_late_span, stats);
     if (!FollowPlug(options, faults.Unplugged(t_s), &ep, faults.mutable_counts(), error)) {
       return false;
     }

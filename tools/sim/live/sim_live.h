@@ -60,6 +60,17 @@ struct LiveStats {
   /// Host time (CLOCK_MONOTONIC) of simulation time 0: a sample due at simulation time t is
   /// sent at start_ns + t / speed.
   int64_t start_ns = 0;
+  /// Where the simulator itself fell behind (a starved machine): a span of simulation time whose
+  /// sends were all more than kStallMs late, and the worst of them. The first kMaxLateSpans.
+  struct LateSpan {
+    double from_s = 0.0, to_s = 0.0, worst_ms = 0.0;
+  };
+  static constexpr double kStallMs = 100.0;
+  static constexpr size_t kMaxLateSpans = 10000;
+  std::vector<LateSpan> late_spans;
+  /// The worst lateness of the sends due in simulation time [from_s, to_s] that were more than
+  /// kStallMs late; 0 if none was.
+  double WorstLatenessMs(double from_s, double to_s) const;
   FaultCounts faults;  ///< what LiveOptions::faults injected
 };
 
