@@ -30,6 +30,7 @@ std::string StatusReport(const HealthSnapshot& now,
   line("ready", facts.ready ? "true" : "false");
   line("sweeps", std::to_string(now.optimizer.processed));
   line("drops", std::to_string(TotalDrops(now)));
+  line("reinitializations", std::to_string(now.optimizer.reinitializations));
   if (!published) {
     line("health", "none published yet (once a second)");
     return out;

@@ -63,6 +63,7 @@ void OptimizerThread::ServeResets() {
     e.tracking = TrackingState::kInitializing;
     q_.states_out->Push(e);
     tracking_ = TrackingState::kInitializing;
+    ++reinitializations_;  // the estimator's count (Reset), in the status before the reply
     recovering_ = false;
     failed_in_a_row_ = 0;
     Publish();
