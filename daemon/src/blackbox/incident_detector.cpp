@@ -108,7 +108,8 @@ void IncidentDetector::CheckSensors(const HealthSnapshot& now, const HealthSnaps
 void IncidentDetector::CheckEstimator(const HealthSnapshot& now, const HealthSnapshot& before) {
   const OptimizerCounters& a = now.optimizer;
   const OptimizerCounters& b = before.optimizer;
-  if (a.reinitializations > b.reinitializations) {
+  // An operator's reset (swlioctl reset) is no incident: the control log says who asked.
+  if (a.reinitializations - a.operator_resets > b.reinitializations - b.operator_resets) {
     Emit("divergence",
          std::string("the estimator diverged (") + a.last_divergence + ") and re-initialized");
   }

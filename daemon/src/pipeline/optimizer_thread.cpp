@@ -64,6 +64,7 @@ void OptimizerThread::ServeResets() {
     q_.states_out->Push(e);
     tracking_ = TrackingState::kInitializing;
     ++reinitializations_;  // the estimator's count (Reset), in the status before the reply
+    ++operator_resets_;
     recovering_ = false;
     failed_in_a_row_ = 0;
     Publish();
@@ -216,6 +217,7 @@ void OptimizerThread::Publish() {
   snapshot_.last_update_ms = last_ms_;
   snapshot_.max_update_ms = max_ms_;
   snapshot_.reinitializations = reinitializations_;
+  snapshot_.operator_resets = operator_resets_;
   snapshot_.wheel_factors = wheel_factors_;
   snapshot_.wheel_rejected = wheel_rejected_;
   snapshot_.standing_still = standing_still_;

@@ -74,6 +74,19 @@ TEST(IncidentDetector, DivergenceUnplugClockJumpAndBehindAreEvents) {
   EXPECT_NE(e[2].detail.find("lidar_lost"), std::string::npos) << e[2].detail;
 }
 
+TEST(IncidentDetector, AnOperatorsResetIsNoDivergence) {
+  IncidentDetector d;
+  d.Update(Streaming(1), kSec, 0);
+  HealthSnapshot s = Streaming(2);
+  s.optimizer.reinitializations = 1;  // swlioctl reset
+  s.optimizer.operator_resets = 1;
+  EXPECT_TRUE(d.Update(s, 2 * kSec, 0).empty());
+  s = Streaming(3);
+  s.optimizer.reinitializations = 2;  // then a divergence
+  s.optimizer.operator_resets = 1;
+  EXPECT_EQ(Reasons(d.Update(s, 3 * kSec, 0)), std::vector<std::string>{"divergence"});
+}
+
 TEST(IncidentDetector, LidarLossNeedsTenPacketsAndOnePercent) {
   IncidentDetector d;
   HealthSnapshot s = Streaming(1);

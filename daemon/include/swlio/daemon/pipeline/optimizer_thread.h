@@ -53,7 +53,9 @@ struct OptimizerCounters {
   uint64_t wheel_rejected = 0;     ///< wheel measurements the slip gate refused
   bool standing_still = false;     ///< the newest sweep's frame was taken for rest
   uint64_t standstill_sweeps = 0;  ///< frames with a zero-velocity factor so far
-  uint64_t reinitializations = 0;  ///< the estimator found its state diverged and restarted
+  /// The estimator restarted: it found its state diverged, or an operator reset it.
+  uint64_t reinitializations = 0;
+  uint64_t operator_resets = 0;  ///< of those, resets asked for (swlioctl reset)
   /// The LiDAR–IMU time offset applied to the IMU samples, its estimate and how many sweeps
   /// updated it (estimator/window/time_offset_estimator.h).
   estimator::TimeOffsetStatus time_offset;
@@ -112,6 +114,7 @@ class OptimizerThread {
   SpscQueue<State>* record_ = nullptr;
   uint64_t processed_ = 0;
   uint64_t reinitializations_ = 0;
+  uint64_t operator_resets_ = 0;
   uint64_t wheel_factors_ = 0, wheel_rejected_ = 0;
   uint64_t standstill_sweeps_ = 0;
   estimator::TimeOffsetStatus time_offset_;
