@@ -21,7 +21,7 @@ const char* const kHealthCsvHeader =
     "estimator_skipped_behind,estimator_imu_only_s,estimator_map_points,loop_nodes,loop_accepted,"
     "loop_rejected,loop_correction_m,loc_state,loc_tracked,loc_lost,loc_hints,poses,"
     "queue_max_fill,queue_dropped,wall_clock_steps,cpu_s,rss_mb,imu_time_offset_ms,"
-    "imu_time_offset_sigma_ms,moving_points_removed";
+    "imu_time_offset_sigma_ms,moving_points_removed,estimator_operator_resets";
 
 ProcessUsage ReadProcessUsage() {
   ProcessUsage u;
@@ -121,7 +121,7 @@ void EstimatorColumns(const HealthSnapshot& s, std::string* row) {
 }
 
 /// The LiDAR–IMU time offset applied to the IMU samples, its σ (empty before the estimator has
-/// rows) and the moving points taken out of the maps (cumulative).
+/// rows), the moving points taken out of the maps and the operator's resets (both cumulative).
 void TimeOffsetColumns(const HealthSnapshot& s, std::string* row) {
   const estimator::TimeOffsetStatus& t = s.optimizer.time_offset;
   Col(row, t.offset_s * 1e3);
@@ -131,6 +131,7 @@ void TimeOffsetColumns(const HealthSnapshot& s, std::string* row) {
     Col(row, t.sigma_s * 1e3);
   }
   Col(row, s.optimizer.dynamic_removed);
+  Col(row, s.optimizer.operator_resets);
 }
 
 }  // namespace

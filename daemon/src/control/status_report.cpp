@@ -31,6 +31,7 @@ std::string StatusReport(const HealthSnapshot& now,
   line("sweeps", std::to_string(now.optimizer.processed));
   line("drops", std::to_string(TotalDrops(now)));
   line("reinitializations", std::to_string(now.optimizer.reinitializations));
+  line("operator_resets", std::to_string(now.optimizer.operator_resets));
   if (!published) {
     line("health", "none published yet (once a second)");
     return out;

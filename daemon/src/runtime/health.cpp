@@ -249,6 +249,7 @@ ipc::DiagnosticStatus EstimatorStatus(const HealthSnapshot& s, const HealthRates
       {"sweeps_skipped_behind", Count(s.optimizer.skipped_behind)},
       {"local_map_points", Count(s.optimizer.map_points)},
       {"reinitializations", Count(s.optimizer.reinitializations)},
+      {"operator_resets", Count(s.optimizer.operator_resets)},
       {"imu_only_s", Num(s.optimizer.imu_only_s, "%.2f")},
       {"sweep_age_s", SweepAge(s)},
       {"last_divergence", s.optimizer.last_divergence},
@@ -381,8 +382,9 @@ std::string StatusLine(const HealthSnapshot& now, const HealthRates& r) {
   std::snprintf(line, sizeof line,
                 "status %s | lidar %.0f pkt/s %.1f sweeps/s, missing %llu | imu %.0f Hz, "
                 "checksum errors %llu, gaps %llu | pose %.0f Hz | update %.1f ms (max %.1f) | "
-                "drops %llu | skipped behind %llu | reinit %llu | clock jumps lidar %llu imu "
-                "%llu | lag p99 imu read %.1f ms, lidar read %.1f ms, read to pose %.1f ms",
+                "drops %llu | skipped behind %llu | reinit %llu (operator resets %llu) | "
+                "clock jumps lidar %llu imu %llu | "
+                "lag p99 imu read %.1f ms, lidar read %.1f ms, read to pose %.1f ms",
                 ToString(now.optimizer.tracking), r.lidar_packets_hz, r.sweeps_hz,
                 static_cast<unsigned long long>(now.optimizer.lidar.missing_packets), r.imu_hz,
                 static_cast<unsigned long long>(ImuChecksumErrors(now)),
@@ -391,6 +393,7 @@ std::string StatusLine(const HealthSnapshot& now, const HealthRates& r) {
                 static_cast<unsigned long long>(TotalDrops(now)),
                 static_cast<unsigned long long>(now.optimizer.skipped_behind),
                 static_cast<unsigned long long>(now.optimizer.reinitializations),
+                static_cast<unsigned long long>(now.optimizer.operator_resets),
                 static_cast<unsigned long long>(now.optimizer.lidar_clock.jumps),
                 static_cast<unsigned long long>(now.propagator.clock_jumps), r.imu_read_lag.p99_ms,
                 r.lidar_read_lag.p99_ms, r.pose_latency.p99_ms);

@@ -1,4 +1,5 @@
-// health.csv rows (health_row.h): one field per header column, the time-offset columns at the end.
+// health.csv rows (health_row.h): one field per header column, the time-offset, moving-point and
+// operator-reset columns at the end.
 
 #include "swlio/daemon/blackbox/health_row.h"
 
@@ -36,17 +37,21 @@ TEST(HealthCsvRow, OneFieldPerColumn) {
   EXPECT_EQ(Field(row, "t_ns"), "5000000000");
 }
 
-TEST(HealthCsvRow, TimeOffsetAndMovingPoints) {
+TEST(HealthCsvRow, TimeOffsetMovingPointsAndOperatorResets) {
   HealthSnapshot s;
   EXPECT_EQ(Field(HealthCsvRow(s, 0, 0, {}), "imu_time_offset_sigma_ms"), "")
       << "no sigma before the estimator has rows";
   s.optimizer.time_offset.offset_s = -0.00125;
   s.optimizer.time_offset.sigma_s = 0.0004;
   s.optimizer.dynamic_removed = 1234;
+  s.optimizer.reinitializations = 3;
+  s.optimizer.operator_resets = 2;
   const std::string row = HealthCsvRow(s, 0, 0, {});
   EXPECT_EQ(Field(row, "imu_time_offset_ms"), "-1.25");
   EXPECT_EQ(Field(row, "imu_time_offset_sigma_ms"), "0.4");
   EXPECT_EQ(Field(row, "moving_points_removed"), "1234");
+  EXPECT_EQ(Field(row, "estimator_reinitializations"), "3");
+  EXPECT_EQ(Field(row, "estimator_operator_resets"), "2") << "of the 3, asked for by swlioctl";
   EXPECT_EQ(Fields(row).size(), Fields(kHealthCsvHeader).size());
 }
 

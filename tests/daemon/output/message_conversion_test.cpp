@@ -189,6 +189,7 @@ TEST(HealthReporter, SaysWhyTheEstimatorIsLostWhileItReinitializes) {
   s.optimizer.tracking = TrackingState::kLost;
   s.optimizer.recovering = true;
   s.optimizer.reinitializations = 2;
+  s.optimizer.operator_resets = 1;
   s.optimizer.skipped_behind = 7;
   s.optimizer.last_divergence = "speed out of bounds";
   HealthReporter r;
@@ -197,11 +198,13 @@ TEST(HealthReporter, SaysWhyTheEstimatorIsLostWhileItReinitializes) {
   EXPECT_EQ(d.status[2].message,
             "lost: re-initializing after speed out of bounds; degraded: CPU (7 sweeps skipped, "
             "the estimator fell behind)");
-  bool counted = false;
-  for (const auto& kv : d.status[2].values)
-    counted |= kv.key == "reinitializations" && kv.value == "2";
-  EXPECT_TRUE(counted);
-  EXPECT_NE(r.StatusLine(s).find("reinit 2"), std::string::npos);
+  int counted = 0;
+  for (const auto& kv : d.status[2].values) {
+    counted += kv.key == "reinitializations" && kv.value == "2";
+    counted += kv.key == "operator_resets" && kv.value == "1";
+  }
+  EXPECT_EQ(counted, 2) << "re-initializations and, of those, the operator's resets";
+  EXPECT_NE(r.StatusLine(s).find("reinit 2 (operator resets 1)"), std::string::npos);
   EXPECT_NE(r.StatusLine(s).find("skipped behind 7"), std::string::npos);
   bool skipped = false;
   for (const auto& kv : d.status[2].values)

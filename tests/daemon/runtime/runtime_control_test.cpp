@@ -188,8 +188,10 @@ TEST(RuntimeControl, StatusSaveMapAndResetOnALiveDrive) {
   EXPECT_EQ(TopValue(out.after_reset, "reinitializations"),
             TopValue(out.tracking_status, "reinitializations") + 1)
       << out.after_reset;
+  EXPECT_EQ(TopValue(out.after_reset, "operator_resets"), 1) << out.after_reset;
   EXPECT_THAT(out.tracking_again, HasSubstr("state: tracking")) << out.timeline;
   EXPECT_GE(r.final.optimizer.reinitializations, 1u);
+  EXPECT_EQ(r.final.optimizer.operator_resets, 1u);
 }
 
 /// A Runtime without a drive and without DDS: enough to ask it.

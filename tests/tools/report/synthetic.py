@@ -19,7 +19,8 @@ HEADER = (
     "estimator_reinitializations,estimator_skipped_behind,estimator_imu_only_s,"
     "estimator_map_points,loop_nodes,loop_accepted,loop_rejected,loop_correction_m,loc_state,"
     "loc_tracked,loc_lost,loc_hints,poses,queue_max_fill,queue_dropped,wall_clock_steps,cpu_s,"
-    "rss_mb,imu_time_offset_ms,imu_time_offset_sigma_ms,moving_points_removed"
+    "rss_mb,imu_time_offset_ms,imu_time_offset_sigma_ms,moving_points_removed,"
+    "estimator_operator_resets"
 )
 UTC0 = calendar.timegm(time.strptime("2026-12-04T14:32:00", "%Y-%m-%dT%H:%M:%S"))
 
@@ -30,10 +31,13 @@ def utc_text(host_s, t0_s, ms=True):
     return text + (f".{int(round((u % 1) * 1000)) % 1000:03d}" if ms else "")
 
 
-def health_rows(t0_s=100.0, rows=40, gap=(20, 3), checksum_at=None, reinit_at=None):
-    """health.csv text: one row a second from t0_s; `gap` = (first silent row, rows)."""
+def health_rows(
+    t0_s=100.0, rows=40, gap=(20, 3), checksum_at=None, reinit_at=None, reset_at=None
+):
+    """health.csv text: one row a second from t0_s; `gap` = (first silent row, rows); the
+    estimator re-initializes at row `reinit_at` (a divergence) and `reset_at` (an operator's)."""
     lines = [HEADER]
-    c = dict(dg=0, sw=0, imu=0, cs=0, reinit=0, cpu=0.0, loops=0)
+    c = dict(dg=0, sw=0, imu=0, cs=0, reinit=0, resets=0, cpu=0.0, loops=0)
     for i in range(rows):
         silent = gap is not None and gap[0] <= i < gap[0] + gap[1]
         if i > 0 and not silent:
@@ -42,6 +46,8 @@ def health_rows(t0_s=100.0, rows=40, gap=(20, 3), checksum_at=None, reinit_at=No
         c["imu"] += 400 if i > 0 else 0
         c["cs"] += 1 if checksum_at is not None and i == checksum_at else 0
         c["reinit"] += 1 if reinit_at is not None and i == reinit_at else 0
+        c["reinit"] += 1 if reset_at is not None and i == reset_at else 0
+        c["resets"] += 1 if reset_at is not None and i == reset_at else 0
         c["cpu"] += 0.15
         c["loops"] += 1 if i == rows - 5 else 0
         state = "degraded" if silent else "tracking"
@@ -93,6 +99,7 @@ def health_rows(t0_s=100.0, rows=40, gap=(20, 3), checksum_at=None, reinit_at=No
                     -0.8 - 0.01 * i,
                     "" if i < 5 else 0.3,
                     120 * i,
+                    c["resets"],
                 )
             )
         )
@@ -108,7 +115,8 @@ def log_text(t0_s=100.0, rows=40, gap=(20, 3)):
                 "info",
                 "status tracking | lidar 750 pkt/s 10.0 sweeps/s, "
                 "missing 0 | imu 400 Hz, checksum errors 0, gaps 0 | pose 400 Hz | update 4.8 ms "
-                "(max 9.5) | drops 0 | skipped behind 0 | reinit 0 | clock jumps lidar 0 imu 0 | "
+                "(max 9.5) | drops 0 | skipped behind 0 | reinit 0 (operator resets 0) | "
+                "clock jumps lidar 0 imu 0 | "
                 "lag p99 imu read 0.3 ms, lidar read 0.2 ms, read to pose 1.1 ms",
             )
         )

@@ -54,6 +54,19 @@ class Verdicts(unittest.TestCase):
         self.assertEqual(v.label(), "failed")
         self.assertIn("1 re-initialization(s), first at 14:32:30.0", v.reason())
 
+    def test_an_operators_reset_is_said_and_fails_nothing(self):
+        synthetic.write_incident(self.dir, gap=None, reset_at=25)
+        v = judge(self.dir)["estimator"]
+        self.assertEqual(v.label(), "ok")
+        self.assertIn("no re-initialization", v.reason())
+        self.assertIn("1 operator reset(s), first at 14:32:25.0", v.reason())
+
+    def test_a_divergence_beside_an_operators_reset_still_fails(self):
+        synthetic.write_incident(self.dir, gap=None, reset_at=25, reinit_at=30)
+        v = judge(self.dir)["estimator"]
+        self.assertEqual(v.label(), "failed")
+        self.assertIn("1 re-initialization(s), first at 14:32:30.0", v.reason())
+
     def test_missing_black_box_file_degrades_the_black_box(self):
         synthetic.write_incident(self.dir, gap=None)
         os.remove(os.path.join(self.dir, "log.txt"))
@@ -68,6 +81,16 @@ class Verdicts(unittest.TestCase):
         v = judge(self.dir)
         self.assertEqual(v["estimator"].label(), "failed")
         self.assertEqual(v["black box"].label(), "no data")
+
+    def test_status_lines_subtract_the_operators_resets(self):
+        os.makedirs(self.dir)
+        text = synthetic.log_text(gap=None)
+        with open(os.path.join(self.dir, "swliod.log"), "w") as f:
+            f.write(text.replace("reinit 0 (operator resets 0)", "reinit 1 (operator resets 1)"))
+        self.assertEqual(judge(self.dir)["estimator"].label(), "ok")
+        with open(os.path.join(self.dir, "swliod.log"), "w") as f:
+            f.write(text.replace("reinit 0 (operator resets 0)", "reinit 2 (operator resets 1)"))
+        self.assertEqual(judge(self.dir)["estimator"].label(), "failed")
 
     def test_log_directory_warnings(self):
         v = judge(synthetic.write_logdir(self.dir))

@@ -11,6 +11,7 @@ STATUS_OF = {
     "lidar_clock_jumps": "lidar_clock_jumps",
     "imu_clock_jumps": "imu_clock_jumps",
     "estimator_reinitializations": "reinit",
+    "estimator_operator_resets": "operator_resets",
     "estimator_skipped_behind": "skipped_behind",
     "queue_dropped": "drops",
     "estimator_update_ms": "update_ms",
@@ -87,8 +88,21 @@ def from_status(rows):
     return ev
 
 
+def with_divergences(ev):
+    """Adds `estimator_divergences`: the re-initializations no operator asked for (an older
+    daemon's files have no operator resets: none are subtracted)."""
+    ts, reinit = ev.get("estimator_reinitializations")
+    resets = ev.get("estimator_operator_resets")[1] or [None] * len(reinit)
+    if reinit:
+        ev.columns["estimator_divergences"] = (
+            ts,
+            [None if r is None else r - (o or 0) for r, o in zip(reinit, resets)],
+        )
+    return ev
+
+
 def build(inputs, timeline):
     if inputs.health is not None and inputs.health.rows > 0:
-        return from_health(inputs.health)
+        return with_divergences(from_health(inputs.health))
     rows = status_rows(inputs.log_lines, timeline)
-    return from_status(rows) if rows else Evidence("")
+    return with_divergences(from_status(rows)) if rows else Evidence("")

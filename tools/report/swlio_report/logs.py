@@ -37,12 +37,15 @@ STATUS_FIELDS = {
     "drops": r"drops (\d+)",
     "skipped_behind": r"skipped behind (\d+)",
     "reinit": r"reinit (\d+)",
+    "operator_resets": r"operator resets (\d+)",
     "lidar_clock_jumps": r"clock jumps lidar (\d+)",
     "imu_clock_jumps": r"clock jumps lidar \d+ imu (\d+)",
     "lag_imu_ms": r"imu read ([\d.]+) ms",
     "lag_lidar_ms": r"lidar read ([\d.]+) ms",
     "lag_pose_ms": r"read to pose ([\d.]+) ms",
 }
+# Fields newer daemons added (2026-12-05); an older daemon's lines lack them.
+NEWER_STATUS_FIELDS = {"operator_resets"}
 _STATUS_FIELDS = {k: re.compile(v) for k, v in STATUS_FIELDS.items()}
 _STATUS = re.compile(r"^(final )?status (\w+)")
 

@@ -37,15 +37,25 @@ def _replay_estimator(v, ctx):
     )
 
 
-def estimator(v, ctx):
+def _reinitializations(v, ctx):
+    """Re-initializations after a divergence fail; an operator's resets are only said."""
     ev = ctx.ev
-    if ev.has("estimator_reinitializations"):
-        reinit = ev.grew("estimator_reinitializations")
-        first = series.first_increase(*ev.get("estimator_reinitializations"))
+    if ev.has("estimator_divergences"):
+        reinit = ev.grew("estimator_divergences")
+        first = series.first_increase(*ev.get("estimator_divergences"))
         if reinit > REINITIALIZATIONS:
             v.add("failed", f"{count(reinit)} re-initialization(s), first at {ctx.tl.utc(first)}")
         else:
             v.add("ok", "no re-initialization")
+    resets = ev.grew("estimator_operator_resets")
+    if resets > 0:
+        first = series.first_increase(*ev.get("estimator_operator_resets"))
+        v.add("ok", f"{count(resets)} operator reset(s), first at {ctx.tl.utc(first)}")
+
+
+def estimator(v, ctx):
+    ev = ctx.ev
+    _reinitializations(v, ctx)
     t, state = _first_state(ctx, ev.states, ("lost",))
     if t is not None:
         v.add("failed", f"tracking lost at {ctx.tl.utc(t)}")
