@@ -7,7 +7,6 @@ import os
 import stat
 import subprocess
 import tempfile
-import textwrap
 import unittest
 from pathlib import Path
 
@@ -20,7 +19,7 @@ FAKE_RUN = """\
 import json, os, sys
 a = sys.argv[1:]
 rec, out, floor = a[0], a[a.index("--out") + 1], float(a[a.index("--lidar-floor-m") + 1])
-with open(os.path.join(os.environ["FAKE_LOG"]), "a") as f:
+with open(os.environ["FAKE_LOG"], "a") as f:
     f.write(json.dumps(a) + "\\n")
 base = float(open(os.path.join(rec, "base.txt")).read())
 if base < 0:

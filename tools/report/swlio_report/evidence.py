@@ -103,6 +103,8 @@ def with_divergences(ev):
 
 def build(inputs, timeline):
     if inputs.health is not None and inputs.health.rows > 0:
-        return with_divergences(from_health(inputs.health))
-    rows = status_rows(inputs.log_lines, timeline)
-    return with_divergences(from_status(rows)) if rows else Evidence("")
+        ev = from_health(inputs.health)
+    else:
+        rows = status_rows(inputs.log_lines, timeline)
+        ev = from_status(rows) if rows else Evidence("")
+    return with_divergences(ev)
