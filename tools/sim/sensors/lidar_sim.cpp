@@ -15,6 +15,8 @@ using drivers::rs16::kFiringPeriodNs;
 using drivers::rs16::kLaserSpacingNs;
 constexpr int kFiringsPerPacket = 2 * drivers::rs16::kBlocks;
 constexpr double kDegToRad = std::numbers::pi / 180.0;
+/// KeyedDraws seed offset of the packets' receive jitter (rays are keyed on the noise seed itself).
+constexpr uint64_t kPacketStream = 0x7A1E5ull;
 
 double PacketStartS(uint64_t index) { return NsToSec(static_cast<int64_t>(index) * kMsopPeriodNs); }
 
@@ -47,7 +49,7 @@ LidarSimulator::LidarSimulator(const World* world,
                                const Trajectory* trajectory,
                                const LidarSimConfig& config,
                                uint64_t seed)
-    : world_(world), trajectory_(trajectory), config_(config), rng_(seed ^ 0x11DA4ull) {
+    : world_(world), trajectory_(trajectory), config_(config), noise_seed_(seed ^ 0x11DA4ull) {
   if (config_.weather.Any()) {
     weather_.emplace(world_, config_.weather, seed);
   }
@@ -156,15 +158,20 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
           moving = false;
         }
       }
+      // Every ray draws the same three numbers whatever it hit (KeyedDraws).
+      KeyedDraws draws(noise_seed_, (index * kFiringsPerPacket + f) * 16 + laser);
+      const double u_dropout = draws.Uniform();
+      const double range_noise_m = draws.Normal(config_.range_sigma_m);
+      const double u_intensity = draws.Uniform();
       double range = 0.0;
-      if (hit.range_m > 0.0 && rng_.Uniform() >= config_.dropout) {
-        range = hit.range_m + rng_.Normal(config_.range_sigma_m);
+      if (hit.range_m > 0.0 && u_dropout >= config_.dropout) {
+        range = hit.range_m + range_noise_m;
         if (range < config_.min_range_m || range > config_.max_range_m) range = 0.0;
       }
       const size_t slot = 16 * static_cast<size_t>(f % 2) + static_cast<size_t>(laser);
       block.range_m[slot] = static_cast<float>(range);
       block.intensity[slot] = static_cast<uint8_t>(
-          std::clamp(hit.reflectivity * (0.9 + 0.2 * rng_.Uniform()), 0.0, 255.0));
+          std::clamp(hit.reflectivity * (0.9 + 0.2 * u_intensity), 0.0, 255.0));
       if (returns != nullptr) {
         returns->push_back({SecToNs(t_fire), static_cast<uint8_t>(f / 2),
                             static_cast<uint8_t>(slot), static_cast<uint8_t>(laser), range,
@@ -176,7 +183,8 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
   }
   drivers::EncodeRs16Msop(content, out->bytes);
   out->dst_port = config_.msop_port;
-  out->t_rx_ns = std::max(MsopRxNs(index) + SecToNs(rng_.Uniform(0.0, config_.latency_jitter_s)),
+  const double u_jitter = KeyedDraws(noise_seed_ ^ kPacketStream, index).Uniform();
+  out->t_rx_ns = std::max(MsopRxNs(index) + SecToNs(u_jitter * config_.latency_jitter_s),
                           last_rx_ns_ + 1000);
   last_rx_ns_ = out->t_rx_ns;
 }

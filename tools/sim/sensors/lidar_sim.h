@@ -102,7 +102,7 @@ class LidarSimulator {
   bool Next(SimPacket* out, std::vector<SimReturn>* returns = nullptr);
 
   /// Continues from sim time `t_s` without casting the packets before it (for tests that need
-  /// one sweep late in a drive; the noise then differs from a full run's).
+  /// one sweep late in a drive; each ray's noise is a full run's, KeyedDraws).
   void SkipTo(double t_s);
 
   uint64_t msop_packets() const { return msop_index_; }
@@ -125,7 +125,7 @@ class LidarSimulator {
   const World* world_;
   const Trajectory* trajectory_;
   LidarSimConfig config_;
-  Rng rng_;
+  uint64_t noise_seed_;  ///< KeyedDraws per ray (range, dropout, intensity) and per packet
   ActorRays actor_rays_;  ///< the actors a packet's rays may hit (world_->actors)
   uint64_t msop_index_ = 0;
   uint64_t difop_index_ = 0;
