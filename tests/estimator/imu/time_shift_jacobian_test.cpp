@@ -117,5 +117,21 @@ TEST(TimeShiftJacobian, UncertaintyAddsAlongTheJacobianOnly) {
   EXPECT_EQ(WithTimeOffsetUncertainty(pim, J, 0.0).covariance, pim.covariance);
 }
 
+TEST(TimeShiftJacobian, UncertaintyWidensTheRotationAlone) {
+  PreintegratedImu pim;
+  pim.covariance = Mat9::Identity() * 1e-8;
+  Vec9 J = Vec9::Zero();
+  J(kRowR + 0) = 0.3;
+  J(kRowR + 1) = -0.4;
+  J(kRowV + 2) = 2.0;  // a bump's change of specific force
+  J(kRowP + 0) = 0.1;
+  const PreintegratedImu out = WithTimeOffsetUncertainty(pim, J, 5e-3);
+  EXPECT_NEAR(out.covariance(kRowR + 0, kRowR + 1), 25e-6 * 0.3 * -0.4, 1e-15);
+  EXPECT_NEAR(out.covariance(kRowR + 1, kRowR + 1), 1e-8 + 25e-6 * 0.16, 1e-15);
+  const Mat9 added = out.covariance - pim.covariance;
+  EXPECT_TRUE(added.bottomRows<6>().isZero(0.0)) << added;  // velocity and position rows
+  EXPECT_TRUE(added.rightCols<6>().isZero(0.0)) << added;
+}
+
 }  // namespace
 }  // namespace swlio::estimator

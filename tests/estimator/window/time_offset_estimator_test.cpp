@@ -190,8 +190,10 @@ TEST(TimeOffsetEstimator, TheAppliedSigmaCoversTheAppliedError) {
   TimeOffsetConfig known = config;
   known.estimate = false;
   EXPECT_EQ(TimeOffsetEstimator(known).applied_sigma_s(), 0.0);
-  // Off by default: the factors stay as if the offset were known.
-  EXPECT_EQ(Drive(0.010, 35.0, 5e-4, TimeOffsetConfig{}).applied_sigma_s, 0.0);
+  // 0: the factors stay as if the offset were known.
+  TimeOffsetConfig off = config;
+  off.initial_sigma_s = 0.0;
+  EXPECT_EQ(Drive(0.010, 35.0, 5e-4, off).applied_sigma_s, 0.0);
 }
 
 TEST(TimeOffsetEstimator, WithoutRotationChangesTheGateHoldsTheOffset) {

@@ -9,8 +9,16 @@
 ///   δv = (ΔR a_j − a_i − ω_i × Δv) ε
 ///   δp = (Δv − a_i Δt − ω_i × Δp) ε
 /// (differentiating the integrals' limits and the start frame R(t_i + ε) = R_i Exp(ω_i ε)).
-/// An offset known to σ_d then adds σ_d² J Jᵀ to the interval's covariance: a factor made while
-/// the offset is unsettled does not pull the window with the error it carries.
+/// An offset known to σ_d then widens the interval's rotation by σ_d² J_φ J_φᵀ (J_φ the δφ rows):
+/// a factor made while the offset is unsettled does not pull the window's attitude with the
+/// error it carries. The δv and δp rows are left as they are. They hold the specific force at
+/// the interval's two ends, and on a vibrating chassis or over a bump that changes by 1–2 m/s²
+/// from one end to the other. Widened factor by factor, each interval would then lose most of
+/// its velocity information, although a shift of all samples moves a chain of intervals by the
+/// telescoping (a_last − a_first) ε alone. Measured (issue 36, bench/README "The field"): with
+/// 10 ms of initial uncertainty, the full widening cost the slow drives 3–22 %; the rotation's
+/// alone costs them nothing and brings `aggressive` 42 started 10 ms late from 1.18× to 1.02×
+/// the APE of the offset known (10 ms early: 1.19× → 1.23×).
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -39,7 +47,8 @@ ImuSample EndRates(const std::vector<ImuSample>& samples,
                    int64_t t_ns,
                    int64_t span_ns = kEndRatesSpanNs);
 
-/// `pim` with σ_d² J Jᵀ added to its covariance (J = TimeShiftJacobian).
+/// `pim` with σ_d² J_φ J_φᵀ added to its rotation block (J_φ: the δφ rows of J = TimeShiftJacobian;
+/// the header says why only those).
 PreintegratedImu WithTimeOffsetUncertainty(PreintegratedImu pim, const Vec9& J, double sigma_s);
 
 }  // namespace swlio::estimator

@@ -81,15 +81,14 @@ struct TimeOffsetConfig {
   /// rows share registrations and gyro spans (3 at span 0.3 s, 10 Hz) and a turn's
   /// registration errors run together.
   int correlated_rows = 10;
-  /// How far the offset may be off before the first estimate (s, one σ; 0: off). When set, the
-  /// window's IMU factors carry the applied offset's uncertainty (time_shift_jacobian.h) until
-  /// it settles, so an IMU applied at the wrong time does not bend the window where its rates
-  /// change. Off by default: each factor is widened on its own, though the shift's effect
-  /// telescopes along the chain (ω_j − ω_i of neighbours cancel), so it throws away IMU
-  /// information. Measured (issue 36, bench/README "The field"): 10 ms costs 3–32 % on
-  /// `loop943` seeds 1–3 (the offset ≈ 0) and does not bring the twelve `aggressive` starts
-  /// 5–10 ms off closer to the offset known than the default does.
-  double initial_sigma_s = 0.0;
+  /// How far the offset may be off before the first estimate (s, one σ; 0: off). The window's
+  /// IMU factors carry the applied offset's uncertainty on their rotation (time_shift_jacobian.h)
+  /// until it settles, so an IMU applied at the wrong time does not bend the window where its
+  /// rates change. Measured (issue 36, bench/README "The field", five draws each): 10 ms brings
+  /// `aggressive` 42 started 10 ms late from 1.18× to 1.02× the APE of the offset known (10 ms
+  /// early: 1.19× → 1.23×) and costs `loop943` and `field` nothing; the earlier widening of
+  /// velocity and position too cost the slow drives 3–22 %.
+  double initial_sigma_s = 0.01;
   /// The window's own offset parameter, shared by its IMU factors (time_offset_imu_factor.h):
   /// free from this estimator's first gated estimate on, with a prior of this σ about that
   /// estimate (s; 0: off, the window takes the applied offset as exact). Off by default:
