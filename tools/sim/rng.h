@@ -88,7 +88,7 @@ class KeyedDraws {
   KeyedDraws(uint64_t seed, uint64_t key) : seed_(seed), key_(key) {}
 
   double Uniform() { return HashUniform(seed_, key_, count_++); }
-  /// Standard normal (Box–Muller, one value per two uniforms).
+  /// A normal draw of standard deviation `sigma` (Box–Muller, one per two uniforms).
   double Normal(double sigma) {
     const double u1 = std::max(Uniform(), 0x1.0p-53);
     const double u2 = Uniform();

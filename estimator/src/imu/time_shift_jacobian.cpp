@@ -58,7 +58,8 @@ ImuSample EndRates(const std::vector<ImuSample>& samples, int64_t t_ns, int64_t 
 PreintegratedImu WithTimeOffsetUncertainty(PreintegratedImu pim, const Vec9& J, double sigma_s) {
   if (sigma_s <= 0.0) return pim;
   const Eigen::Vector3d J_rotation = J.segment<3>(kRowR);
-  pim.covariance.block<3, 3>(kRowR, kRowR) += (sigma_s * sigma_s) * J_rotation * J_rotation.transpose();
+  pim.covariance.block<3, 3>(kRowR, kRowR) +=
+      (sigma_s * sigma_s) * J_rotation * J_rotation.transpose();
   return pim;
 }
 

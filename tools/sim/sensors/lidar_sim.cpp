@@ -184,8 +184,8 @@ void LidarSimulator::MakeMsop(SimPacket* out, std::vector<SimReturn>* returns) {
   drivers::EncodeRs16Msop(content, out->bytes);
   out->dst_port = config_.msop_port;
   const double u_jitter = KeyedDraws(noise_seed_ ^ kPacketStream, index).Uniform();
-  out->t_rx_ns = std::max(MsopRxNs(index) + SecToNs(u_jitter * config_.latency_jitter_s),
-                          last_rx_ns_ + 1000);
+  out->t_rx_ns =
+      std::max(MsopRxNs(index) + SecToNs(u_jitter * config_.latency_jitter_s), last_rx_ns_ + 1000);
   last_rx_ns_ = out->t_rx_ns;
 }
 

@@ -125,7 +125,7 @@ class LidarSimulator {
   const World* world_;
   const Trajectory* trajectory_;
   LidarSimConfig config_;
-  uint64_t noise_seed_;  ///< KeyedDraws per ray (range, dropout, intensity) and per packet
+  uint64_t noise_seed_;   ///< KeyedDraws per ray (range, dropout, intensity) and per packet
   ActorRays actor_rays_;  ///< the actors a packet's rays may hit (world_->actors)
   uint64_t msop_index_ = 0;
   uint64_t difop_index_ = 0;
