@@ -8,23 +8,16 @@
 #include <vector>
 
 #include "disturb/weather_setup.h"
+#include "lidar_cast.h"
 #include "rng.h"
 #include "scenarios/sim_setup.h"
-#include "sensors/lidar_sim.h"
 
 namespace swlio::sim {
 namespace {
 
-/// Every MSOP slot's truth over sim time [from_s, to_s).
+/// Every MSOP slot's truth over sim time [from_s, to_s) with the setup's own LiDAR.
 std::vector<SimReturn> Cast(const SimSetup& setup, double from_s, double to_s) {
-  LidarSimulator lidar(setup.world.get(), setup.trajectory.get(), setup.lidar, setup.seed);
-  lidar.SkipTo(from_s);
-  std::vector<SimReturn> all, packet_truth;
-  SimPacket packet;
-  while (lidar.Next(&packet, &packet_truth) && packet.t_header_s < to_s) {
-    all.insert(all.end(), packet_truth.begin(), packet_truth.end());
-  }
-  return all;
+  return test::Cast(setup, setup.lidar, from_s, to_s).truth;
 }
 
 TEST(KeyedDraws, AKeyGetsTheSameNumbersWhateverElseWasDrawn) {
@@ -37,7 +30,7 @@ TEST(KeyedDraws, AKeyGetsTheSameNumbersWhateverElseWasDrawn) {
   EXPECT_NE(KeyedDraws(7, 42).Uniform(), KeyedDraws(7, 43).Uniform()) << "the key matters";
 }
 
-TEST(KeyedDraws, NormalHasUnitSpreadAndNoMean) {
+TEST(KeyedDraws, NormalHasTheGivenSpreadAndNoMean) {
   double sum = 0.0, sum2 = 0.0;
   constexpr int kN = 200000;
   for (uint64_t key = 0; key < kN; ++key) {

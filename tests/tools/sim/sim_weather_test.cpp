@@ -13,6 +13,7 @@
 #include "disturb/apply_disturbances.h"
 #include "disturb/disturbance_manifest.h"
 #include "disturb/weather_setup.h"
+#include "lidar_cast.h"
 #include "recording/sim_recording.h"
 #include "scenarios/sim_setup.h"
 #include "swlio/core/time.h"
@@ -26,24 +27,7 @@ SimSetup SetupOrDie(const std::string& name, uint64_t seed, double duration_s) {
   return std::move(*s);
 }
 
-struct CastRun {
-  std::vector<SimReturn> truth;  ///< every MSOP slot's
-  WeatherCounts counts;
-};
-
-/// The truth of every MSOP slot from `from_s` to `to_s` (sim time), and the weather's counts.
-CastRun Cast(const SimSetup& setup, const LidarSimConfig& config, double from_s, double to_s) {
-  LidarSimulator lidar(setup.world.get(), setup.trajectory.get(), config, setup.seed);
-  lidar.SkipTo(from_s);
-  CastRun run;
-  std::vector<SimReturn> truth;
-  SimPacket packet;
-  while (lidar.Next(&packet, &truth) && packet.t_header_s < to_s) {
-    run.truth.insert(run.truth.end(), truth.begin(), truth.end());
-  }
-  if (lidar.weather() != nullptr) run.counts = lidar.weather()->counts();
-  return run;
-}
+using test::Cast;
 
 bool SameSlot(const SimReturn& a, const SimReturn& b) {
   return a.t_true_ns == b.t_true_ns && a.channel == b.channel;
@@ -150,7 +134,7 @@ TEST(SimWeather, MixedPixelsOnADrive) {
     LidarSimConfig config = setup.lidar;
     config.weather.mixed.on = true;
     config.weather.mixed.every_ray = every_ray;
-    const CastRun run = Cast(setup, config, 4.0, 5.0);
+    const test::LidarCast run = Cast(setup, config, 4.0, 5.0);
     size_t returns = 0;
     for (const SimReturn& r : run.truth) returns += r.true_range_m > 0.0 ? 1 : 0;
     const WeatherCounts& c = run.counts;
