@@ -1,5 +1,5 @@
-// The IMU noise measured from the data (imu_noise_adapter.h): a quiet MTi keeps its datasheet
-// densities, a vibrating chassis loosens them, slow motion does not.
+// The IMU noise measured from the data (imu_noise_adapter.h; off by default): when on, a quiet
+// MTi keeps its datasheet densities, a vibrating chassis loosens them, slow motion does not.
 
 #include "swlio/estimator/imu/imu_noise_adapter.h"
 
@@ -14,7 +14,9 @@ namespace {
 /// 10 s at 400 Hz: white noise of the datasheet's density plus `vibration_rms` (m/s², at 23
 /// and 61 Hz) and a slow 0.5 Hz manoeuvre of 1 m/s² and 0.5 rad/s.
 ImuNoiseAdapter Feed(double vibration_rms, const ImuNoiseConfig& datasheet) {
-  ImuNoiseAdapter adapter(datasheet, ImuNoiseAdapterConfig{});
+  ImuNoiseAdapterConfig on;
+  on.enabled = true;
+  ImuNoiseAdapter adapter(datasheet, on);
   std::mt19937 rng(3);
   std::normal_distribution<double> n01;
   const double acc_sigma = datasheet.acc_noise_density_mps2_per_sqrthz * std::sqrt(400.0);
@@ -56,9 +58,7 @@ TEST(ImuNoiseAdapter, VibrationLoosensTheDensities) {
             3.0 * datasheet.acc_noise_density_mps2_per_sqrthz);
   EXPECT_GT(a.Effective().gyro_noise_density_radps_per_sqrthz,
             1.1 * datasheet.gyro_noise_density_radps_per_sqrthz);
-  ImuNoiseAdapterConfig off;
-  off.enabled = false;
-  ImuNoiseAdapter disabled(datasheet, off);
+  ImuNoiseAdapter disabled(datasheet, ImuNoiseAdapterConfig{});  // the default: off
   EXPECT_EQ(disabled.Effective().acc_noise_density_mps2_per_sqrthz,
             datasheet.acc_noise_density_mps2_per_sqrthz);
   ImuNoiseAdapterConfig bad;

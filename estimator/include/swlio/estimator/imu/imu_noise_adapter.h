@@ -2,20 +2,26 @@
 /// @file
 /// The IMU's noise measured from its own data (issue 36): a vibrating chassis puts 0.5–2 m/s²
 /// RMS at 15–80 Hz into the accelerometer, which the datasheet's white-noise densities do not
-/// describe. The motion is real and the pre-integration follows it, but a 400 Hz sample
-/// stream resolves 80 Hz tones only coarsely, so the integrated deltas carry errors that a
-/// datasheet-tight IMU factor then forces onto the LiDAR poses.
+/// describe. This measures how much of it the samples hold at high frequency and can loosen
+/// the IMU factors' white-noise densities by it.
 ///
 /// Measure: the second difference of a white sequence of per-sample σ has variance 6σ², and
 /// of a slow motion almost none (a 2 Hz manoeuvre at 400 Hz keeps (2 sin(π·2/400))⁴ = 1e-8 of
 /// its power). So σ_hf² = EMA(|Δ²x|²/3)/6 per sample is the white-equivalent level of what
 /// the samples hold at high frequency, and σ_hf/√f_s its density.
-/// Use: density = √(datasheet² + (gain · measured)²), per sensor. With a quiet IMU the
-/// measured density is the datasheet's and the result 1.04 × it (gain 0.3). The gain is a fit
-/// on `aggressive` seed 42 with 1.0 / 2.0 m/s² RMS of vibration (standing / driving), APE
-/// without loop closure: datasheet densities 0.0221 m (0.0196 m without vibration); gain 0.15
-/// 0.0210, 0.3 0.0190, 0.6 0.0197 m (without vibration 0.0197, 0.0202, 0.0189 m). Other seeds
-/// and magnitudes: bench/README.md.
+/// Use: density = √(datasheet² + (gain · measured)²), per sensor.
+///
+/// OFF by default: where the samples resolve the vibration, its cost is not noise. The
+/// midpoint rule's error over an interval telescopes to (h/12)·(Δf_start − Δf_end) (h the
+/// sample spacing, Δf the change of the samples at the interval's ends): a velocity offset at
+/// each boundary that the next interval carries with the opposite sign, which the window's
+/// velocity states absorb (PreintegrationVibration.* shows it: 4 × 10⁻⁴ m/s per 0.1 s
+/// interval at 2 m/s² RMS, and no more after 50 intervals). Loosening the factors as if it were
+/// white noise gives the LiDAR the vertical: on `aggressive` seed 42 with the simulator's
+/// vibration (keyed recordings, three draws each, bench/README.md) the APE rose 1.22× with the
+/// adapter (gain 0.3) and 1.03× without it. It remains for an IMU whose output aliases
+/// vibration (no anti-alias filter before its output rate), where the samples do not follow
+/// the motion.
 
 #include <cstdint>
 
@@ -25,7 +31,7 @@
 namespace swlio::estimator {
 
 struct ImuNoiseAdapterConfig {
-  bool enabled = true;
+  bool enabled = false;
   double gain = 0.3;             ///< of the measured density in the effective one
   double time_constant_s = 5.0;  ///< of the moving average
 

@@ -96,7 +96,7 @@ struct WindowEstimatorConfig {
   WheelFactorConfig wheel;
   /// A frame at rest (IMU and LiDAR agree) gets a zero-velocity factor (standstill.h).
   StandstillConfig standstill;
-  /// The IMU factors' white-noise densities measured from the data (imu_noise_adapter.h).
+  /// The IMU factors' white-noise densities measured from the data (imu_noise_adapter.h; off).
   ImuNoiseAdapterConfig imu_noise_adapter;
   /// The LiDAR–IMU time offset estimated online and applied to the IMU samples (on by default;
   /// time_offset_estimator.h).
