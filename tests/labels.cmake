@@ -9,9 +9,8 @@
 
 set(_swlio_release_only
   # Drives through the estimator that repeat the shorter drives kept under ASan: the online
-  # calibration run, the recovery control run without checks, the LiDAR-only drive.
+  # calibration run, the LiDAR-only drive.
   "\\.OnlineCalibrationRecoversTheExtrinsic"
-  "\\.WithoutTheChecksTheSameFaultIsNotRecovered"
   "\\.LidarOnlyFollowsTheSimulatedDrive"
   # Two windows over 40 s of ray-cast `aggressive` with unknown time offsets (12 s in Release);
   # the offset estimator itself runs under ASan in TimeOffsetEstimator.* and TimeOffsetDrive.*.
@@ -56,7 +55,8 @@ set(_swlio_release_only
   # swlio-run with the wheel factor (4 s in Release, 70 s under ASan); WheelOdom* units stay.
   "\\.RunOnShortDrive\\.WheelOdometryFactorOnEverySweep"
   # Recovery drives (17–63 s each under ASan): the estimator on one thread over a simulated
-  # drive with an outage, a gap or a fault; DivergenceMonitor.* and the window's own tests stay.
+  # drive with an outage, a gap or a fault, with and without the checks; DivergenceMonitor.*
+  # and the window's own tests stay.
   "\\.RecoveryOnShortDrive\\."
   # Both replay tools over a scaled recording (26 s under ASan); RecordingReader.* stays.
   "\\.ReplayCommand\\.BothToolsWriteAScaledRecordingOnHostTime"

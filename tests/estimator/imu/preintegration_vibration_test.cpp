@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <span>
@@ -19,18 +20,29 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kRateHz = 400.0;
 constexpr double kGravity = 9.81;
 
+struct Tone {
+  double amplitude_mps2, frequency_hz, phase_rad;
+};
 /// Vertical vibration of about 2 m/s² RMS: a 23 Hz motor tone and a 67 Hz gear mesh.
+constexpr std::array<Tone, 2> kTones = {{{2.0, 23.0, 0.3}, {2.0, 67.0, 1.1}}};
+
 double VibrationMps2(double t_s) {
-  return 2.0 * std::sin(kTwoPi * 23.0 * t_s + 0.3) + 2.0 * std::sin(kTwoPi * 67.0 * t_s + 1.1);
+  double a = 0.0;
+  for (const Tone& tone : kTones) {
+    a += tone.amplitude_mps2 * std::sin(kTwoPi * tone.frequency_hz * t_s + tone.phase_rad);
+  }
+  return a;
 }
 
 /// Its exact integral from t0 to t1 (the true velocity change).
 double VibrationDeltaVMps(double t0_s, double t1_s) {
-  auto F = [](double t) {
-    return -2.0 * std::cos(kTwoPi * 23.0 * t + 0.3) / (kTwoPi * 23.0) -
-           2.0 * std::cos(kTwoPi * 67.0 * t + 1.1) / (kTwoPi * 67.0);
-  };
-  return F(t1_s) - F(t0_s);
+  double dv = 0.0;
+  for (const Tone& tone : kTones) {
+    const double w = kTwoPi * tone.frequency_hz;
+    dv -= tone.amplitude_mps2 / w *
+          (std::cos(w * t1_s + tone.phase_rad) - std::cos(w * t0_s + tone.phase_rad));
+  }
+  return dv;
 }
 
 /// Noise-free samples of a robot standing still on its vibrating chassis, for `duration_s`.
@@ -78,13 +90,18 @@ TEST(PreintegrationVibration, TheErrorIsABoundaryOffsetThatConsecutiveIntervalsC
   // One interval's error is well above the MTi-G-710's white noise over 0.1 s (1.9e-4 m/s):
   // as independent noise it would have to loosen the IMU factors.
   EXPECT_GT(rms_one, 1.9e-4);
-  // It is (h/12)·(Δf_start − Δf_end) (imu_noise_adapter.h): for these tones σ(Δf) per sample
-  // is 2·√(Σ (2 sin(π f h))²)/√2 m/s², so (h/12)·√2·σ(Δf) is the RMS to within 20 % (the in-between
-  // start, the terms of order h²).
+  // It is (h/12)·(Δf_start − Δf_end) (imu_noise_adapter.h): a tone of amplitude A changes by
+  // A·2 sin(π f h) per sample with RMS over √2, so (h/12)·√2·σ(Δf) is the RMS to within 20 %
+  // (the in-between start, the terms of order h²).
   const double h = 1.0 / kRateHz;
-  const double s23 = 2.0 * std::sin(std::numbers::pi * 23.0 * h);
-  const double s67 = 2.0 * std::sin(std::numbers::pi * 67.0 * h);
-  const double step_rms = 2.0 * std::sqrt((s23 * s23 + s67 * s67) / 2.0);
+  double step_var = 0.0;
+  for (const Tone& tone : kTones) {
+    step_var +=
+        std::pow(tone.amplitude_mps2 * 2.0 * std::sin(std::numbers::pi * tone.frequency_hz * h),
+                 2) /
+        2.0;
+  }
+  const double step_rms = std::sqrt(step_var);
   EXPECT_NEAR(rms_one, h / 12.0 * std::sqrt(2.0) * step_rms, 0.2 * rms_one);
   // Chained, the errors telescope: the velocity after 50 intervals is off by about what one
   // boundary contributes, not by √50 times one interval's error as white noise would be.
