@@ -3,7 +3,7 @@
 
 Usage: lint_select.py BUILD DB_OUT [CHANGED_LIST OURS_LIST]
   Writes DB_OUT/compile_commands.json from BUILD's, with every unity batch
-  (**/Unity/unity_N_cxx.cxx, which includes several sources) replaced by one entry per member
+  (**/Unity/unity_N_cxx.cxx, which includes several sources by path relative to itself) replaced by one entry per member
   source with the batch's command (a batch holds one target's sources). With the two lists
   (newline-separated paths relative to the repository root), prints the sources of OURS_LIST
   to lint: those changed themselves, and those whose compilation reads a changed file, from
@@ -27,6 +27,8 @@ def expand(entries):
             continue
         with open(e["file"], encoding="utf-8") as f:
             members = re.findall(r'^#include "(.+)"$', f.read(), re.M)
+        # cmake/SwlioUnity.cmake names members relative to the batch.
+        members = [os.path.normpath(os.path.join(os.path.dirname(e["file"]), m)) for m in members]
         for m in members:
             out.append(dict(e, file=m, command=e["command"].replace(e["file"], m)))
     return out
