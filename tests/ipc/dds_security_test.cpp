@@ -29,13 +29,14 @@
 #include "ipc_test_util.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
+#include "test_data.h"
 
 namespace swlio::ipc {
 namespace {
 
 namespace fs = std::filesystem;
 
-#ifdef SWLIO_ECHO_PATH
+#ifdef SWLIO_HAVE_ECHO
 using test_util::ChildProcess;
 
 constexpr int kPoseDomain = 138;
@@ -133,10 +134,18 @@ std::vector<std::string> EchoArgs(int domain,
                                   const fs::path& xml,
                                   const std::vector<std::string>& extra) {
   // Through sh so that its stderr (where it says why it failed) joins the captured stdout.
-  std::vector<std::string> args = {"/bin/sh",       "-c",         "exec \"$0\" \"$@\" 2>&1",
-                                   SWLIO_ECHO_PATH, "--domain",   std::to_string(domain),
-                                   "--dds-config",  xml.string(), "--quiet",
-                                   "--count",       kCount,       "--duration",
+  std::vector<std::string> args = {"/bin/sh",
+                                   "-c",
+                                   "exec \"$0\" \"$@\" 2>&1",
+                                   ::swlio::test::ToolPath("swlio-echo").string(),
+                                   "--domain",
+                                   std::to_string(domain),
+                                   "--dds-config",
+                                   xml.string(),
+                                   "--quiet",
+                                   "--count",
+                                   kCount,
+                                   "--duration",
                                    kDuration};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;

@@ -17,17 +17,18 @@
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/point_cloud.h"
 #include "swlio/ipc/publisher.h"
+#include "test_data.h"
 
 namespace swlio::ipc {
 namespace {
 
-#ifdef SWLIO_ECHO_PATH
+#ifdef SWLIO_HAVE_ECHO
 using test_util::ChildProcess;
 
 std::vector<std::string> EchoArgs(int domain, std::vector<std::string> extra) {
   std::vector<std::string> args = {
-      SWLIO_ECHO_PATH, "--domain", std::to_string(domain), "--dds-config",
-      (test::SourceDir() / "config" / "cyclonedds-loopback.xml").string()};
+      ::swlio::test::ToolPath("swlio-echo").string(), "--domain", std::to_string(domain),
+      "--dds-config", (test::SourceDir() / "config" / "cyclonedds-loopback.xml").string()};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
 }
@@ -251,8 +252,8 @@ TEST(EchoCli, RefusesNonLoopbackConfig) {
   std::string text = xml.str();
   text.replace(text.find("name=\"lo\""), 9, "name=\"eth0\"");
   std::ofstream(dir / "eth0.xml") << text;
-  ChildProcess echo({SWLIO_ECHO_PATH, "--domain", "123", "--dds-config",
-                     (dir / "eth0.xml").string(), "--duration", "5"});
+  ChildProcess echo({::swlio::test::ToolPath("swlio-echo").string(), "--domain", "123",
+                     "--dds-config", (dir / "eth0.xml").string(), "--duration", "5"});
   EXPECT_EQ(echo.Wait(), 1);
 }
 

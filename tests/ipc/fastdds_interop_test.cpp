@@ -17,11 +17,12 @@
 #include "swlio/core/fnv1a.h"
 #include "swlio/ipc/participant.h"
 #include "swlio/ipc/publisher.h"
+#include "test_data.h"
 
 namespace swlio::ipc {
 namespace {
 
-#ifdef SWLIO_FASTDDS_ECHO_PATH
+#ifdef SWLIO_HAVE_FASTDDS_ECHO
 using test_util::ChildProcess;
 
 /// Reads the tokens of one swlio-fastdds-echo line (format in tools/fastdds-echo/fastdds_print.h).
@@ -99,7 +100,7 @@ void ExpectReady(ChildProcess& fastdds) {
 }
 
 std::vector<std::string> FastDdsArgs(int domain, int count) {
-  return {SWLIO_FASTDDS_ECHO_PATH,
+  return {::swlio::test::ToolPath("swlio-fastdds-echo").string(),
           "--profile",
           (test::SourceDir() / "config" / "fastdds-loopback.xml").string(),
           "--domain",
@@ -356,8 +357,8 @@ TEST(FastDdsInterop, SubscriberRefusesProfilesThatLeaveLoopback) {
     xml.replace(pos, from.size(), to);
     const auto path = dir / "bad.xml";
     std::ofstream(path) << xml;
-    ChildProcess child(
-        {SWLIO_FASTDDS_ECHO_PATH, "--profile", path.string(), "--domain", "132", "--timeout", "5"});
+    ChildProcess child({::swlio::test::ToolPath("swlio-fastdds-echo").string(), "--profile",
+                        path.string(), "--domain", "132", "--timeout", "5"});
     std::string line;
     EXPECT_FALSE(child.ReadLine(&line, 10.0)) << "started with: " << to << "\n" << line;
     EXPECT_EQ(child.Wait(), 1) << to;

@@ -371,7 +371,8 @@ TEST(CheckConfigCommand, BrokenConfigPrintsKeyAndLine) {
   const auto dir = test::MakeTempDir("checkcfg");
   const auto file = dir / "broken.yaml";
   std::ofstream(file) << "config_version: 1\nlidar:\n  max_range_m: -1\n";
-  const std::string cmd = std::string(SWLIOD_PATH) + " --check-config " + file.string() + " 2>&1";
+  const std::string cmd =
+      ::swlio::test::ToolPath("swliod").string() + " --check-config " + file.string() + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   std::string output;

@@ -54,8 +54,7 @@ class SwlioctlCommand : public ::testing::Test {
   }
   /// stdout and stderr of `swlioctl --socket S ARGS`, run in dir_; *code its exit status.
   std::string Run(const std::string& args, int* code, const std::string& prefix = "") {
-    const std::string swlioctl =
-        (std::filesystem::path(SWLIOD_PATH).parent_path() / "swlioctl").string();
+    const std::string swlioctl = ::swlio::test::ToolPath("swlioctl").string();
     std::string command = "cd ";
     command += dir_.string() + " && " + prefix + swlioctl + " --socket " + server_->path() + " " +
                args + " 2>&1";
@@ -92,8 +91,7 @@ TEST_F(SwlioctlCommand, ExitCodesAndOutputForScripts) {
 
 TEST_F(SwlioctlCommand, NoDaemonAndNoPermission) {
   int code = -1;
-  const std::string swlioctl =
-      (std::filesystem::path(SWLIOD_PATH).parent_path() / "swlioctl").string();
+  const std::string swlioctl = ::swlio::test::ToolPath("swlioctl").string();
   EXPECT_THAT(test::RunCommand(
                   swlioctl + " --socket " + (dir_ / "none.sock").string() + " status 2>&1", &code),
               HasSubstr("No such file or directory"));

@@ -37,7 +37,7 @@
 namespace swlio::daemon {
 namespace {
 
-#ifdef SWLIO_FASTDDS_ECHO_PATH
+#ifdef SWLIO_HAVE_FASTDDS_ECHO
 using ipc::test_util::ChildProcess;
 using test::Line;
 using test::LineCollector;
@@ -181,7 +181,7 @@ TEST(RuntimeFastDdsTf, TheTfChainIsThePublishedPoseAndMapOdomTakesTheLoopCorrect
     // base_link → imu_link and the pose are not the IMU's own.
     c->window.wheel.T_imu_base = estimator::ExtrinsicConfig::FromIsometry(T_imu_base);
   };
-  ChildProcess reader({SWLIO_FASTDDS_ECHO_PATH, "--profile",
+  ChildProcess reader({::swlio::test::ToolPath("swlio-fastdds-echo").string(), "--profile",
                        (::swlio::test::SourceDir() / "config" / "fastdds-loopback.xml").string(),
                        "--domain", std::to_string(kDomain), "--tf-check", "--timeout", "300"});
   ASSERT_TRUE(reader.running());

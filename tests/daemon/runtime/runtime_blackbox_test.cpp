@@ -20,6 +20,7 @@
 #include "live_drive.h"
 #include "swlio/daemon/blackbox/incident_detector.h"
 #include "swlio/daemon/blackbox/ring_segments.h"
+#include "test_data.h"
 
 namespace swlio::daemon {
 namespace {
@@ -80,9 +81,9 @@ std::map<int64_t, Eigen::Vector3d> Tum(const std::filesystem::path& p) {
 }
 
 int Replay(const std::filesystem::path& incident, const std::filesystem::path& out) {
-  const std::string cmd = std::string(SWLIO_REPLAY_PATH) + " '" + incident.string() +
-                          "' --deterministic --out '" + out.string() + "' > '" + out.string() +
-                          ".log' 2>&1";
+  const std::string cmd = ::swlio::test::ToolPath("swlio-replay").string() + " '" +
+                          incident.string() + "' --deterministic --out '" + out.string() + "' > '" +
+                          out.string() + ".log' 2>&1";
   return std::system(cmd.c_str());
 }
 
@@ -212,9 +213,9 @@ TEST(RuntimeBlackBox, KeepsExactlyTheInjectedFaultsAndReplaysThem) {
   for (const auto& [k, subsystem] :
        {std::pair{&kept[0], "LiDAR"}, std::pair{&kept[2], "estimator"}}) {
     const std::filesystem::path page = out / (k->reason + ".html");
-    const std::string cmd = std::string(SWLIO_REPORT_PATH) + " '" + k->dir.string() +
-                            "' --no-replay -o '" + page.string() + "' > '" + page.string() +
-                            ".log' 2>&1";
+    const std::string cmd = ::swlio::test::ToolPath("swlio-report").string() + " '" +
+                            k->dir.string() + "' --no-replay -o '" + page.string() + "' > '" +
+                            page.string() + ".log' 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << Read(page.string() + ".log");
     const std::string html = Read(page);
     EXPECT_NE(html.find(std::string("failed</span> <b>") + subsystem + "</b>"), std::string::npos)

@@ -22,6 +22,7 @@
 #include "live_drive.h"
 #include "swlio/control/client.h"
 #include "swlio/ipc/publisher.h"
+#include "test_data.h"
 
 namespace swlio::daemon {
 namespace {
@@ -105,7 +106,7 @@ TEST(RuntimeInitialPose, AHintLocalizesWithinTwoSecondsAndAWrongOneIsRefused) {
   const auto kept = dir / "fastdds.txt";
   std::unique_ptr<test::ChildProcess> fastdds;
   std::unique_ptr<test::LineCollector> fastdds_lines;
-#ifdef SWLIO_FASTDDS_ECHO_PATH
+#ifdef SWLIO_HAVE_FASTDDS_ECHO
   // Started with the drive; it sends the right hint 5 s later (sim time ≈ 5.5 s at 1×).
   drive.on_sim_start = [&](int64_t t0, double s) {
     start_ns = t0;
@@ -113,7 +114,7 @@ TEST(RuntimeInitialPose, AHintLocalizesWithinTwoSecondsAndAWrongOneIsRefused) {
     std::snprintf(hint, sizeof hint, "%.6f,%.6f,%.6f@%.3f", right.x, right.y,
                   right.yaw * 180.0 / M_PI, 5.5 / s);
     fastdds = std::make_unique<test::ChildProcess>(std::vector<std::string>{
-        SWLIO_FASTDDS_ECHO_PATH, "--profile",
+        ::swlio::test::ToolPath("swlio-fastdds-echo").string(), "--profile",
         (::swlio::test::SourceDir() / "config" / "fastdds-loopback.xml").string(), "--domain",
         std::to_string(kDomain), "--tf-check", "--timeout", std::to_string(16.0 / s),
         "--initialpose", hint});

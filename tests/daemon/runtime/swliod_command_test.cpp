@@ -57,7 +57,9 @@ std::string ReadAll(const std::filesystem::path& p) {
 TEST(SwliodCommand, ABadConfigurationExitsWithExConfig) {
   const auto dir = test::MakeTempDir("swliod_bad");
   std::ofstream(dir / "bad.yaml") << "config_version: 1\nlidar:\n  msop_port: x\n";
-  const pid_t pid = Spawn({SWLIOD_PATH, "--config", (dir / "bad.yaml").string()}, dir / "out");
+  const pid_t pid =
+      Spawn({::swlio::test::ToolPath("swliod").string(), "--config", (dir / "bad.yaml").string()},
+            dir / "out");
   EXPECT_EQ(WaitExit(pid), 78);
   EXPECT_THAT(ReadAll(dir / "out"), HasSubstr("bad.yaml:3:"));
 }
@@ -72,7 +74,9 @@ TEST(SwliodCommand, RunsUntilSigtermAndStopsCleanly) {
       << (test::SourceDir() / "config" / "cyclonedds-loopback.xml").string()
       << "\n  domain_id: 154\nlogging:\n  directory: " << (dir / "log").string()
       << "\n  status_period_s: 0.5\n";
-  const pid_t pid = Spawn({SWLIOD_PATH, "--config", (dir / "swlio.yaml").string()}, dir / "out");
+  const pid_t pid =
+      Spawn({::swlio::test::ToolPath("swliod").string(), "--config", (dir / "swlio.yaml").string()},
+            dir / "out");
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   kill(pid, SIGTERM);
   EXPECT_EQ(WaitExit(pid), 0) << ReadAll(dir / "out");
@@ -84,7 +88,7 @@ TEST(SwliodCommand, RunsUntilSigtermAndStopsCleanly) {
 }
 
 TEST(SwliodCommand, PrintedConfigurationPassesCheckConfigOnStdin) {
-  const std::string swliod = SWLIOD_PATH;
+  const std::string swliod = ::swlio::test::ToolPath("swliod").string();
   const std::string shipped = (test::SourceDir() / "config" / "swlio.yaml").string();
   int code = -1;
   const std::string out = test::RunCommand(
@@ -100,7 +104,7 @@ TEST(SwliodCommand, PrintedConfigurationPassesCheckConfigOnStdin) {
 // Standard input has no directory of its own: its relative paths resolve against the current
 // one, and --print-config writes them absolute, so the printed file checks from anywhere.
 TEST(SwliodCommand, StdinResolvesRelativePathsAgainstTheCurrentDirectory) {
-  const std::string swliod = SWLIOD_PATH;
+  const std::string swliod = ::swlio::test::ToolPath("swliod").string();
   const auto dir = std::filesystem::canonical(test::MakeTempDir("swliod_stdin"));
   const auto xml = dir / "cyclonedds-loopback.xml";
   std::filesystem::copy_file(test::SourceDir() / "config" / "cyclonedds-loopback.xml", xml);
@@ -125,7 +129,7 @@ TEST(SwliodCommand, StdinResolvesRelativePathsAgainstTheCurrentDirectory) {
 }
 
 TEST(SwliodCommand, ARemovedKeyIsRefusedNamingItsReplacement) {
-  const std::string swliod = SWLIOD_PATH;
+  const std::string swliod = ::swlio::test::ToolPath("swliod").string();
   const std::string old_file = "printf 'config_version: 1\\nestimator:\\n  window_size: 10\\n'";
   int code = -1;
   const std::string out =
