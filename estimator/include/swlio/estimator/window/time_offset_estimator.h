@@ -65,9 +65,10 @@ struct TimeOffsetConfig {
   /// far off (10 ms) is then left sooner (8 s instead of 16–20 s into `aggressive`).
   double coarse_gate_sigma_s = 1.5e-3;
   size_t min_rows = 30;  ///< and at least this many rows
-  /// The applied offset moves at most this much per sweep (3 ms/s at 10 Hz); below the IMU's
-  /// 2.5 ms sample period, so shifted samples stay in order.
-  double max_step_s = 3e-4;
+  /// The applied offset moves at most this much per sweep (10 ms/s at 10 Hz: a 10 ms start is
+  /// applied within a second of passing the gate); below the IMU's 2.5 ms sample period, so
+  /// shifted samples stay in order.
+  double max_step_s = 1e-3;
   /// Huber width of a rotation residual (rad): 0.1° ≈ a sweep registration's jitter a few times.
   double huber_rad = 2e-3;
   /// Weight of the residual's roll/pitch rows against its yaw row (about the IMU's z axis).
