@@ -3,11 +3,11 @@
 
 Usage: lint_select.py BUILD DB_OUT [CHANGED_LIST OURS_LIST]
   Writes DB_OUT/compile_commands.json from BUILD's, with every unity batch
-  (**/Unity/unity_N_cxx.cxx, which includes several sources by path relative to itself) replaced by one entry per member
-  source with the batch's command (a batch holds one target's sources). With the two lists
-  (newline-separated paths relative to the repository root), prints the sources of OURS_LIST
-  to lint: those changed themselves, and those whose compilation reads a changed file, from
-  `ninja -t deps`. A batch's dependency list does not say which member read a header, so
+  (**/Unity/unity_N_cxx.cxx, which includes several sources by their paths relative to it)
+  replaced by one entry per member source with the batch's command (a batch holds one
+  target's sources). With the two lists (newline-separated paths relative to the repository
+  root), prints the sources of OURS_LIST to lint: those changed themselves, and those whose
+  compilation reads a changed file, from `ninja -t deps`. A batch's dependency list does not say which member read a header, so
   those members are preprocessed on their own (`-MM`) to find out.
 """
 import concurrent.futures
