@@ -2,9 +2,10 @@
 #
 # CMake's own unity build (CMAKE_UNITY_BUILD) writes batches that include each source by its
 # absolute path (`#include "/work/clone/estimator/src/x.cpp"`), and CMake 3.25 has no option to
-# do otherwise. ccache hashes a batch's text, so a checkout at another path missed the cache on
-# every batch whatever CCACHE_BASEDIR said (scripts/ccache-env). Here a batch names its members
-# relative to itself; with the build tree inside the checkout, every clone writes the same text.
+# do otherwise. ccache hashes a batch's text, so with those a checkout at another path misses
+# the cache on every batch whatever CCACHE_BASEDIR says (scripts/ccache-env). Here a batch names
+# its members relative to itself; with the build tree inside the checkout, every clone writes the
+# same text.
 #
 # The top-level CMakeLists.txt keeps -DCMAKE_UNITY_BUILD=ON as the switch: it turns CMake's
 # unity build off, and once every target exists calls swlio_unity_build(), which batches the C++
