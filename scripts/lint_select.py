@@ -7,8 +7,9 @@ Usage: lint_select.py BUILD DB_OUT [CHANGED_LIST OURS_LIST]
   replaced by one entry per member source with the batch's command (a batch holds one
   target's sources). With the two lists (newline-separated paths relative to the repository
   root), prints the sources of OURS_LIST to lint: those changed themselves, and those whose
-  compilation reads a changed file, from `ninja -t deps`. A batch's dependency list does not say which member read a header, so
-  those members are preprocessed on their own (`-MM`) to find out.
+  compilation reads a changed file, from `ninja -t deps`. A batch's dependency list does not
+  say which member read a header, so those members are preprocessed on their own (`-MM`) to
+  find out.
 """
 import concurrent.futures
 import json
