@@ -159,7 +159,10 @@ TEST(RuntimeBlackBox, KeepsExactlyTheInjectedFaultsAndReplaysThem) {
     return false;
   };
   // Two kinds of incident are this shared machine's load (other tests beside this one), not
-  // the daemon's: shown and set aside. An estimator that fell behind; and an incident no fault
+  // the daemon's, and one is the drive's end: shown and set aside. An incident after the drive
+  // (the simulator closes its pty when it is done, and the daemon says its serial device went
+  // away if the test observes once more before it sees the simulator done: an extra
+  // imu_silent); an estimator that fell behind; and an incident no fault
   // explains where the simulator itself had sent 200 ms late or more in the 3 s before: its
   // sensors really went silent, or their clocks stepped, for the daemon (seen under
   // `stress-ng --cpu 6`: the simulator seconds late, an extra imu_silent or clock_jump).
@@ -171,6 +174,10 @@ TEST(RuntimeBlackBox, KeepsExactlyTheInjectedFaultsAndReplaysThem) {
               << sim_time(i.start_ns) << " .. " << sim_time(i.end_ns) << " s\n"
               << i.yaml;
     if (i.reason == "estimator_behind") continue;
+    if (t_s >= drive.duration_s) {
+      std::cout << "[ note ] set aside: " << i.reason << " at " << t_s << " s, after the drive\n";
+      continue;
+    }
     const double sim_late_ms = r.stats.WorstLatenessMs(t_s - 3.0, t_s);
     if (!injected(i, t_s) && sim_late_ms >= 200.0) {
       std::cout << "[ note ] set aside: " << i.reason << " at " << t_s << " s, the simulator sent "
