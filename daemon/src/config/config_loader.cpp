@@ -580,6 +580,12 @@ void Bind(Section s, MapFilesConfig& c) {
   s.Finish();
 }
 
+void Bind(Section s, StateConfig& c) {
+  s.Get("time_offset_file", c.time_offset_file);
+  s.Get("save_period_s", c.save_period_s);
+  s.Finish();
+}
+
 void Bind(Section s,
           estimator::EstimatorConfig& c,
           estimator::WindowEstimatorConfig& window,
@@ -707,6 +713,7 @@ void BindRoot(Section root, DaemonConfig& c, Context& ctx) {
   Bind(root.Child("can"), c.can);
   Bind(root.Child("estimator"), c.estimator, c.window, c.loop_closure, c.localization);
   Bind(root.Child("map"), c.map);
+  Bind(root.Child("state"), c.state);
   Bind(root.Child("ipc"), c.ipc);
   Bind(root.Child("logging"), c.logging);
   Bind(root.Child("record"), c.record);
@@ -727,6 +734,7 @@ void ResolvePaths(DaemonConfig& c, const std::filesystem::path& base_dir) {
   resolve(c.ipc.dds_config_file);
   resolve(c.map.save_path);
   resolve(c.map.load_path);
+  resolve(c.state.time_offset_file);
   resolve(c.control.socket);
 }
 

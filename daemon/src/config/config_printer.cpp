@@ -450,6 +450,13 @@ void Emit(ConfigWriter& w, const MapFilesConfig& c) {
   w.EndMap();
 }
 
+void Emit(ConfigWriter& w, const StateConfig& c) {
+  w.BeginMap("state");
+  w.Put("time_offset_file", c.time_offset_file);
+  w.Put("save_period_s", c.save_period_s);
+  w.EndMap();
+}
+
 void Emit(ConfigWriter& w, const ipc::IpcConfig& c) {
   w.BeginMap("ipc");
   w.Put("domain_id", c.domain_id);
@@ -549,6 +556,7 @@ std::string PrintConfig(const DaemonConfig& config) {
   Emit(w, config.can);
   EmitEstimator(w, config);
   Emit(w, config.map);
+  Emit(w, config.state);
   Emit(w, config.ipc);
   Emit(w, config.logging);
   Emit(w, config.record);

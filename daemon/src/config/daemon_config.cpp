@@ -107,6 +107,12 @@ ConfigIssues MapFilesConfig::Validate() const {
   return issues;
 }
 
+ConfigIssues StateConfig::Validate() const {
+  ConfigIssues issues;
+  CheckInRange(issues, "save_period_s", save_period_s, 1.0, 86400.0);
+  return issues;
+}
+
 ConfigIssues ControlConfig::Validate() const {
   ConfigIssues issues;
   // sockaddr_un::sun_path holds 108 bytes with the terminating NUL.
@@ -142,6 +148,7 @@ ConfigIssues DaemonConfig::Validate() const {
             "needs the chassis odometry: can.enabled");
   AppendWithPrefix(issues, "estimator.localization", localization.Validate());
   AppendWithPrefix(issues, "map", map.Validate());
+  AppendWithPrefix(issues, "state", state.Validate());
   AppendWithPrefix(issues, "ipc", ipc.Validate());
   AppendWithPrefix(issues, "logging", logging.Validate());
   AppendWithPrefix(issues, "record", record.Validate());

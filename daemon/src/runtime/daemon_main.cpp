@@ -7,10 +7,12 @@
 #include <ctime>
 #include <string>
 
+#include "swlio/core/time.h"
 #include "swlio/daemon/runtime/event_log.h"
 #include "swlio/daemon/runtime/health_events.h"
 #include "swlio/daemon/runtime/thread_setup.h"
 #include "swlio/daemon/runtime/watchdog.h"
+#include "swlio/daemon/state/time_offset_keeper.h"
 
 namespace swlio::daemon {
 namespace {
@@ -39,7 +41,10 @@ void BlockStopSignals() {
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
 }
 
-int RunDaemon(const DaemonConfig& config, const RuntimeOptions& options, int64_t max_run_ns) {
+int RunDaemon(const DaemonConfig& file_config, const RuntimeOptions& options, int64_t max_run_ns) {
+  DaemonConfig config = file_config;
+  TimeOffsetKeeper time_offset(config.state.time_offset_file, SecToNs(config.state.save_period_s));
+  time_offset.Apply(&config.window.time_offset);
   std::string error;
   std::unique_ptr<Runtime> rt = Runtime::Create(config, options, &error);
   if (!rt) {
@@ -75,6 +80,7 @@ int RunDaemon(const DaemonConfig& config, const RuntimeOptions& options, int64_t
     if (now >= next_record_ns) {
       next_record_ns = now + 1'000'000'000;
       rt->ObserveForRecording(watchdog.stalled);
+      time_offset.Observe(rt->Snapshot().optimizer.time_offset, now);
     }
     if (!ready && rt->Ready()) {
       ready = true;
@@ -101,6 +107,7 @@ int RunDaemon(const DaemonConfig& config, const RuntimeOptions& options, int64_t
   LogEvent(spdlog::level::info, "stopping", "stopping (" + why + ")", {{"REASON", why}});
   rt->Stop();
   const HealthSnapshot s = rt->Snapshot();
+  time_offset.Flush(s.optimizer.time_offset);
   const HealthRates rates = logged.Rates(s);
   std::vector<HealthEvent> final_events = StatusEvents(s, rates, "final " + StatusLine(s, rates));
   final_events.front().fields.push_back({"FINAL", "1"});

@@ -1,6 +1,6 @@
 // swliod as systemd runs it: a bad configuration exits with EX_CONFIG (not restarted), a good
 // one runs until SIGTERM and stops cleanly with its status in the log. And its configuration
-// commands: --print-config FILE | --check-config -.
+// commands: --print-config FILE | --check-config -. And the time offset it keeps across restarts.
 
 #include <fcntl.h>
 #include <gmock/gmock.h>
@@ -54,32 +54,41 @@ std::string ReadAll(const std::filesystem::path& p) {
   return s.str();
 }
 
+std::string Swliod() { return ::swlio::test::ToolPath("swliod").string(); }
+
+/// A configuration with no sensor behind it (quiet ports, an absent tty), logging into DIR/log.
+std::string QuietConfig(const std::filesystem::path& dir, int domain) {
+  std::ostringstream c;
+  c << "config_version: 1\nlidar:\n  bind_address: 127.0.0.1\n  msop_port: " << test::QuietUdpPort()
+    << "\n  difop_port: " << test::QuietUdpPort()
+    << "\nimu:\n  device: " << (dir / "absent-tty").string()
+    << "\n  configure_on_start: false\nipc:\n  dds_config_file: "
+    << (test::SourceDir() / "config" / "cyclonedds-loopback.xml").string()
+    << "\n  domain_id: " << domain << "\nlogging:\n  directory: " << (dir / "log").string()
+    << "\n  status_period_s: 0.5\n";
+  return c.str();
+}
+
+/// Runs swliod on DIR/swlio.yaml for `run_ms`, then SIGTERM; its exit code.
+int RunFor(const std::filesystem::path& dir, int run_ms) {
+  const pid_t pid = Spawn({Swliod(), "--config", (dir / "swlio.yaml").string()}, dir / "out");
+  std::this_thread::sleep_for(std::chrono::milliseconds(run_ms));
+  kill(pid, SIGTERM);
+  return WaitExit(pid);
+}
+
 TEST(SwliodCommand, ABadConfigurationExitsWithExConfig) {
   const auto dir = test::MakeTempDir("swliod_bad");
   std::ofstream(dir / "bad.yaml") << "config_version: 1\nlidar:\n  msop_port: x\n";
-  const pid_t pid =
-      Spawn({::swlio::test::ToolPath("swliod").string(), "--config", (dir / "bad.yaml").string()},
-            dir / "out");
+  const pid_t pid = Spawn({Swliod(), "--config", (dir / "bad.yaml").string()}, dir / "out");
   EXPECT_EQ(WaitExit(pid), 78);
   EXPECT_THAT(ReadAll(dir / "out"), HasSubstr("bad.yaml:3:"));
 }
 
 TEST(SwliodCommand, RunsUntilSigtermAndStopsCleanly) {
   const auto dir = test::MakeTempDir("swliod_run");
-  std::ofstream(dir / "swlio.yaml")
-      << "config_version: 1\nlidar:\n  bind_address: 127.0.0.1\n  msop_port: "
-      << test::QuietUdpPort() << "\n  difop_port: " << test::QuietUdpPort()
-      << "\nimu:\n  device: " << (dir / "absent-tty").string()
-      << "\n  configure_on_start: false\nipc:\n  dds_config_file: "
-      << (test::SourceDir() / "config" / "cyclonedds-loopback.xml").string()
-      << "\n  domain_id: 154\nlogging:\n  directory: " << (dir / "log").string()
-      << "\n  status_period_s: 0.5\n";
-  const pid_t pid =
-      Spawn({::swlio::test::ToolPath("swliod").string(), "--config", (dir / "swlio.yaml").string()},
-            dir / "out");
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  kill(pid, SIGTERM);
-  EXPECT_EQ(WaitExit(pid), 0) << ReadAll(dir / "out");
+  std::ofstream(dir / "swlio.yaml") << QuietConfig(dir, 154);
+  EXPECT_EQ(RunFor(dir, 1500), 0) << ReadAll(dir / "out");
   const std::string log = ReadAll(dir / "log" / "swliod.log");
   EXPECT_THAT(log, HasSubstr("started: lidar rs16"));
   EXPECT_THAT(log, HasSubstr("status initializing"));  // no sensor: never ready
@@ -87,8 +96,33 @@ TEST(SwliodCommand, RunsUntilSigtermAndStopsCleanly) {
   EXPECT_THAT(log, HasSubstr("final status"));
 }
 
+// The time offset kept by an earlier run starts the estimator (daemon/state/); a run that
+// estimated nothing leaves the file as it was.
+TEST(SwliodCommand, StartsFromTheTimeOffsetKeptByTheLastRun) {
+  const auto dir = test::MakeTempDir("swliod_state");
+  const std::string kept =
+      "format: swlio-time-offset 1\noffset_s: -0.00725\nsigma_s: 9e-05\nupdates: 12\n"
+      "saved_utc: \"2026-12-05T22:10:00Z\"\n";
+  std::ofstream(dir / "time_offset.yaml") << kept;
+  // Relative: from the configuration file's directory.
+  std::ofstream(dir / "swlio.yaml")
+      << QuietConfig(dir, 167) << "state:\n  time_offset_file: time_offset.yaml\n";
+  EXPECT_EQ(RunFor(dir, 1000), 0) << ReadAll(dir / "out");
+  const std::string log = ReadAll(dir / "log" / "swliod.log");
+  EXPECT_THAT(log, HasSubstr("time offset: starting from -7.250 ms (σ 0.090 ms, saved "
+                             "2026-12-05T22:10:00Z) in " +
+                             (dir / "time_offset.yaml").string()));
+  EXPECT_EQ(ReadAll(dir / "time_offset.yaml"), kept);
+
+  std::ofstream(dir / "time_offset.yaml") << "format: swlio-time-offset 1\n";  // damaged
+  EXPECT_EQ(RunFor(dir, 1000), 0) << ReadAll(dir / "out");
+  EXPECT_THAT(ReadAll(dir / "log" / "swliod.log"),
+              HasSubstr("time_offset.yaml: offset_s: missing, or not a number; starting from "
+                        "0.00 ms"));
+}
+
 TEST(SwliodCommand, PrintedConfigurationPassesCheckConfigOnStdin) {
-  const std::string swliod = ::swlio::test::ToolPath("swliod").string();
+  const std::string swliod = Swliod();
   const std::string shipped = (test::SourceDir() / "config" / "swlio.yaml").string();
   int code = -1;
   const std::string out = test::RunCommand(
@@ -104,7 +138,7 @@ TEST(SwliodCommand, PrintedConfigurationPassesCheckConfigOnStdin) {
 // Standard input has no directory of its own: its relative paths resolve against the current
 // one, and --print-config writes them absolute, so the printed file checks from anywhere.
 TEST(SwliodCommand, StdinResolvesRelativePathsAgainstTheCurrentDirectory) {
-  const std::string swliod = ::swlio::test::ToolPath("swliod").string();
+  const std::string swliod = Swliod();
   const auto dir = std::filesystem::canonical(test::MakeTempDir("swliod_stdin"));
   const auto xml = dir / "cyclonedds-loopback.xml";
   std::filesystem::copy_file(test::SourceDir() / "config" / "cyclonedds-loopback.xml", xml);
@@ -129,7 +163,7 @@ TEST(SwliodCommand, StdinResolvesRelativePathsAgainstTheCurrentDirectory) {
 }
 
 TEST(SwliodCommand, ARemovedKeyIsRefusedNamingItsReplacement) {
-  const std::string swliod = ::swlio::test::ToolPath("swliod").string();
+  const std::string swliod = Swliod();
   const std::string old_file = "printf 'config_version: 1\\nestimator:\\n  window_size: 10\\n'";
   int code = -1;
   const std::string out =

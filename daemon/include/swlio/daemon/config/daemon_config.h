@@ -110,6 +110,18 @@ struct MapFilesConfig {
   ConfigIssues Validate() const;
 };
 
+/// What the daemon learns and keeps across restarts (YAML `state`; daemon/state/). Off unless
+/// the file turns it on (the robot's config/swlio.yaml does; tests and the demo do not).
+struct StateConfig {
+  /// The LiDAR–IMU time offset estimated online (time_offset_keeper.h): the next start begins
+  /// from it. Relative paths are taken from the config file's directory. Empty: not kept.
+  std::string time_offset_file;
+  /// A newer estimate is written at most this often (s); and always when the daemon stops.
+  double save_period_s = 60.0;
+
+  ConfigIssues Validate() const;
+};
+
 /// The control socket swlioctl talks to (YAML `control`; docs/control.md).
 struct ControlConfig {
   /// UNIX stream socket path; relative paths are taken from the config file's directory.
@@ -150,6 +162,7 @@ struct DaemonConfig {
   /// read from the file: the daemon takes estimator.loop_closure's verification settings.
   estimator::LocalizationConfig localization;
   MapFilesConfig map;
+  StateConfig state;
   ipc::IpcConfig ipc;
   LoggingConfig logging;
   RecordConfig record;

@@ -17,7 +17,8 @@ namespace swlio::daemon {
 void BlockStopSignals();
 
 /// Runs until a stop signal or `max_run_ns` (> 0: a time limit, for tests and the demo).
-/// Returns the exit code.
-int RunDaemon(const DaemonConfig& config, const RuntimeOptions& options, int64_t max_run_ns);
+/// The time offset kept in `state.time_offset_file` starts the estimator and is saved as it
+/// improves (time_offset_keeper.h). Returns the exit code.
+int RunDaemon(const DaemonConfig& file_config, const RuntimeOptions& options, int64_t max_run_ns);
 
 }  // namespace swlio::daemon
