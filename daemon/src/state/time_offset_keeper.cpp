@@ -65,9 +65,11 @@ bool TimeOffsetKeeper::IsNews(const estimator::TimeOffsetStatus& status) const {
   if (path_.empty() || !status.enabled || !status.gated || status.updates == 0) return false;
   if (!std::isfinite(status.estimate_s) || !(status.sigma_s > 0.0)) return false;
   if (!saved_) return true;
+  // Narrower, or apart by more than both uncertainties allow (a sensor or adapter changed):
+  // a fresh start's first, wider estimate near the kept one does not replace it.
   const double moved_s = std::abs(status.estimate_s - saved_->offset_s);
-  return moved_s > std::max(kMinMoveS, 0.25 * status.sigma_s) ||
-         status.sigma_s < 0.8 * saved_->sigma_s;
+  const double apart_s = std::max(kMinMoveS, 3.0 * std::hypot(status.sigma_s, saved_->sigma_s));
+  return status.sigma_s < 0.8 * saved_->sigma_s || moved_s > apart_s;
 }
 
 void TimeOffsetKeeper::Observe(const estimator::TimeOffsetStatus& status, int64_t now_ns) {

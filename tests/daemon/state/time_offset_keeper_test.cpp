@@ -104,7 +104,7 @@ TEST(TimeOffsetKeeper, GatedNewsIsWrittenOncePerPeriodAndAtStop) {
   EXPECT_EQ(keeper.writes(), 1u);
   keeper.Observe(Gated(-0.0099, 3e-4), 70'000'000'000);  // the period is over
   EXPECT_EQ(keeper.writes(), 2u);
-  keeper.Observe(Gated(-0.00992, 2.9e-4), 200'000'000'000);  // no news: moved 0.02 ms
+  keeper.Observe(Gated(-0.0092, 2.9e-4), 200'000'000'000);  // no news: within 3σ, no narrower
   EXPECT_EQ(keeper.writes(), 2u);
   keeper.Observe(Gated(-0.0099, 2e-4), 260'000'000'000);  // σ narrowed by a third
   EXPECT_EQ(keeper.writes(), 3u);
@@ -119,7 +119,17 @@ TEST(TimeOffsetKeeper, GatedNewsIsWrittenOncePerPeriodAndAtStop) {
   EXPECT_DOUBLE_EQ(read->sigma_s, 1e-4);
   EXPECT_EQ(read->saved_utc.size(), 20u);  // 2026-12-06T07:12:30Z
 
-  // The next start begins there.
+  // The next start begins there; its first, wider estimate nearby leaves the file alone, one
+  // far outside both σ (the IMU's filter changed) replaces it.
+  TimeOffsetKeeper restart(path.string(), kPeriodNs);
+  estimator::TimeOffsetConfig from_file;
+  restart.Apply(&from_file);
+  restart.Observe(Gated(-0.0098, 3e-4), 9'000'000'000);
+  EXPECT_EQ(restart.writes(), 0u);
+  restart.Flush(Gated(-0.0061, 3e-4));
+  EXPECT_EQ(restart.writes(), 1u);
+  restart.Flush(Gated(-0.0103, 1e-4));  // written last: the file as it was
+  EXPECT_EQ(restart.writes(), 2u);
   TimeOffsetKeeper next(path.string(), kPeriodNs);
   estimator::TimeOffsetConfig again;
   next.Apply(&again);

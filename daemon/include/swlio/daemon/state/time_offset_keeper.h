@@ -10,8 +10,10 @@
 /// - Start (Apply): where the offset is estimated online, the saved estimate replaces
 ///   `initial_offset_s`. A calibration given as fixed (`estimate: false`) wins over the file;
 ///   a saved offset beyond `max_offset_s` or a malformed file is logged and left alone.
-/// - Running (Observe, about every second): a gated estimate that moved by over a quarter of
-///   its σ (at least 0.02 ms) or narrowed σ by a fifth is written, at most every `period_ns`.
+/// - Running (Observe, about every second): a gated estimate is written, at most every
+///   `period_ns`, when its σ is a fifth narrower than the kept one's, or when the two lie over
+///   3 σ apart (their σ combined; a sensor or adapter changed). A fresh start's first estimate,
+///   wider and near the kept one, leaves the file alone.
 /// - Stop (Flush): the same, without the period.
 /// A write that fails is logged once per kind of failure; the daemon runs on either way.
 
