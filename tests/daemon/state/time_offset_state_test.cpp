@@ -68,19 +68,27 @@ TEST(TimeOffsetState, MalformedFilesAreRefusedWithTheirReason) {
     EXPECT_NE(at, std::string::npos) << from;
     return t.replace(at, from.size(), to);
   };
-  EXPECT_THAT(ParseError(with("swlio-time-offset 1", "swlio-time-offset 2")), HasSubstr("format"));
-  EXPECT_THAT(ParseError(with("format: swlio-time-offset 1\n", "")), HasSubstr("format"));
-  EXPECT_THAT(ParseError(with("offset_s: -0.0103412\n", "")), HasSubstr("offset_s: missing"));
-  EXPECT_THAT(ParseError(with("-0.0103412", "-10 ms")), HasSubstr("offset_s: '-10 ms' is not"));
-  EXPECT_THAT(ParseError(with("-0.0103412", "nan")), HasSubstr("offset_s: must be finite"));
-  EXPECT_THAT(ParseError(with("-0.0103412", "0.5")), HasSubstr("within ±0.2 s"));
-  EXPECT_THAT(ParseError(with("-0.0103412", "[1, 2]")), HasSubstr("offset_s: missing"));
-  EXPECT_THAT(ParseError(with("8.62e-05", "0")), HasSubstr("sigma_s: must be positive"));
-  EXPECT_THAT(ParseError(with("8.62e-05", "-1e-4")), HasSubstr("sigma_s"));
-  EXPECT_THAT(ParseError(with("updates: 1843", "updates: 0")), HasSubstr("updates: must be"));
-  EXPECT_THAT(ParseError(with("updates: 1843", "updates: -3")), HasSubstr("updates: '-3'"));
-  EXPECT_THAT(ParseError(with("8.62e-05", "1e-12")), HasSubstr("from 1 ns"));
-  EXPECT_THAT(ParseError(with("2026-12-06T07:12:30Z", "a\\\"b")), HasSubstr("saved_utc"));
+  struct Edit {
+    const char* from;
+    const char* to;
+    const char* reason;
+  };
+  const Edit edits[] = {
+      {"swlio-time-offset 1", "swlio-time-offset 2", "format"},
+      {"format: swlio-time-offset 1\n", "", "format"},
+      {"offset_s: -0.0103412\n", "", "offset_s: missing"},
+      {"-0.0103412", "-10 ms", "offset_s: '-10 ms' is not"},
+      {"-0.0103412", "nan", "offset_s: must be finite"},
+      {"-0.0103412", "0.5", "within ±0.2 s"},
+      {"-0.0103412", "[1, 2]", "offset_s: missing"},
+      {"8.62e-05", "0", "sigma_s: must be positive"},
+      {"8.62e-05", "-1e-4", "sigma_s"},
+      {"8.62e-05", "1e-12", "from 1 ns"},
+      {"updates: 1843", "updates: 0", "updates: must be"},
+      {"updates: 1843", "updates: -3", "updates: '-3'"},
+      {"2026-12-06T07:12:30Z", "a\\\"b", "saved_utc"},
+  };
+  for (const Edit& e : edits) EXPECT_THAT(ParseError(with(e.from, e.to)), HasSubstr(e.reason));
   EXPECT_THAT(ParseError(good + "extra: 1\n"), HasSubstr("extra: unknown key"));
   // Cut anywhere before its last value, the file is refused, never read in part.
   const size_t last_value = good.find("updates:");
