@@ -19,7 +19,7 @@ namespace swlio::daemon {
 namespace {
 
 constexpr const char* kFormat = "swlio-time-offset 1";
-constexpr std::uintmax_t kMaxFileBytes = 64 * 1024;  // the file is ~200 bytes
+constexpr std::uintmax_t kMaxFileBytes = 65'536;  // the file is ~200 bytes
 
 template <typename T>
 bool Number(const YAML::Node& root, const char* key, T* out, std::string* error) {
