@@ -4,23 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 #include <utility>
+
+#include "swlio/daemon/blackbox/health_row.h"
+#include "swlio/daemon/output/stamp_clock.h"
 
 namespace swlio::daemon {
 namespace {
 
 constexpr double kMinMoveS = 2e-5;  // 0.02 ms: below any use of the offset
-
-std::string UtcNow() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return text;
-}
 
 }  // namespace
 
@@ -88,7 +81,7 @@ void TimeOffsetKeeper::Save(const estimator::TimeOffsetStatus& status) {
   s.offset_s = status.estimate_s;
   s.sigma_s = status.sigma_s;
   s.updates = status.updates;
-  s.saved_utc = UtcNow();
+  s.saved_utc = FormatUtc(RealtimeNowNs(), "%Y-%m-%dT%H:%M:%SZ");
   std::string error;
   if (!WriteTimeOffsetState(path_, s, &error)) {
     if (error != last_error_) spdlog::warn("time offset: not saved: {}", error);
