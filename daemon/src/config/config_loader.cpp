@@ -389,6 +389,7 @@ void Bind(Section s, estimator::TimeOffsetConfig& c) {
   s.Get("operating_point_tolerance_s", c.operating_point_tolerance_s);
   s.Get("initial_sigma_s", c.initial_sigma_s);
   s.Get("window_prior_sigma_s", c.window_prior_sigma_s);
+  s.Get("window_follows_estimate", c.window_follows_estimate);
   s.Get("correlated_rows", c.correlated_rows);
   s.Finish();
 }

@@ -243,6 +243,7 @@ void Emit(ConfigWriter& w, const estimator::TimeOffsetConfig& c) {
   w.Put("operating_point_tolerance_s", c.operating_point_tolerance_s);
   w.Put("initial_sigma_s", c.initial_sigma_s);
   w.Put("window_prior_sigma_s", c.window_prior_sigma_s);
+  w.Put("window_follows_estimate", c.window_follows_estimate);
   w.Put("correlated_rows", c.correlated_rows);
   w.EndMap();
 }

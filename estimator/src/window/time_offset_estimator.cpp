@@ -78,6 +78,17 @@ double TimeOffsetEstimator::applied_sigma_s() const {
                   std::hypot(status_.sigma_s, status_.estimate_s - status_.offset_s));
 }
 
+double TimeOffsetEstimator::followed_offset_s() const {
+  if (status_.updates > 0) return target_s_;
+  if (status_.rows >= config_.min_rows && std::isfinite(status_.sigma_s)) return status_.estimate_s;
+  return status_.offset_s;
+}
+
+double TimeOffsetEstimator::followed_sigma_s() const {
+  if (!config_.enabled || !config_.estimate || config_.initial_sigma_s <= 0.0) return 0.0;
+  return status_.updates > 0 ? gated_sigma_s_ : config_.initial_sigma_s;
+}
+
 void TimeOffsetEstimator::ForgetRows() {
   rows_.clear();
   registrations_.clear();

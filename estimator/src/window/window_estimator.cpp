@@ -262,10 +262,10 @@ bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) {
   to->pre = std::make_unique<Preintegrator>(noise, from.BiasGyro(), from.BiasAcc());
   if (to->pre->Integrate(s, from.t_ns, to->t_ns) != PreintegrationStatus::kOk) return false;
   to->pre_applied_offset_s = NsToSec(time_offset_.offset_ns());
-  to->pre_offset_sigma_s = offset_free_ ? 0.0 : time_offset_.applied_sigma_s();
-  // J only where the offset's uncertainty widens this factor or the window estimates it.
+  to->pre_offset_sigma_s = OffsetSigmaForFactors();
+  // J only where the offset's uncertainty widens this factor or the window moves or estimates it.
   to->pre_time_shift_jacobian =
-      to->pre_offset_sigma_s > 0.0 || OffsetInWindow()
+      to->pre_offset_sigma_s > 0.0 || OffsetInWindow() || FollowsOffset()
           ? TimeShiftJacobian(to->pre->result(), EndRates(s, from.t_ns), EndRates(s, to->t_ns))
           : Vec9::Zero();
   to->MakeImu(ImuFactorOptions());
@@ -386,6 +386,7 @@ WindowResult WindowEstimator::AddScan(const Scan& scan) {
   result.times.match_ms = timer.Lap();
   frames_.push_back(std::move(frame));
   if (OffsetInWindow() && !offset_free_ && time_offset_.status().updates > 0) FreeOffset();
+  FollowOffset();
   while (imu_.size() > 1 && imu_[1].t_ns <= scan.t_end_ns) imu_.pop_front();
 
   Frame& newest = *frames_.back();

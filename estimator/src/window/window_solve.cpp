@@ -32,6 +32,10 @@ void WindowEstimator::BuildProblem(ceres::Problem& problem) {
   }
   if (config_.estimate_gravity_tilt)
     problem.AddParameterBlock(gravity_tilt_.data(), kGravityTiltSize);
+  if (FollowsOffset()) {
+    problem.AddParameterBlock(window_offset_s_.data(), 1);
+    problem.SetParameterBlockConstant(window_offset_s_.data());
+  }
   if (offset_free_) {
     problem.AddParameterBlock(window_offset_s_.data(), 1);
     problem.SetParameterLowerBound(window_offset_s_.data(), 0, -config_.time_offset.max_offset_s);
@@ -68,7 +72,7 @@ void WindowEstimator::BuildProblem(ceres::Problem& problem) {
 
 WindowEstimator::FrameImuOptions WindowEstimator::ImuFactorOptions() const {
   return {noise_adapter_.Effective(), config_.odometry.estimator.gravity_mps2,
-          config_.estimate_gravity_tilt, offset_free_};
+          config_.estimate_gravity_tilt, offset_free_ || FollowsOffset()};
 }
 
 std::pair<ceres::CostFunction*, std::vector<double*>> WindowEstimator::ImuTerm(Frame& p, Frame& f) {
@@ -198,6 +202,9 @@ void WindowEstimator::Marginalize() {
   }
   if (config_.estimate_gravity_tilt) {
     m.AddParameterBlock(gravity_tilt_.data(), kGravityTiltSize, nullptr, BlockRole::kKeep);
+  }
+  if (FollowsOffset()) {
+    m.AddParameterBlock(window_offset_s_.data(), 1, nullptr, BlockRole::kConstant);
   }
   if (offset_free_) {
     m.AddParameterBlock(window_offset_s_.data(), 1, nullptr, BlockRole::kKeep);

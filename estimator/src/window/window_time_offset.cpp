@@ -14,6 +14,28 @@ bool WindowEstimator::OffsetInWindow() const {
   return c.enabled && c.estimate && c.window_prior_sigma_s > 0.0;
 }
 
+bool WindowEstimator::FollowsOffset() const {
+  const TimeOffsetConfig& c = config_.time_offset;
+  return c.enabled && c.estimate && c.window_follows_estimate && !offset_free_;
+}
+
+double WindowEstimator::OffsetSigmaForFactors() const {
+  if (offset_free_) return 0.0;
+  return FollowsOffset() ? time_offset_.followed_sigma_s() : time_offset_.applied_sigma_s();
+}
+
+void WindowEstimator::FollowOffset() {
+  if (!FollowsOffset()) return;
+  window_offset_s_[0] = time_offset_.followed_offset_s();
+  const double sigma_s = OffsetSigmaForFactors();
+  for (size_t k = 1; k < frames_.size(); ++k) {
+    Frame& f = *frames_[k];
+    if (f.pre == nullptr || f.pre_offset_sigma_s == sigma_s) continue;
+    f.pre_offset_sigma_s = sigma_s;
+    f.MakeImu(ImuFactorOptions());
+  }
+}
+
 void WindowEstimator::FreeOffset() {
   // Before the first estimate the window's early, weakly excited sweeps pull an offset block
   // toward whatever else they get wrong (measured on `aggressive` seed 1: −6..−9 ms in the

@@ -48,6 +48,9 @@ struct OffsetRun {
   double applied_sigma_s = 0.0;
   /// The smallest applied_sigma_s() before the first gated estimate (0: none came before it).
   double min_sigma_before_update_s = 0.0;
+  /// What the window's factors follow (followed_offset_s(), followed_sigma_s()) at the end, and
+  /// the largest |followed − true offset| / followed σ over the sweeps.
+  double followed_s = 0.0, followed_sigma_s = 0.0, max_followed_z = 0.0;
 };
 
 /// `aggressive` seed 42 for `duration_s`, its IMU measuring the motion `offset_s` before its
@@ -95,6 +98,12 @@ OffsetRun Drive(double offset_s,
     if (run.applied_sigma_s > 0.0) {
       const double error_s = std::abs(estimator.status().offset_s - offset_s);
       run.max_applied_z = std::max(run.max_applied_z, error_s / run.applied_sigma_s);
+    }
+    run.followed_s = estimator.followed_offset_s();
+    run.followed_sigma_s = estimator.followed_sigma_s();
+    if (run.followed_sigma_s > 0.0) {
+      const double error_s = std::abs(run.followed_s - offset_s);
+      run.max_followed_z = std::max(run.max_followed_z, error_s / run.followed_sigma_s);
     }
   }
   run.status = estimator.status();
@@ -194,6 +203,33 @@ TEST(TimeOffsetEstimator, TheAppliedSigmaCoversTheAppliedError) {
   TimeOffsetConfig off = config;
   off.initial_sigma_s = 0.0;
   EXPECT_EQ(Drive(0.010, 35.0, 5e-4, off).applied_sigma_s, 0.0);
+}
+
+TEST(TimeOffsetEstimator, WhatTheWindowFollowsIsTheGatedEstimateWithItsSigma) {
+  // window_follows_estimate: the window's IMU factors are moved to followed_offset_s() and
+  // widened by followed_sigma_s(): `initial_sigma_s` until the first gated estimate, then that
+  // estimate's σ. It must end at the truth and never claim more certainty than it has.
+  for (const double offset_s : {-0.010, 0.005, 0.010}) {
+    const OffsetRun run = Drive(offset_s, 35.0, 5e-4, TimeOffsetConfig{});
+    std::cout << "offset " << offset_s * 1e3 << " ms: followed " << run.followed_s * 1e3 << " ± "
+              << run.followed_sigma_s * 1e3 << " ms, largest error/sigma " << run.max_followed_z
+              << "\n";
+    EXPECT_NEAR(run.followed_s, offset_s, 5e-4);
+    EXPECT_GT(run.followed_sigma_s, 0.0);
+    EXPECT_LT(run.followed_sigma_s, TimeOffsetConfig{}.gate_sigma_s);
+    EXPECT_LT(run.max_followed_z, 3.0);
+  }
+  TimeOffsetConfig config;
+  config.initial_offset_s = 0.004;
+  const TimeOffsetEstimator fresh(config);
+  EXPECT_EQ(fresh.followed_offset_s(), 0.004);
+  EXPECT_EQ(fresh.followed_sigma_s(), config.initial_sigma_s);
+  TimeOffsetConfig known = config;
+  known.estimate = false;
+  EXPECT_EQ(TimeOffsetEstimator(known).followed_sigma_s(), 0.0);
+  TimeOffsetConfig unwidened = config;
+  unwidened.initial_sigma_s = 0.0;
+  EXPECT_EQ(Drive(0.010, 35.0, 5e-4, unwidened).followed_sigma_s, 0.0);
 }
 
 TEST(TimeOffsetEstimator, WithoutRotationChangesTheGateHoldsTheOffset) {

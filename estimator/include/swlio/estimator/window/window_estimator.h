@@ -164,6 +164,14 @@ class WindowEstimator {
   /// estimate of the TimeOffsetEstimator beside it on (FreeOffset; until then the applied
   /// offset stands, as without the option).
   bool OffsetInWindow() const;
+  /// True while the window's IMU factors follow the TimeOffsetEstimator's estimate
+  /// (window_follows_estimate): the offset block then holds that estimate, constant in the
+  /// solve, until FreeOffset makes it a parameter.
+  bool FollowsOffset() const;
+  /// The block set to the estimate, and the factors whose widening changed made again.
+  void FollowOffset();
+  /// σ a new IMU factor is widened by (time_shift_jacobian.h).
+  double OffsetSigmaForFactors() const;
   /// The offset block starts at that estimate, with a prior of window_prior_sigma_s about it,
   /// and the window's IMU factors are made again with it.
   void FreeOffset();
