@@ -1,19 +1,17 @@
 #include "swlio/daemon/state/time_offset_state.h"
 
-#include <fcntl.h>
-#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <set>
 #include <sstream>
+
+#include "swlio/estimator/common/replace_file.h"
 
 namespace swlio::daemon {
 namespace {
@@ -130,23 +128,15 @@ std::optional<SavedTimeOffset> ReadTimeOffsetState(const std::filesystem::path& 
 bool WriteTimeOffsetState(const std::filesystem::path& path,
                           const SavedTimeOffset& saved,
                           std::string* error) {
-  const std::filesystem::path tmp = path.string() + ".tmp";
   const std::string text = FormatTimeOffsetState(saved);
-  const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    *error = tmp.string() + ": " + std::strerror(errno);
-    return false;
-  }
-  const bool written = write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
-  const int write_errno = errno;
-  const bool synced = written && fsync(fd) == 0;
-  close(fd);
-  if (!written || !synced || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    *error = path.string() + ": " + std::strerror(written ? errno : write_errno);
-    std::remove(tmp.c_str());
-    return false;
-  }
-  return true;
+  return estimator::ReplaceFile(
+      path.string(), path.string(),
+      [&](std::ostream& out, std::string* why) {
+        if (out << text) return true;
+        *why = path.string() + ": write failed";
+        return false;
+      },
+      error);
 }
 
 }  // namespace swlio::daemon

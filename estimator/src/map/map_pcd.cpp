@@ -8,6 +8,7 @@
 #include <system_error>
 #include <vector>
 
+#include "swlio/estimator/common/replace_file.h"
 #include "swlio/estimator/map/merged_cloud_builder.h"
 
 namespace swlio::estimator {
@@ -71,31 +72,12 @@ bool SaveMergedPcd(const std::string& path,
                    const SavedMap& map,
                    double voxel_m,
                    std::string* error) {
-  const std::string tmp = path + ".tmp";
-  std::string why;
-  bool ok = false;
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      SetPcdError(error, "merged cloud: cannot create " + tmp);
-      return false;
-    }
-    ok = WriteMergedPcd(out, map, voxel_m, &why) >= 0;
-    out.close();
-    if (ok && !out) why = "merged cloud: closing " + tmp + " failed";
-    ok = ok && out;
-  }
-  std::error_code ec;
-  if (ok) {
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) why = "merged cloud: renaming " + tmp + " to " + path + " failed: " + ec.message();
-    ok = !ec;
-  }
-  if (!ok) {
-    std::filesystem::remove(tmp, ec);
-    SetPcdError(error, why);
-  }
-  return ok;
+  return ReplaceFile(
+      path, "merged cloud",
+      [&](std::ostream& out, std::string* why) {
+        return WriteMergedPcd(out, map, voxel_m, why) >= 0;
+      },
+      error);
 }
 
 }  // namespace swlio::estimator

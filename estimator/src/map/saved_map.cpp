@@ -1,8 +1,5 @@
 #include "swlio/estimator/map/saved_map.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <bit>
 #include <cerrno>
@@ -16,6 +13,7 @@
 #include <system_error>
 
 #include "swlio/core/fnv1a.h"
+#include "swlio/estimator/common/replace_file.h"
 
 namespace swlio::estimator {
 namespace {
@@ -407,15 +405,6 @@ std::optional<SavedMap> ReadBytes(std::string_view bytes, std::string* why) {
 
 std::string ErrnoText() { return std::error_code(errno, std::generic_category()).message(); }
 
-// Flushes a file (or directory) to the disk: a rename must not land before the data does.
-bool SyncPath(const std::string& path, bool directory) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | (directory ? O_DIRECTORY : 0));
-  if (fd < 0) return false;
-  const bool ok = ::fsync(fd) == 0;
-  ::close(fd);
-  return ok;
-}
-
 }  // namespace
 
 bool WriteSavedMap(std::ostream& out, const SavedMap& map, std::string* error) {
@@ -461,38 +450,9 @@ std::optional<SavedMap> ReadSavedMap(std::istream& in, std::string* error) {
 }
 
 bool SaveMapFile(const std::string& path, const SavedMap& map, std::string* error) {
-  const std::string tmp = path + ".tmp";
-  std::string why;
-  bool ok = false;
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      SetError(error, "map write: cannot create " + tmp + ": " + ErrnoText());
-      return false;
-    }
-    ok = WriteSavedMap(out, map, &why);
-    out.close();
-    if (ok && !out) why = "map write: closing " + tmp + " failed: " + ErrnoText();
-    ok = ok && out;
-  }
-  if (ok && !SyncPath(tmp, false)) {
-    why = "map write: flushing " + tmp + " to disk failed: " + ErrnoText();
-    ok = false;
-  }
-  std::error_code ec;
-  if (ok) {
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) why = "map write: renaming " + tmp + " to " + path + " failed: " + ec.message();
-    ok = !ec;
-  }
-  if (!ok) {
-    std::filesystem::remove(tmp, ec);
-    SetError(error, why);
-    return false;
-  }
-  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  SyncPath(dir.empty() ? "." : dir.string(), true);  // best effort: the file is in place
-  return true;
+  return ReplaceFile(
+      path, "map write",
+      [&map](std::ostream& out, std::string* why) { return WriteSavedMap(out, map, why); }, error);
 }
 
 std::optional<SavedMap> LoadMapFile(const std::string& path, std::string* error) {
