@@ -79,9 +79,7 @@ double TimeOffsetEstimator::applied_sigma_s() const {
 }
 
 double TimeOffsetEstimator::followed_offset_s() const {
-  if (status_.updates > 0) return target_s_;
-  if (status_.rows >= config_.min_rows && std::isfinite(status_.sigma_s)) return status_.estimate_s;
-  return status_.offset_s;
+  return status_.updates > 0 ? target_s_ : status_.offset_s;
 }
 
 double TimeOffsetEstimator::followed_sigma_s() const {

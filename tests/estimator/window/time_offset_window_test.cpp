@@ -151,11 +151,11 @@ struct RotationDrift {
 };
 
 // window_follows_estimate: `aggressive` seed 1 drives straight until its first sharp turn
-// (8.5–10.2 s); the IMU measures the motion 10 ms after its stamps. The rows beside the window
-// know the offset a few sweeps into the turn, while the factors of the turn's first sweeps, made
-// at the offset applied then (0), are still in the window. Moved to the estimate, they no longer
-// bend the window's attitude: from the first sweep the rows know the offset at (9.0 s) to 12 s,
-// its rotation since 8 s must stay within 0.1° of the truth (measured 0.08°; the offset known:
+// (8.5–10.2 s); the IMU measures the motion 10 ms after its stamps. The estimate passes the gate
+// a few sweeps into the turn, while the factors of the turn's first sweeps, made at the offset
+// applied then (0), are still in the window. Moved to the estimate, they no longer
+// bend the window's attitude: from the first gated estimate (9.0 s) to 12 s,
+// its rotation since 8 s must stay within 0.1° of the truth (measured 0.065°; the offset known:
 // 0.04–0.06°), where factors left at the applied offset lose 0.2°. (The sweep before, at
 // 8.9 s, is off by 0.09° in both: nothing knows the offset yet.)
 TEST(TimeOffsetWindow, TheFactorsFollowingTheEstimateKeepTheFirstTurn) {
