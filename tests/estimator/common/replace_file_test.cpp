@@ -24,21 +24,20 @@ std::string Read(const std::filesystem::path& path) {
   return text.str();
 }
 
-bool Writes(const std::string& text, std::ostream& out) { return static_cast<bool>(out << text); }
+/// `text` written to `path` through ReplaceFile.
+bool Put(const std::string& path, const std::string& text, std::string* error) {
+  return ReplaceFile(
+      path, "state",
+      [&text](std::ostream& out, std::string*) { return static_cast<bool>(out << text); }, error);
+}
 
 TEST(ReplaceFile, WritesAndReplacesWholeLeavingNoTemporary) {
   const auto dir = test::MakeTempDir("replace_file");
   const std::string path = (dir / "state.txt").string();
   std::string error;
-  ASSERT_TRUE(ReplaceFile(
-      path, "state", [](std::ostream& out, std::string*) { return Writes("first\n", out); },
-      &error))
-      << error;
+  ASSERT_TRUE(Put(path, "first\n", &error)) << error;
   EXPECT_EQ(Read(path), "first\n");
-  ASSERT_TRUE(ReplaceFile(
-      path, "state", [](std::ostream& out, std::string*) { return Writes("second\n", out); },
-      &error))
-      << error;
+  ASSERT_TRUE(Put(path, "second\n", &error)) << error;
   EXPECT_EQ(Read(path), "second\n");
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
 }
@@ -47,13 +46,11 @@ TEST(ReplaceFile, AWriterThatGivesUpLeavesTheOldFile) {
   const auto dir = test::MakeTempDir("replace_file");
   const std::string path = (dir / "state.txt").string();
   std::string error;
-  ASSERT_TRUE(ReplaceFile(
-      path, "state", [](std::ostream& out, std::string*) { return Writes("kept\n", out); },
-      &error));
+  ASSERT_TRUE(Put(path, "kept\n", &error)) << error;
   EXPECT_FALSE(ReplaceFile(
       path, "state",
       [](std::ostream& out, std::string* why) {
-        Writes("half of it", out);
+        out << "half of it";
         *why = "state: the writer gave up";
         return false;
       },
@@ -67,18 +64,15 @@ TEST(ReplaceFile, AMissingDirectorySaysWhichStepFailed) {
   const auto dir = test::MakeTempDir("replace_file");
   const std::string path = (dir / "no" / "such.txt").string();
   std::string error;
-  EXPECT_FALSE(ReplaceFile(
-      path, "state", [](std::ostream& out, std::string*) { return Writes("x", out); }, &error));
+  EXPECT_FALSE(Put(path, "x", &error));
   EXPECT_THAT(error, HasSubstr("state: cannot create " + path + ".tmp: "));
   // A directory where the file should be: the rename fails, the temporary goes.
   const std::string blocked = (dir / "blocked").string();
   std::filesystem::create_directories(std::filesystem::path(blocked) / "inside");
-  EXPECT_FALSE(ReplaceFile(
-      blocked, "state", [](std::ostream& out, std::string*) { return Writes("x", out); }, &error));
+  EXPECT_FALSE(Put(blocked, "x", &error));
   EXPECT_THAT(error, HasSubstr("state: renaming " + blocked + ".tmp to " + blocked + " failed"));
   EXPECT_FALSE(std::filesystem::exists(blocked + ".tmp"));
-  EXPECT_FALSE(ReplaceFile(
-      path, "state", [](std::ostream& out, std::string*) { return Writes("x", out); }, nullptr));
+  EXPECT_FALSE(Put(path, "x", nullptr));  // no error text asked for
 }
 
 }  // namespace

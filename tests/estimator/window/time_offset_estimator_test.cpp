@@ -196,13 +196,16 @@ TEST(TimeOffsetEstimator, TheAppliedSigmaCoversTheAppliedError) {
       EXPECT_GT(run.min_sigma_before_update_s, 0.3 * std::abs(offset_s));
     EXPECT_LT(run.max_applied_z, 3.0);
   }
+  // Known, or 0: the factors stay as if the offset were known, followed or not.
   TimeOffsetConfig known = config;
   known.estimate = false;
   EXPECT_EQ(TimeOffsetEstimator(known).applied_sigma_s(), 0.0);
-  // 0: the factors stay as if the offset were known.
+  EXPECT_EQ(TimeOffsetEstimator(known).followed_sigma_s(), 0.0);
   TimeOffsetConfig off = config;
   off.initial_sigma_s = 0.0;
-  EXPECT_EQ(Drive(0.010, 35.0, 5e-4, off).applied_sigma_s, 0.0);
+  const OffsetRun unwidened = Drive(0.010, 35.0, 5e-4, off);
+  EXPECT_EQ(unwidened.applied_sigma_s, 0.0);
+  EXPECT_EQ(unwidened.followed_sigma_s, 0.0);
 }
 
 TEST(TimeOffsetEstimator, WhatTheWindowFollowsIsTheGatedEstimateWithItsSigma) {
@@ -224,12 +227,6 @@ TEST(TimeOffsetEstimator, WhatTheWindowFollowsIsTheGatedEstimateWithItsSigma) {
   const TimeOffsetEstimator fresh(config);
   EXPECT_EQ(fresh.followed_offset_s(), 0.004);
   EXPECT_EQ(fresh.followed_sigma_s(), config.initial_sigma_s);
-  TimeOffsetConfig known = config;
-  known.estimate = false;
-  EXPECT_EQ(TimeOffsetEstimator(known).followed_sigma_s(), 0.0);
-  TimeOffsetConfig unwidened = config;
-  unwidened.initial_sigma_s = 0.0;
-  EXPECT_EQ(Drive(0.010, 35.0, 5e-4, unwidened).followed_sigma_s, 0.0);
 }
 
 TEST(TimeOffsetEstimator, WithoutRotationChangesTheGateHoldsTheOffset) {
