@@ -103,7 +103,7 @@ struct TimeOffsetConfig {
   /// passed, are then corrected while they are still in the window (0.5 s), not only the ones
   /// made after the walk. Measured (issue 36, bench/README "The field"): `aggressive` seed 1
   /// started 10 ms off loses 0.2° of yaw in its first turn without it (APE 1.23× the offset
-  /// known), 0.05° with it (1.02×).
+  /// known), 0.05° with it (1.01×).
   bool window_follows_estimate = true;
 
   ConfigIssues Validate() const;
