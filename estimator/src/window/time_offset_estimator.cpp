@@ -84,7 +84,7 @@ double TimeOffsetEstimator::followed_offset_s() const {
 
 double TimeOffsetEstimator::followed_sigma_s() const {
   if (!config_.enabled || !config_.estimate || config_.initial_sigma_s <= 0.0) return 0.0;
-  return status_.updates > 0 ? gated_sigma_s_ : config_.initial_sigma_s;
+  return status_.updates > 0 ? gated_sigma_s_ : applied_sigma_s();
 }
 
 void TimeOffsetEstimator::ForgetRows() {

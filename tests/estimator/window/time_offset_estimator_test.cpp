@@ -210,8 +210,9 @@ TEST(TimeOffsetEstimator, TheAppliedSigmaCoversTheAppliedError) {
 
 TEST(TimeOffsetEstimator, WhatTheWindowFollowsIsTheGatedEstimateWithItsSigma) {
   // window_follows_estimate: the window's IMU factors are moved to followed_offset_s() and
-  // widened by followed_sigma_s(): `initial_sigma_s` until the first gated estimate, then that
-  // estimate's σ. It must end at the truth and never claim more certainty than it has.
+  // widened by followed_sigma_s(): the applied offset and applied_sigma_s() until the first
+  // gated estimate, then that estimate and its σ. It must end at the truth and never claim more
+  // certainty than it has.
   for (const double offset_s : {-0.010, 0.005, 0.010}) {
     const OffsetRun run = Drive(offset_s, 35.0, 5e-4, TimeOffsetConfig{});
     std::cout << "offset " << offset_s * 1e3 << " ms: followed " << run.followed_s * 1e3 << " ± "
