@@ -99,10 +99,10 @@ struct TimeOffsetConfig {
   /// The window's IMU factors follow the estimate: each sweep every factor in the window is
   /// moved to first order (time_offset_imu_factor.h) from the offset its samples were shifted
   /// with to `followed_offset_s()`, and widened by `followed_sigma_s()`: from the first gated
-  /// estimate on; before it nothing changes. The factors of a first turn's first sweeps, made before the gate
-  /// passed, are then corrected while they are still in the window (0.5 s), not only the ones
-  /// made after the walk. Measured (issue 36, bench/README "The field"): `aggressive` seed 1
-  /// started 10 ms off loses 0.2° of yaw in its first turn without it (APE 1.23× the offset
+  /// estimate on; before it nothing changes. The factors of a first turn's first sweeps, made
+  /// before the gate passed, are then corrected while they are still in the window (0.5 s), not
+  /// only the ones made after the walk. Measured (issue 36, bench/README "The field"): `aggressive`
+  /// seed 1 started 10 ms off loses 0.2° of yaw in its first turn without it (APE 1.23× the offset
   /// known), 0.05° with it (1.01×).
   bool window_follows_estimate = true;
 
