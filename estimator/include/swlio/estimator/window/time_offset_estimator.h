@@ -98,12 +98,13 @@ struct TimeOffsetConfig {
   double window_prior_sigma_s = 0.0;
   /// The window's IMU factors follow the estimate: each sweep every factor in the window is
   /// moved to first order (time_offset_imu_factor.h) from the offset its samples were shifted
-  /// with to `followed_offset_s()`, and widened by `followed_sigma_s()`: from the first gated
-  /// estimate on; before it nothing changes. The factors of a first turn's first sweeps, made
-  /// before the gate passed, are then corrected while they are still in the window (0.5 s), not
-  /// only the ones made after the walk. Measured (issue 36, bench/README "The field"): `aggressive`
-  /// seed 1 started 10 ms off loses 0.2° of yaw in its first turn without it (APE 1.23× the offset
-  /// known), 0.05° with it (1.01×).
+  /// with to `followed_offset_s()`, and widened by `followed_sigma_s()` (before the first
+  /// gated estimate: the applied offset and `applied_sigma_s()`, as without following, but
+  /// taken by every factor in the window each sweep). The factors of a first turn's first sweeps,
+  /// made before the gate passed, are then corrected while they are still in the window (0.5 s),
+  /// not only the ones made after the walk. Measured (issue 36, bench/README "The field"):
+  /// `aggressive` seed 1 started 10 ms off loses 0.2° of yaw in its first turn without it
+  /// (APE 1.23× the offset known), 0.05° with it (1.01×).
   bool window_follows_estimate = true;
 
   ConfigIssues Validate() const;
@@ -151,8 +152,8 @@ class TimeOffsetEstimator {
   /// estimate; before it the applied offset. (The rows' estimate before the gate, followed too,
   /// moved the start of `aggressive` seed 42: 1.26× the APE of the offset known at −10 ms.)
   double followed_offset_s() const;
-  /// Its σ: the gated estimate's; before it `applied_sigma_s()`, so that until the first gated
-  /// estimate the window is what it is without following (`initial_sigma_s` there instead cost
+  /// Its σ: the gated estimate's; before it `applied_sigma_s()`, as without following
+  /// (`initial_sigma_s` there instead cost
   /// `field` seed 2 13–19 %: its sweeps diverged from 30 s on, its gate passing at 62 s).
   /// 0 where the offset is not estimated or `initial_sigma_s` is 0.
   double followed_sigma_s() const;
