@@ -79,8 +79,9 @@ int RunDaemon(const DaemonConfig& file_config, const RuntimeOptions& options, in
     const Watchdog::Report watchdog = notifier.Tick(now);
     if (now >= next_record_ns) {
       next_record_ns = now + 1'000'000'000;
-      rt->ObserveForRecording(watchdog.stalled);
-      time_offset.Observe(rt->Snapshot().optimizer.time_offset, now);
+      const HealthSnapshot s = rt->Snapshot();
+      rt->ObserveForRecording(s, watchdog.stalled);
+      time_offset.Observe(s.optimizer.time_offset, now);
     }
     if (!ready && rt->Ready()) {
       ready = true;

@@ -207,9 +207,9 @@ bool Runtime::MakeRecorder(const Eigen::Isometry3d& T_imu_lidar,
   return true;
 }
 
-void Runtime::ObserveForRecording(const std::vector<std::string>& stalled) {
+void Runtime::ObserveForRecording(const HealthSnapshot& s,
+                                  const std::vector<std::string>& stalled) {
   if (!recorder_) return;
-  const HealthSnapshot s = Snapshot();
   const int64_t t_ns = time_.ToDaemon(s.t_ns);
   const int64_t realtime_ns = s.t_ns + stamp_clock_->counters().offset_ns;
   recorder_->AddHealthRow(HealthCsvRow(s, t_ns, realtime_ns, ReadProcessUsage()));

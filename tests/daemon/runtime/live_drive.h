@@ -239,7 +239,7 @@ inline LiveDriveResult RunLiveDrive(const LiveDrive& drive) {
       snapshots.emplace_back(now, rt->Snapshot());
       next_snapshot_ns = now + 100'000'000;
       // What swliod's supervision loop does every second (health.csv, incident events).
-      if (snapshots.size() % 10 == 0) rt->ObserveForRecording({});
+      if (snapshots.size() % 10 == 0) rt->ObserveForRecording(snapshots.back().second, {});
     }
   }
   simulator.join();

@@ -86,8 +86,8 @@ class Runtime : public ControlTarget {
   HealthSnapshot Snapshot() const;
   /// The supervision loop, about once a second: a health.csv row for the recording and, for
   /// the black box, incident events from the health (incident_detector.h), each also logged.
-  /// `stalled`: the watchdog's stalled threads.
-  void ObserveForRecording(const std::vector<std::string>& stalled);
+  /// `s`: a Snapshot() just taken; `stalled`: the watchdog's stalled threads.
+  void ObserveForRecording(const HealthSnapshot& s, const std::vector<std::string>& stalled);
   const Watchdog& watchdog() const { return watchdog_; }
   /// The daemon's time base (time_scale.h): recordings and incidents are stamped on it.
   const TimeScale& time_scale() const { return time_; }
