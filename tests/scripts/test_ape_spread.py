@@ -1,14 +1,15 @@
-"""scripts/ape-spread against stand-ins for swlio-run and swlio-eval: every draw runs with its own
-floor (draw 0 the configured one), loop closure off unless asked, the extra arguments passed on;
-the APEs come back per draw with their median, the second recording's median over the first's;
-a failing run is a clear error with exit status 1."""
+"""scripts/ape-spread against stand-ins for swlio-run and swlio-eval (stand_ins.py): every draw
+runs with its own floor (draw 0 the configured one), loop closure off unless asked, the extra
+arguments passed on; the APEs come back per draw with their median, the second recording's
+median over the first's; a failing run is a clear error with exit status 1."""
 import json
 import os
-import stat
 import subprocess
 import tempfile
 import unittest
 from pathlib import Path
+
+from stand_ins import FAKE_EVAL, write_bin
 
 SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "ape-spread"
 
@@ -28,23 +29,12 @@ if base < 0:
 open(out, "w").write(repr(base * (1 + 1000 * (floor / 0.01 - 1))))
 """
 
-FAKE_EVAL = """\
-#!/usr/bin/python3
-import json, sys
-assert "--json" in sys.argv and sys.argv[4:6] == ["--format", "tum"], sys.argv
-print(json.dumps({"n": 100, "rmse": float(open(sys.argv[3]).read())}))
-"""
-
 
 class ApeSpread(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
         d = Path(self.tmp.name)
-        (d / "bin").mkdir()
-        for name, text in (("swlio-run", FAKE_RUN), ("swlio-eval", FAKE_EVAL)):
-            p = d / "bin" / name
-            p.write_text(text)
-            p.chmod(p.stat().st_mode | stat.S_IXUSR)
+        write_bin(d / "bin", {"swlio-run": FAKE_RUN, "swlio-eval": FAKE_EVAL})
         self.log = d / "runs.jsonl"
         self.env = dict(os.environ, SWLIO_BIN_DIR=str(d / "bin"), FAKE_LOG=str(self.log))
 

@@ -6,11 +6,12 @@ offset known are made once per work folder; a failing run is a clear error with 
 import json
 import os
 import re
-import stat
 import subprocess
 import tempfile
 import unittest
 from pathlib import Path
+
+from stand_ins import FAKE_EVAL, write_bin
 
 SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "time-offset-eval"
 
@@ -51,24 +52,13 @@ if "--diagnostics" in a:
                 "132000000000,%g\\n" % offset_ms)
 """
 
-FAKE_EVAL = """\
-#!/usr/bin/python3
-import json, sys
-assert "--json" in sys.argv and sys.argv[4:6] == ["--format", "tum"], sys.argv
-print(json.dumps({"n": 100, "rmse": float(open(sys.argv[3]).read())}))
-"""
-
 
 class TimeOffsetEval(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
         d = Path(self.tmp.name)
-        (d / "bin").mkdir()
-        for name, text in (("swlio-sim", FAKE_SIM), ("swlio-run", FAKE_RUN),
-                           ("swlio-eval", FAKE_EVAL)):
-            p = d / "bin" / name
-            p.write_text(text)
-            p.chmod(p.stat().st_mode | stat.S_IXUSR)
+        write_bin(d / "bin", {"swlio-sim": FAKE_SIM, "swlio-run": FAKE_RUN,
+                              "swlio-eval": FAKE_EVAL})
         self.log = d / "runs.jsonl"
         self.work = d / "work"
         self.env = dict(os.environ, SWLIO_BIN_DIR=str(d / "bin"), FAKE_LOG=str(self.log))
