@@ -23,7 +23,8 @@ import os, sys
 a = sys.argv[1:]
 out = a[a.index("--out") + 1]
 os.makedirs(out)
-open(os.path.join(out, "groundtruth.tum"), "w").write("# t x y z qx qy qz qw\\n100.0 0 0 0 0 0 0 1\\n")
+gt = "# t x y z qx qy qz qw\\n100.0 0 0 0 0 0 0 1\\n"
+open(os.path.join(out, "groundtruth.tum"), "w").write(gt)
 open(os.path.join(out, "imu.rx.csv"), "w").write("t_rx_ns\\n100000000000\\n")
 """
 
