@@ -432,7 +432,7 @@ int Run(const Options& opt) {
   daemon_config.loop_closure.enabled = loop_closure;  // off: the graph runs for GNSS alone
   std::unique_ptr<swlio::tools::LocalizationRun> localization;
   if (opt.localize) {
-    swlio::estimator::LocalizationConfig lc;
+    swlio::estimator::LocalizationConfig lc = daemon_config.localization;  // --config's
     lc.registration = daemon_config.loop_closure;
     localization =
         swlio::tools::LocalizationRun::Open(opt.map, lc, &swlio::daemon::ThreadCpuNowNs, &error);
