@@ -66,6 +66,7 @@ set(_swlio_release_only
   # Relocalization among look-alikes and after a lost pose (20–22 s each);
   # MapLocalizer.RelocalizesWithoutAGuessAndTracks stays.
   "\\.MapLocalizer\\.(NeverLocalizesAtALookAlikeBay|FindsALostPoseAgain)"
+  "\\.MapLocalizer\\.NeverLocalizesAtALookAlikeWhereATruckWasParked"
   # Live drives with well-formed data on another schedule or clock, or with commands (44–58 s
   # each under ASan); Runtime.TracksASimulatedDrive stays, RuntimeControl.* runs under TSan.
   "\\.Runtime\\.AWallClockStepMovesTheStampsOnly"
