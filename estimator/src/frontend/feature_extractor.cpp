@@ -31,6 +31,7 @@ ConfigIssues FeatureConfig::Validate() const {
   CheckInRange<int64_t>(issues, "max_flat_planes_per_sector", max_flat_planes_per_sector, 0, 1000);
   CheckInRange(issues, "occlusion_jump_m", occlusion_jump_m, 0.01, 10.0);
   CheckInRange(issues, "parallel_beam_ratio", parallel_beam_ratio, 1e-4, 1.0);
+  CheckInRange(issues, "mixed_pixel_tolerance_m", mixed_pixel_tolerance_m, 0.0, 10.0);
   CheckInRange<int64_t>(issues, "max_neighbour_column_gap", max_neighbour_column_gap, 1, 1000);
   return issues;
 }
@@ -42,6 +43,7 @@ void FeatureSet::Clear() {
   planes.clear();
   occluded = 0;
   parallel = 0;
+  mixed = 0;
 }
 
 void FeatureExtractor::Extract(const SegmentationResult& s, FeatureSet* out) {
@@ -96,6 +98,23 @@ void FeatureExtractor::ComputeSmoothness(const SegmentationResult& s, size_t beg
   }
 }
 
+// A point at a jump against the line through the next two points inward on its ring, where the
+// three are evenly spaced in column within the neighbourhood's gap (else the line says nothing).
+bool FeatureExtractor::OffItsSurface(const SegmentationResult& s,
+                                     size_t edge,
+                                     size_t inner,
+                                     size_t inner2) const {
+  if (config_.mixed_pixel_tolerance_m <= 0.0) return false;
+  const SegmentedPoint& e = s.points[edge];
+  const SegmentedPoint& p1 = s.points[inner];
+  const SegmentedPoint& p2 = s.points[inner2];
+  const int step = e.column - p1.column;
+  if (step != p1.column - p2.column || std::abs(step) > config_.max_neighbour_column_gap)
+    return false;
+  const float extrapolated = 2.0f * p1.range_m - p2.range_m;
+  return std::abs(e.range_m - extrapolated) > static_cast<float>(config_.mixed_pixel_tolerance_m);
+}
+
 // LOAM §V-A: at a range jump between ring neighbours, the W points on the far side lie next to
 // an occluding edge and would move with the viewpoint; a point whose range steps away on both
 // sides lies on a surface nearly parallel to the beam. Both are unreliable.
@@ -112,12 +131,24 @@ void FeatureExtractor::RejectUnreliable(const SegmentationResult& s,
       flags_[j] |= kUnreliable;
     }
   };
+  // The near side's edge point, where it lies off its surface's line: a mixed pixel.
+  auto mark_mixed = [&](size_t edge, size_t inner, size_t inner2) {
+    if (!OffItsSurface(s, edge, inner, inner2)) return;
+    out->mixed += (flags_[edge] & kUnreliable) == 0;
+    flags_[edge] |= kUnreliable;
+  };
   for (size_t i = begin; i + 1 < end; ++i) {
     const SegmentedPoint& a = s.points[i];
     const SegmentedPoint& b = s.points[i + 1];
     if (b.column - a.column > config_.max_neighbour_column_gap) continue;
-    if (a.range_m - b.range_m > jump) mark(i >= begin + w ? i - w : begin, i + 1);
-    if (b.range_m - a.range_m > jump) mark(i + 1, std::min(end, i + 2 + w));
+    if (a.range_m - b.range_m > jump) {
+      mark(i >= begin + w ? i - w : begin, i + 1);
+      if (i + 3 < end) mark_mixed(i + 1, i + 2, i + 3);
+    }
+    if (b.range_m - a.range_m > jump) {
+      mark(i + 1, std::min(end, i + 2 + w));
+      if (i >= begin + 2) mark_mixed(i, i - 1, i - 2);
+    }
   }
   for (size_t i = begin + 1; i + 1 < end; ++i) {
     const float r = s.points[i].range_m;
