@@ -27,8 +27,8 @@ struct FeatureConfig {
   int64_t max_sharp_edges_per_sector = 2;
   int64_t max_edges_per_sector = 20;  ///< the sharp ones included
   int64_t max_flat_planes_per_sector = 4;
-  double occlusion_jump_m = 0.3;          ///< range step between ring neighbours that occludes
-  double parallel_beam_ratio = 0.02;      ///< both neighbour steps > ratio·r: surface ∥ beam
+  double occlusion_jump_m = 0.3;      ///< range step between ring neighbours that occludes
+  double parallel_beam_ratio = 0.02;  ///< both neighbour steps > ratio·r: surface ∥ beam
   /// A point on the near side of an occlusion jump that lies off the line of its own surface's
   /// two previous points (range extrapolated along the ring) by more than this (m; 0: off) is
   /// taken for a mixed pixel: the beam's footprint straddled the edge and the return landed
