@@ -1,5 +1,6 @@
 // Mixed pixels on the real RS-LiDAR-16 capture (shared/data/rs16_washing_house): the sweeps
-// decoded as the driver does, each through the front end with the mixed-pixel test on and off.
+// decoded as the driver does, each through the front end with the mixed-pixel test at 0.15 m
+// (an option, off by default) and off.
 // A real sensor's returns merge at edges too, so the test finds some; it takes few points, and
 // the edge features stay.
 
@@ -76,7 +77,7 @@ TEST(MixedPixelReal, FewPointsTakenAndTheEdgesStay) {
   SWLIO_REQUIRE_DATA(path, kCapture);
   const std::vector<Scan> sweeps = Sweeps(path);
   ASSERT_GE(sweeps.size(), 30u);
-  const Counts on = Features(sweeps, FeatureConfig{}.mixed_pixel_tolerance_m);
+  const Counts on = Features(sweeps, 0.15);
   const Counts off = Features(sweeps, 0.0);
   std::printf(
       "%zu sweeps: mixed %lld, occluded %lld; edges %lld (off %lld), planes %lld (off %lld)\n",

@@ -1,5 +1,6 @@
-// Mixed pixels at an occlusion jump (FeatureConfig::mixed_pixel_tolerance_m): one ring of a
-// synthetic segmented cloud, a wall seen obliquely and a wall far behind it.
+// Mixed pixels at an occlusion jump (FeatureConfig::mixed_pixel_tolerance_m, off by default;
+// here at 0.15 m): one ring of a synthetic segmented cloud, a wall seen obliquely and a wall far
+// behind it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -36,6 +37,12 @@ SegmentationResult Ring(double edge_range_m, int columns = 200, int edge = 85) {
   return s;
 }
 
+FeatureConfig Tested() {
+  FeatureConfig config;
+  config.mixed_pixel_tolerance_m = 0.15;
+  return config;
+}
+
 bool Contains(const std::vector<FeaturePoint>& points, uint32_t source_index) {
   return std::any_of(points.begin(), points.end(),
                      [&](const FeaturePoint& p) { return p.source_index == source_index; });
@@ -44,7 +51,7 @@ bool Contains(const std::vector<FeaturePoint>& points, uint32_t source_index) {
 double NearRange(int column) { return 10.0 / std::cos((column - 50) * kColumnRad); }
 
 TEST(MixedPixel, TheTrueEdgePointStaysAnEdge) {
-  FeatureExtractor extractor{FeatureConfig{}};
+  FeatureExtractor extractor{Tested()};
   FeatureSet f;
   extractor.Extract(Ring(0.0), &f);
   EXPECT_EQ(f.mixed, 0);
@@ -54,7 +61,7 @@ TEST(MixedPixel, TheTrueEdgePointStaysAnEdge) {
 // The return merged from both walls (power-weighted, so nearer the near one): 0.2 m behind
 // the near wall's line, within the occlusion test's 0.3 m, so that test keeps it as the edge.
 TEST(MixedPixel, AReturnBetweenTheWallsIsNoFeature) {
-  FeatureExtractor extractor{FeatureConfig{}};
+  FeatureExtractor extractor{Tested()};
   FeatureSet f;
   extractor.Extract(Ring(NearRange(85) + 0.2), &f);
   EXPECT_EQ(f.mixed, 1);
@@ -63,9 +70,7 @@ TEST(MixedPixel, AReturnBetweenTheWallsIsNoFeature) {
 }
 
 TEST(MixedPixel, OffKeepsItAsTheEdge) {
-  FeatureConfig config;
-  config.mixed_pixel_tolerance_m = 0.0;
-  FeatureExtractor extractor{config};
+  FeatureExtractor extractor{FeatureConfig{}};
   FeatureSet f;
   extractor.Extract(Ring(NearRange(85) + 0.2), &f);
   EXPECT_EQ(f.mixed, 0);
@@ -74,7 +79,7 @@ TEST(MixedPixel, OffKeepsItAsTheEdge) {
 
 // Range noise of a few centimetres on the edge point is no mixed pixel.
 TEST(MixedPixel, RangeNoiseIsNoMixedPixel) {
-  FeatureExtractor extractor{FeatureConfig{}};
+  FeatureExtractor extractor{Tested()};
   FeatureSet f;
   extractor.Extract(Ring(NearRange(85) + 0.06), &f);
   EXPECT_EQ(f.mixed, 0);
@@ -85,7 +90,7 @@ TEST(MixedPixel, SeenFromTheFarSideToo) {
   SegmentationResult s = Ring(0.0);
   std::reverse(s.points.begin(), s.points.end());
   for (size_t i = 0; i < s.points.size(); ++i) s.points[i].column = static_cast<uint16_t>(i);
-  FeatureExtractor extractor{FeatureConfig{}};
+  FeatureExtractor extractor{Tested()};
   FeatureSet f;
   extractor.Extract(s, &f);
   EXPECT_EQ(f.mixed, 0);

@@ -33,10 +33,16 @@ struct FeatureConfig {
   /// two previous points (range extrapolated along the ring) by more than this (m; 0: off) is
   /// taken for a mixed pixel: the beam's footprint straddled the edge and the return landed
   /// between the two surfaces, nearer the near one (returns merge weighted by power ∝ 1/r²).
-  /// LOAM's occlusion test keeps it as the near surface's edge point, so it would become an
-  /// edge feature behind the true edge. 0.15 m: 3σ of the second range difference with the
-  /// RS-LiDAR-16's 2 cm range noise (σ·√6 = 0.05 m).
-  double mixed_pixel_tolerance_m = 0.15;
+  /// LOAM's occlusion test keeps it as the near surface's edge point, so it becomes an edge
+  /// feature behind the true edge. 0.15 m would be 3σ of the second range difference with the
+  /// RS-LiDAR-16's 2 cm range noise (σ·√6 = 0.05 m). Off: measured (issue 36, bench/README
+  /// "The field"), 0.15 m also takes true edge points on sweeps without mixed pixels (5–36 points
+  /// a sweep in the simulator, 0–2 of 61–91 edge features, on poles and gantry members), and made
+  /// `field` 1–3 worse (3 draws each: 0.0311 / 0.0438 / 0.0352 m against 0.0294 / 0.0320 / 0.0326
+  /// m) and the time-offset recordings, which have no mixed pixels, 3 % worse; `loop943` 2 with
+  /// mixed pixels alone went from 0.0418 to 0.0305 m (one draw). On the real RS-LiDAR-16 capture it
+  /// takes 33 points in 39 sweeps.
+  double mixed_pixel_tolerance_m = 0.0;
   int64_t max_neighbour_column_gap = 10;  ///< larger gaps end a neighbourhood
 
   ConfigIssues Validate() const;

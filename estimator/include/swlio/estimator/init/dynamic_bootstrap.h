@@ -144,6 +144,9 @@ class DynamicBootstrap {
   BootstrapStatus TryAlign();
   void Finish(const DynamicInitResult& init);
 
+  // 16-byte aligned members first (padding).
+  ImuPose last_, before_last_;  ///< odometry state
+  Eigen::Isometry3d T_w0_last_keyframe_ = Eigen::Isometry3d::Identity();
   DynamicBootstrapConfig config_;
   DynamicInitializer initializer_;
   FrontEnd front_end_;
@@ -151,9 +154,6 @@ class DynamicBootstrap {
   VoxelMap plane_map_;
   VoxelMap edge_map_;
   std::deque<ImuSample> imu_;
-  // Odometry state.
-  ImuPose last_, before_last_;
-  Eigen::Isometry3d T_w0_last_keyframe_ = Eigen::Isometry3d::Identity();
   std::deque<Frame> frames_;  ///< the newest window_frames poses, oldest first
   // Scratch, reused sweep after sweep.
   PoseTrack track_;
