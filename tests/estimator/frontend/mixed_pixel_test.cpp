@@ -48,12 +48,17 @@ bool Contains(const std::vector<FeaturePoint>& points, uint32_t source_index) {
                      [&](const FeaturePoint& p) { return p.source_index == source_index; });
 }
 
+FeatureSet Features(const FeatureConfig& config, const SegmentationResult& ring) {
+  FeatureExtractor extractor{config};
+  FeatureSet f;
+  extractor.Extract(ring, &f);
+  return f;
+}
+
 double NearRange(int column) { return 10.0 / std::cos((column - 50) * kColumnRad); }
 
 TEST(MixedPixel, TheTrueEdgePointStaysAnEdge) {
-  FeatureExtractor extractor{Tested()};
-  FeatureSet f;
-  extractor.Extract(Ring(0.0), &f);
+  const FeatureSet f = Features(Tested(), Ring(0.0));
   EXPECT_EQ(f.mixed, 0);
   EXPECT_TRUE(Contains(f.edges, 85));
 }
@@ -61,43 +66,35 @@ TEST(MixedPixel, TheTrueEdgePointStaysAnEdge) {
 // The return merged from both walls (power-weighted, so nearer the near one): 0.2 m behind
 // the near wall's line, within the occlusion test's 0.3 m, so that test keeps it as the edge.
 TEST(MixedPixel, AReturnBetweenTheWallsIsNoFeature) {
-  FeatureExtractor extractor{Tested()};
-  FeatureSet f;
-  extractor.Extract(Ring(NearRange(85) + 0.2), &f);
+  const FeatureSet f = Features(Tested(), Ring(NearRange(85) + 0.2));
   EXPECT_EQ(f.mixed, 1);
   EXPECT_FALSE(Contains(f.edges, 85));
   EXPECT_FALSE(Contains(f.planes, 85));
 }
 
 TEST(MixedPixel, OffKeepsItAsTheEdge) {
-  FeatureExtractor extractor{FeatureConfig{}};
-  FeatureSet f;
-  extractor.Extract(Ring(NearRange(85) + 0.2), &f);
+  const FeatureSet f = Features(FeatureConfig{}, Ring(NearRange(85) + 0.2));
   EXPECT_EQ(f.mixed, 0);
   EXPECT_TRUE(Contains(f.edges, 85));
 }
 
 // Range noise of a few centimetres on the edge point is no mixed pixel.
 TEST(MixedPixel, RangeNoiseIsNoMixedPixel) {
-  FeatureExtractor extractor{Tested()};
-  FeatureSet f;
-  extractor.Extract(Ring(NearRange(85) + 0.06), &f);
+  const FeatureSet f = Features(Tested(), Ring(NearRange(85) + 0.06));
   EXPECT_EQ(f.mixed, 0);
 }
 
-// The same from the other side: the far wall first, the near wall from column 100 on.
+// The same from the other side: the far wall first, then the near wall.
 TEST(MixedPixel, SeenFromTheFarSideToo) {
   SegmentationResult s = Ring(0.0);
   std::reverse(s.points.begin(), s.points.end());
   for (size_t i = 0; i < s.points.size(); ++i) s.points[i].column = static_cast<uint16_t>(i);
-  FeatureExtractor extractor{Tested()};
-  FeatureSet f;
-  extractor.Extract(s, &f);
+  FeatureSet f = Features(Tested(), s);
   EXPECT_EQ(f.mixed, 0);
   EXPECT_TRUE(Contains(f.edges, 85));
   // Reversed, the near wall's edge (source 85) sits at index 114.
   s.points[114].range_m += 0.2f;
-  extractor.Extract(s, &f);
+  f = Features(Tested(), s);
   EXPECT_EQ(f.mixed, 1);
   EXPECT_FALSE(Contains(f.edges, 85));
 }
