@@ -33,7 +33,8 @@ CONSOLE_ERROR = re.compile(r"Uncaught|:CONSOLE\b|ERROR:CONSOLE", re.I)
 
 def chromium(*args, timeout=60):
     # A profile of its own per run (2 MB), removed afterwards: it was left in /tmp each time.
-    with tempfile.TemporaryDirectory(prefix="swlio-chromium-", ignore_cleanup_errors=True) as profile:
+    profile_dir = tempfile.TemporaryDirectory(prefix="swlio-chromium-", ignore_cleanup_errors=True)
+    with profile_dir as profile:
         cmd = [
             CHROMIUM,
             "--headless",
