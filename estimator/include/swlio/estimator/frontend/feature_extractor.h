@@ -29,10 +29,11 @@ struct FeatureConfig {
   int64_t max_flat_planes_per_sector = 4;
   double occlusion_jump_m = 0.3;      ///< range step between ring neighbours that occludes
   double parallel_beam_ratio = 0.02;  ///< both neighbour steps > ratio·r: surface ∥ beam
-  /// A point on the near side of an occlusion jump that lies off the line of its own surface's
-  /// two previous points (range extrapolated along the ring) by more than this (m; 0: off) is
-  /// taken for a mixed pixel: the beam's footprint straddled the edge and the return landed
-  /// between the two surfaces, nearer the near one (returns merge weighted by power ∝ 1/r²).
+  /// A point on the near side of an occlusion jump that lies off the line through the next two
+  /// points inward on its ring, on its own surface (their range extrapolated along the ring to
+  /// the point), by more than this (m; 0: off) is taken for a mixed pixel: the beam's footprint
+  /// straddled the edge and the return landed between the two surfaces, nearer the near one
+  /// (returns merge weighted by power ∝ 1/r²).
   /// LOAM's occlusion test keeps it as the near surface's edge point, so it becomes an edge
   /// feature behind the true edge. 0.15 m would be 3σ of the second range difference with the
   /// RS-LiDAR-16's 2 cm range noise (σ·√6 = 0.05 m). Off: measured (issue 36, bench/README
