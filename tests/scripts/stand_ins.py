@@ -1,6 +1,11 @@
 """Stand-ins for swlio's programs, shared by the scripts' tests: each a small Python program
 written into a bin folder that SWLIO_BIN_DIR then points at."""
+import json
+import os
 import stat
+import subprocess
+import tempfile
+import unittest
 from pathlib import Path
 
 # swlio-eval stand-in: the trajectory file holds the APE RMSE to print.
@@ -20,3 +25,31 @@ def write_bin(folder, programs):
         p = folder / name
         p.write_text(text)
         p.chmod(p.stat().st_mode | stat.S_IXUSR)
+
+
+class StandInTest(unittest.TestCase):
+    """A script's test against stand-ins: SCRIPT run with --work in a temporary folder, the
+    PROGRAMS ({name: text}) in its bin folder as SWLIO_BIN_DIR, each logging to FAKE_LOG."""
+    SCRIPT = None
+    PROGRAMS = {}
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        d = Path(self.tmp.name)
+        write_bin(d / "bin", self.PROGRAMS)
+        self.log = d / "runs.jsonl"
+        self.work = d / "work"
+        self.env = dict(os.environ, SWLIO_BIN_DIR=str(d / "bin"), FAKE_LOG=str(self.log))
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def run_script(self, *args):
+        return subprocess.run([str(self.SCRIPT), "--work", str(self.work), *args],
+                              capture_output=True, text=True, env=self.env)
+
+    def logged(self):
+        """Every logged call's arguments, in order."""
+        if not self.log.exists():
+            return []
+        return [json.loads(line) for line in self.log.read_text().splitlines()]

@@ -3,14 +3,10 @@ makes a pair in the given world (a second scenario or the disturbances), both ar
 loop closure off and the extra arguments; the table gives both APEs and their ratio, bold over
 the bound, then the median ratio, the ratio of the sums, the largest and how many exceed it;
 recordings are made once per work folder; a failing run is a clear error with exit status 1."""
-import json
-import os
-import subprocess
-import tempfile
 import unittest
 from pathlib import Path
 
-from stand_ins import FAKE_EVAL, write_bin
+from stand_ins import FAKE_EVAL, StandInTest
 
 SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "ape-realizations"
 
@@ -46,28 +42,13 @@ open(out, "w").write(open(os.path.join(rec, "ape.txt")).read())
 """
 
 
-class ApeRealizations(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        d = Path(self.tmp.name)
-        write_bin(d / "bin", {"swlio-sim": FAKE_SIM, "swlio-run": FAKE_RUN,
-                              "swlio-eval": FAKE_EVAL})
-        self.log = d / "calls.jsonl"
-        self.work = d / "work"
-        self.env = dict(os.environ, SWLIO_BIN_DIR=str(d / "bin"), FAKE_LOG=str(self.log))
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def evaluate(self, *args):
-        return subprocess.run([str(SCRIPT), "--work", str(self.work), *args],
-                              capture_output=True, text=True, env=self.env)
+class ApeRealizations(StandInTest):
+    SCRIPT = SCRIPT
+    PROGRAMS = {"swlio-sim": FAKE_SIM, "swlio-run": FAKE_RUN, "swlio-eval": FAKE_EVAL}
+    evaluate = StandInTest.run_script
 
     def calls(self, kind):
-        if not self.log.exists():
-            return []
-        calls = [json.loads(line) for line in self.log.read_text().splitlines()]
-        return [c[1:] for c in calls if c[0] == kind]
+        return [c[1:] for c in self.logged() if c[0] == kind]
 
     def test_pairs_against_a_second_scenario(self):
         r = self.evaluate("--scenario", "loop943", "--world-seed", "2", "--seeds", "3,4,5",

@@ -2,14 +2,10 @@
 runs with its own floor (draw 0 the configured one), loop closure off unless asked, the extra
 arguments passed on; the APEs come back per draw with their median, the second recording's
 median over the first's; a failing run is a clear error with exit status 1."""
-import json
-import os
-import subprocess
-import tempfile
 import unittest
 from pathlib import Path
 
-from stand_ins import FAKE_EVAL, write_bin
+from stand_ins import FAKE_EVAL, StandInTest
 
 SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "ape-spread"
 
@@ -30,29 +26,17 @@ open(out, "w").write(repr(base * (1 + 1000 * (floor / 0.01 - 1))))
 """
 
 
-class ApeSpread(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        d = Path(self.tmp.name)
-        write_bin(d / "bin", {"swlio-run": FAKE_RUN, "swlio-eval": FAKE_EVAL})
-        self.log = d / "runs.jsonl"
-        self.env = dict(os.environ, SWLIO_BIN_DIR=str(d / "bin"), FAKE_LOG=str(self.log))
-
-    def tearDown(self):
-        self.tmp.cleanup()
+class ApeSpread(StandInTest):
+    SCRIPT = SCRIPT
+    PROGRAMS = {"swlio-run": FAKE_RUN, "swlio-eval": FAKE_EVAL}
+    spread = StandInTest.run_script
+    runs = StandInTest.logged
 
     def rec(self, name, base):
         p = Path(self.tmp.name) / name
         p.mkdir()
         (p / "base.txt").write_text(str(base))
         return str(p)
-
-    def spread(self, *args):
-        return subprocess.run([str(SCRIPT), "--work", str(Path(self.tmp.name) / "work"), *args],
-                              capture_output=True, text=True, env=self.env)
-
-    def runs(self):
-        return [json.loads(line) for line in self.log.read_text().splitlines()]
 
     def test_draws_medians_and_ratio(self):
         a, b = self.rec("a", 0.02), self.rec("b", 0.03)

@@ -3,15 +3,11 @@ runs --draws draws estimated and with the offset known (set + clock chain, --tim
 each with its own floor; the table gives both medians with their ranges and the ratio of the
 medians, bold over 1.10, the offset applied at 32 s from draw 0's diagnostics; the runs with the
 offset known are made once per work folder; a failing run is a clear error with exit status 1."""
-import json
-import os
 import re
-import subprocess
-import tempfile
 import unittest
 from pathlib import Path
 
-from stand_ins import FAKE_EVAL, write_bin
+from stand_ins import FAKE_EVAL, StandInTest
 
 SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "time-offset-eval"
 
@@ -54,27 +50,11 @@ if "--diagnostics" in a:
 """
 
 
-class TimeOffsetEval(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        d = Path(self.tmp.name)
-        write_bin(d / "bin", {"swlio-sim": FAKE_SIM, "swlio-run": FAKE_RUN,
-                              "swlio-eval": FAKE_EVAL})
-        self.log = d / "runs.jsonl"
-        self.work = d / "work"
-        self.env = dict(os.environ, SWLIO_BIN_DIR=str(d / "bin"), FAKE_LOG=str(self.log))
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def evaluate(self, *args):
-        return subprocess.run([str(SCRIPT), "--work", str(self.work), *args],
-                              capture_output=True, text=True, env=self.env)
-
-    def runs(self):
-        if not self.log.exists():
-            return []
-        return [json.loads(line) for line in self.log.read_text().splitlines()]
+class TimeOffsetEval(StandInTest):
+    SCRIPT = SCRIPT
+    PROGRAMS = {"swlio-sim": FAKE_SIM, "swlio-run": FAKE_RUN, "swlio-eval": FAKE_EVAL}
+    evaluate = StandInTest.run_script
+    runs = StandInTest.logged
 
     def test_medians_of_the_draws_and_their_ratio(self):
         r = self.evaluate("--seeds", "42,1", "--offsets", "10,-5")
