@@ -1,4 +1,5 @@
-"""Draws of swlio-run on one recording, shared by scripts/ape-spread and scripts/time-offset-eval.
+"""Draws of swlio-run on one recording, and simulated recordings made once, shared by
+scripts/ape-spread, scripts/time-offset-eval and scripts/ape-realizations.
 
 A draw is swlio-run with the floor under a sweep's LiDAR position sigma (--lidar-floor-m,
 0.01 m) scaled by 1 + k * 1e-5 for draw k = 0 .. N-1 (draw 0: unchanged). swlio-run is
@@ -6,10 +7,11 @@ deterministic for one input and configuration, but a change in the last digits t
 path through the nonlinear solves, the map insertions and the feature choices: the spread of the
 draws is the resolution of any comparison of single runs (bench/README, "The field").
 
-SWLIO_BIN_DIR (default build/bin) holds swlio-run and swlio-eval."""
+SWLIO_BIN_DIR (default build/bin) holds swlio-sim, swlio-run and swlio-eval."""
 import concurrent.futures
 import json
 import os
+import shutil
 import subprocess
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -32,6 +34,17 @@ def call(cmd):
         tail = "\n".join((r.stdout + r.stderr).strip().splitlines()[-5:])
         raise RunError(f"{' '.join(cmd)} exited with {r.returncode}:\n{tail}")
     return r.stdout
+
+
+def simulate_once(rec, args):
+    """The recording `rec`, made with swlio-sim `args` unless it is there (made into REC.part,
+    then renamed: an interrupted one is made again)."""
+    if not os.path.isdir(rec):
+        part = rec + ".part"
+        shutil.rmtree(part, ignore_errors=True)
+        call([os.path.join(BIN, "swlio-sim"), "--out", part] + args)
+        os.replace(part, rec)
+    return rec
 
 
 def ape_rmse(gt, est):
