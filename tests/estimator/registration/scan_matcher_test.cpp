@@ -144,6 +144,33 @@ TEST(ScanMatcher, ANewFaceOfAThinWallIsNotPairedWithTheFaceSeenBefore) {
   EXPECT_GT((truth.inverse() * wide.T_world_lidar).translation().norm(), 0.01);
 }
 
+// Edge features on a flat face (the smoothness of a few points over its threshold by noise, or
+// cut short by a silhouette) scatter over it in the map; five neighbours of such a scatter are
+// no line, though they can happen to lie longer than wide. A corner's points lie along it.
+TEST(ScanMatcher, EdgePointsScatteredOverAFaceMakeNoLine) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> across(-0.35, 0.35), up(0.0, 4.0), inside(0.5, 3.5);
+  std::normal_distribution<double> noise(0.0, 0.015);
+  std::vector<Eigen::Vector3d> map_edges, corner_queries, face_queries;
+  for (double z = 0.1; z <= 4.0; z += 0.12) map_edges.emplace_back(noise(rng), noise(rng), z);
+  for (int i = 0; i < 60; ++i) map_edges.emplace_back(across(rng), 5.0 + noise(rng), up(rng));
+  for (int i = 0; i < 40; ++i) corner_queries.emplace_back(0.0, 0.0, inside(rng));
+  for (int i = 0; i < 200; ++i) face_queries.emplace_back(across(rng), 5.0, inside(rng));
+  VoxelMap planes, edges;
+  edges.Insert(map_edges);
+  const auto lines_found = [&](const ScanMatcher& matcher,
+                               const std::vector<Eigen::Vector3d>& queries) {
+    std::vector<PlaneCorrespondence> paired;
+    std::vector<LineCorrespondence> lines;
+    matcher.Associate({}, queries, planes, edges, Eigen::Isometry3d::Identity(), &paired, &lines);
+    return static_cast<double>(lines.size()) / static_cast<double>(queries.size());
+  };
+  EXPECT_GE(lines_found(ScanMatcher(), corner_queries), 0.95);
+  EXPECT_LE(lines_found(ScanMatcher(), face_queries), 0.3);
+  // LOAM's λ1 ≥ 3·λ2 takes a good part of the scatter for lines.
+  EXPECT_GE(lines_found(ScanMatcher({.line_min_ratio = 3.0}), face_queries), 0.5);
+}
+
 TEST(ScanMatcher, TooFewCorrespondencesDoNotConverge) {
   VoxelMap planes, edges;
   const MatchResult r = ScanMatcher().Match({Eigen::Vector3d(1, 2, 3)}, {}, planes, edges,
