@@ -45,7 +45,7 @@ struct ScanMatcherConfig {
   /// seeds 1–3 and 42, with each disturbance, 0.952 → 0.711 m summed, every one lower; `loop943`
   /// and `field` 1–3 0.179 → 0.159 m.
   double line_min_ratio = 10.0;
-  double huber_m = 0.1;         ///< Huber kernel width
+  double huber_m = 0.1;  ///< Huber kernel width
   /// Larger residuals are outliers in the first association, made at a predicted pose.
   double max_residual_m = 1.0;
   /// The same once the pose is registered: later associations of a match, and `Associate`.
