@@ -153,7 +153,7 @@ TEST(ScanMatcher, EdgePointsScatteredOverAFaceMakeNoLine) {
   std::normal_distribution<double> noise(0.0, 0.015);
   std::vector<Eigen::Vector3d> map_edges, corner_queries, face_queries;
   for (double z = 0.1; z <= 4.0; z += 0.12) map_edges.emplace_back(noise(rng), noise(rng), z);
-  for (int i = 0; i < 60; ++i) map_edges.emplace_back(across(rng), 5.0 + noise(rng), up(rng));
+  for (int i = 0; i < 150; ++i) map_edges.emplace_back(across(rng), 5.0 + noise(rng), up(rng));
   for (int i = 0; i < 40; ++i) corner_queries.emplace_back(0.0, 0.0, inside(rng));
   for (int i = 0; i < 200; ++i) face_queries.emplace_back(across(rng), 5.0, inside(rng));
   VoxelMap planes, edges;
@@ -168,7 +168,7 @@ TEST(ScanMatcher, EdgePointsScatteredOverAFaceMakeNoLine) {
   EXPECT_GE(lines_found(ScanMatcher(), corner_queries), 0.95);
   EXPECT_LE(lines_found(ScanMatcher(), face_queries), 0.3);
   // LOAM's λ1 ≥ 3·λ2 takes a good part of the scatter for lines.
-  EXPECT_GE(lines_found(ScanMatcher({.line_min_ratio = 3.0}), face_queries), 0.5);
+  EXPECT_GE(lines_found(ScanMatcher({.line_min_ratio = 3.0}), face_queries), 0.4);
 }
 
 TEST(ScanMatcher, TooFewCorrespondencesDoNotConverge) {
