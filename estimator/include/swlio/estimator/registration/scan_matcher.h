@@ -43,7 +43,7 @@ struct ScanMatcherConfig {
   /// corner's or a pole's neighbours give λ1/λ2 in the hundreds. 6 against 3, one run each, no
   /// loop closure (docs/notes/2026-12-06-edge-lines-on-faces.md): the 42 `aggressive` drives of
   /// seeds 1–3 and 42, with each disturbance, 0.952 → 0.773 m summed, every one lower; `loop943`
-  /// and `field` 1–3 0.179 → 0.158 m. 10 did better on both (0.711 / 0.159 m) but lost one
+  /// and `field` 1–3 0.179 → 0.158 m. 10 did better on the former (0.711 m; 0.159 m) but lost one
   /// start of 16 after lost sweeps (DynamicBootstrap.LostSweepsRestartTheOdometry): a map of a
   /// sweep or two has few points per corner.
   double line_min_ratio = 6.0;
