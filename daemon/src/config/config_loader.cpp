@@ -363,6 +363,7 @@ void Bind(Section s, estimator::DynamicBootstrapConfig& c) {
   s.Get("max_speed_mps", c.max_speed_mps);
   s.Get("refine_deskew_m", c.refine_deskew_m);
   s.Get("deskew_refinements", c.deskew_refinements);
+  s.Get("line_min_ratio", c.line_min_ratio);
   s.Finish();
 }
 

@@ -189,6 +189,7 @@ void Emit(ConfigWriter& w, const estimator::DynamicBootstrapConfig& c) {
   w.Put("max_speed_mps", c.max_speed_mps);
   w.Put("refine_deskew_m", c.refine_deskew_m);
   w.Put("deskew_refinements", c.deskew_refinements);
+  w.Put("line_min_ratio", c.line_min_ratio);
   Emit(w, c.initializer);
   w.EndMap();
 }

@@ -28,6 +28,11 @@ void ValidateInitializer(ConfigIssues& issues, const DynamicInitializer::Options
   CheckInRange(issues, "gravity_iterations", o.gravity_iterations, 1, 20);
 }
 
+ScanMatcherConfig WithLineRatio(ScanMatcherConfig matcher, double line_min_ratio) {
+  matcher.line_min_ratio = line_min_ratio;
+  return matcher;
+}
+
 }  // namespace
 
 ConfigIssues DynamicBootstrapConfig::Validate() const {
@@ -45,6 +50,7 @@ ConfigIssues DynamicBootstrapConfig::Validate() const {
   CheckPositive(issues, "max_speed_mps", max_speed_mps);
   CheckInRange(issues, "refine_deskew_m", refine_deskew_m, 0.0, 1.0);
   CheckInRange(issues, "deskew_refinements", deskew_refinements, 0, 5);
+  CheckInRange(issues, "line_min_ratio", line_min_ratio, 1.0, 100.0);
   return issues;
 }
 
@@ -70,7 +76,7 @@ DynamicBootstrap::DynamicBootstrap(const DynamicBootstrapConfig& config)
     : config_(config),
       initializer_(config.odometry.estimator, config.initializer),
       front_end_(config.odometry.front_end),
-      matcher_(config.odometry.matcher),
+      matcher_(WithLineRatio(config.odometry.matcher, config.line_min_ratio)),
       plane_map_(config.odometry.plane_map),
       edge_map_(config.odometry.edge_map) {}
 

@@ -61,6 +61,7 @@ void ExpectSameWindow(const WindowEstimatorConfig& a, const WindowEstimatorConfi
   EXPECT_EQ(ba.max_speed_mps, bb.max_speed_mps);
   EXPECT_EQ(ba.refine_deskew_m, bb.refine_deskew_m);
   EXPECT_EQ(ba.deskew_refinements, bb.deskew_refinements);
+  EXPECT_EQ(ba.line_min_ratio, bb.line_min_ratio);
   const auto &ia = ba.initializer, &ib = bb.initializer;
   EXPECT_EQ(ia.min_frames, ib.min_frames);
   EXPECT_EQ(ia.position_sigma_m, ib.position_sigma_m);
@@ -139,6 +140,7 @@ estimator:
       max_speed_mps: 4
       refine_deskew_m: 0.02
       deskew_refinements: 2
+      line_min_ratio: 4
       initializer:
         min_frames: 6
         position_sigma_m: 0.03
@@ -200,6 +202,7 @@ estimator:
   want.bootstrap.max_speed_mps = 4;
   want.bootstrap.refine_deskew_m = 0.02;
   want.bootstrap.deskew_refinements = 2;
+  want.bootstrap.line_min_ratio = 4;
   auto& init = want.bootstrap.initializer;
   init.min_frames = 6;
   init.position_sigma_m = 0.03;

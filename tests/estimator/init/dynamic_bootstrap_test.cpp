@@ -310,11 +310,13 @@ TEST(DynamicBootstrapConfig, ValidateNamesTheBadKeys) {
   config.window_frames = 4;
   config.initializer.min_frames = 5;
   config.deskew_refinements = -1;
+  config.line_min_ratio = 0.5;
   const ConfigIssues issues = config.Validate();
   std::vector<std::string> keys;
   for (const ConfigIssue& i : issues) keys.push_back(i.key);
-  EXPECT_EQ(keys, (std::vector<std::string>{"odometry.min_inliers", "initializer.position_sigma_m",
-                                            "window_frames", "deskew_refinements"}));
+  EXPECT_EQ(keys,
+            (std::vector<std::string>{"odometry.min_inliers", "initializer.position_sigma_m",
+                                      "window_frames", "deskew_refinements", "line_min_ratio"}));
 }
 
 TEST(DynamicBootstrap, StatusNames) {

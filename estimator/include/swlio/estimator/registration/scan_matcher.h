@@ -40,13 +40,12 @@ struct ScanMatcherConfig {
   /// whose smoothness passed the edge threshold by noise, or beside a silhouette); that "line"
   /// lies in the face and pulls the sweep along it. On the simulated gantry posts a third of the
   /// edge features were such points, and the map's corner lines sat 4–5 cm inside the faces. A
-  /// corner's or a pole's neighbours give λ1/λ2 in the hundreds. 6 against 3, one run each, no
-  /// loop closure (docs/notes/2026-12-06-edge-lines-on-faces.md): the 42 `aggressive` drives of
-  /// seeds 1–3 and 42, with each disturbance, 0.952 → 0.773 m summed, every one lower; `loop943`
-  /// and `field` 1–3 0.179 → 0.158 m. 10 did better on the former (0.711 m; 0.159 m) but lost one
-  /// start of 16 after lost sweeps (DynamicBootstrap.LostSweepsRestartTheOdometry): a map of a
-  /// sweep or two has few points per corner.
-  double line_min_ratio = 6.0;
+  /// corner's or a pole's neighbours give λ1/λ2 in the hundreds. One run each, no loop closure
+  /// (docs/notes/2026-12-06-edge-lines-on-faces.md): the 42 `aggressive` drives of seeds 1–3 and
+  /// 42, with each disturbance, 0.952 m summed at 3, 0.773 m at 6, 0.711 m at 10 (every one
+  /// lower than at 3); `loop943` and `field` 1–3 0.179 / 0.158 / 0.159 m. The dynamic
+  /// bootstrap's young map keeps its own, looser test (DynamicBootstrapConfig::line_min_ratio).
+  double line_min_ratio = 10.0;
   double huber_m = 0.1;  ///< Huber kernel width
   /// Larger residuals are outliers in the first association, made at a predicted pose.
   double max_residual_m = 1.0;
