@@ -3,6 +3,7 @@ runs --draws draws estimated and with the offset known (set + clock chain, --tim
 each with its own floor; the table gives both medians with their ranges and the ratio of the
 medians, bold over 1.10, the offset applied at 32 s from draw 0's diagnostics; the runs with the
 offset known are made once per work folder; a failing run is a clear error with exit status 1."""
+import json
 import re
 import unittest
 from pathlib import Path
@@ -11,14 +12,15 @@ from stand_ins import FAKE_EVAL, StandInTest
 
 SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "time-offset-eval"
 
-# swlio-sim stand-in: a recording folder with a ground truth starting at 100 s and an IMU
-# receive-time file for scripts/shift-imu-rx.
+# swlio-sim stand-in: a recording folder with a ground truth starting at 100 s, an IMU
+# receive-time file for scripts/shift-imu-rx and its own arguments (sim_args.json).
 FAKE_SIM = """\
 #!/usr/bin/python3
-import os, sys
+import json, os, sys
 a = sys.argv[1:]
 out = a[a.index("--out") + 1]
 os.makedirs(out)
+open(os.path.join(out, "sim_args.json"), "w").write(json.dumps(a))
 gt = "# t x y z qx qy qz qw\\n100.0 0 0 0 0 0 0 1\\n"
 open(os.path.join(out, "groundtruth.tum"), "w").write(gt)
 open(os.path.join(out, "imu.rx.csv"), "w").write("t_rx_ns\\n100000000000\\n")
@@ -84,6 +86,23 @@ class TimeOffsetEval(StandInTest):
         floors = sorted({float(x[x.index("--lidar-floor-m") + 1]) for x in runs})
         self.assertEqual(len(floors), 3)
         self.assertEqual(floors[0], 0.01)
+
+    def test_realizations_of_one_world_and_the_median_per_offset(self):
+        r = self.evaluate("--seeds", "1,12", "--world-seed", "7", "--offsets=-10,5",
+                          "--shifted-seed", "", "--draws", "1")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        for seed in (1, 12):
+            for offset in ("-10", "5"):
+                rec = self.work / f"aggressive_{seed}_w7_o{offset}"
+                args = json.loads((rec / "sim_args.json").read_text())
+                self.assertEqual(args[args.index("--world-seed") + 1], "7")
+                self.assertEqual(args[args.index("--seed") + 1], str(seed))
+                self.assertEqual(args[args.index("--time-offset-ms") + 1], offset + ".0")
+        self.assertIn("| `aggressive` 1 (world 7) | -10 |", r.stdout)
+        self.assertIn("| `aggressive` 12 (world 7) | +5 |", r.stdout)
+        # Seed 1's estimate is as good as the offset known (1.00), seed 12's 1.20×.
+        self.assertIn("| -10 | 2 | 1.10 | 1 |", r.stdout)
+        self.assertIn("| +5 | 2 | 1.10 | 1 |", r.stdout)
 
     def test_the_runs_with_the_offset_known_are_made_once(self):
         self.assertEqual(self.evaluate("--seeds", "1", "--offsets", "5", "--shifted-seed", "",
