@@ -52,8 +52,8 @@ void Excursion(
   *rms = std::sqrt(sum_sq / static_cast<double>(u.size()));
 }
 
-/// Largest per-axis std of Hann means over kLowpassWindowNs, one every kLowpassHopNs.
-void LowpassStd(std::span<const ImuSample> samples, double* acc_std, double* gyro_std) {
+/// Per-axis std of Hann means over kLowpassWindowNs, one every kLowpassHopNs.
+void LowpassStd(std::span<const ImuSample> samples, Vec3* acc_std, Vec3* gyro_std) {
   const int64_t kLowpassWindowNs = SecToNs(kStillLowpassWindowS);
   constexpr int64_t kLowpassHopNs = 25'000'000;
   std::vector<Vec3> acc, gyro;
@@ -69,18 +69,18 @@ void LowpassStd(std::span<const ImuSample> samples, double* acc_std, double* gyr
     gyro.push_back(g);
     next_ns = t_end + kLowpassHopNs;
   }
-  *acc_std = 0.0;
-  *gyro_std = 0.0;
+  *acc_std = Vec3::Zero();
+  *gyro_std = Vec3::Zero();
   if (acc.size() < 2) return;
-  auto largest_std = [](const std::vector<Vec3>& v) {
+  auto axis_std = [](const std::vector<Vec3>& v) {
     Vec3 mean = Vec3::Zero(), sq = Vec3::Zero();
     for (const Vec3& x : v) mean += x;
     mean /= static_cast<double>(v.size());
     for (const Vec3& x : v) sq += (x - mean).cwiseAbs2();
-    return (sq / static_cast<double>(v.size() - 1)).cwiseSqrt().maxCoeff();
+    return Vec3((sq / static_cast<double>(v.size() - 1)).cwiseSqrt());
   };
-  *acc_std = largest_std(acc);
-  *gyro_std = largest_std(gyro);
+  *acc_std = axis_std(acc);
+  *gyro_std = axis_std(gyro);
 }
 
 }  // namespace
@@ -99,7 +99,10 @@ ImuStillness ComputeImuStillness(std::span<const ImuSample> samples) {
   Excursion(
       samples, s.gyro_mean_radps, [](const ImuSample& x) { return x.gyro_radps; },
       &s.angle_excursion_rad, &unused_rms);
-  LowpassStd(samples, &s.acc_lowpass_std_mps2, &s.gyro_lowpass_std_radps);
+  Vec3 acc_lowpass_std = Vec3::Zero();
+  LowpassStd(samples, &acc_lowpass_std, &s.gyro_lowpass_std_axes_radps);
+  s.acc_lowpass_std_mps2 = acc_lowpass_std.maxCoeff();
+  s.gyro_lowpass_std_radps = s.gyro_lowpass_std_axes_radps.maxCoeff();
   s.acc_std_mps2 =
       ComputeImuMoments(samples, [](const ImuSample& x) { return x.acc_mps2; }).std.maxCoeff();
   s.gyro_std_radps =

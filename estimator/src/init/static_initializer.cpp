@@ -13,6 +13,23 @@ namespace {
 
 using Vec3 = Eigen::Vector3d;
 
+// The standard error of the window's Hann mean of the rate, from the spread of its 0.2 s Hann
+// means: both are means of white noise under the same kernel shape, so their variances go as
+// 1/T. Pooled over the axes (one gyro noise density, as the datasheet gives): 1 s holds about
+// five independent 0.2 s means per axis, and one axis alone gave 0.6–1.3× density/√T on `short`
+// seeds 1–3. The tones of a vibrating chassis (15–80 Hz) leak < 1e-3 of
+// their amplitude into the window's mean and < 1 % into a 0.2 s mean (imu_stillness.h), so they
+// widen neither. The raw std over √N did: with the motors idling (`aggressive` world 1 seed 2008,
+// 0.79 m/s² RMS at rest) b_g's prior was 3× wider than without vibration (5.2e-4 against
+// 1.7e-4 rad/s), the window's yaw followed its own map's drift, and the APE rose 2.4×
+// (bench/README.md, "Vibration and the gyro bias's prior").
+Vec3 HannMeanStandardError(const ImuStillness& m, double window_s) {
+  const double pooled_radps = std::sqrt(m.gyro_lowpass_std_axes_radps.squaredNorm() / 3.0);
+  const double scale =
+      window_s > kStillLowpassWindowS ? std::sqrt(kStillLowpassWindowS / window_s) : 1.0;
+  return Vec3::Constant(pooled_radps * scale);
+}
+
 }  // namespace
 
 std::string_view InitStatusReason(InitStatus status) {
@@ -99,10 +116,7 @@ void StaticInitializer::Evaluate() {
   s.bias_gyro = m.gyro_mean_radps;
   s.bias_acc = result_.gravity_error_mps2 * up;  // the gravity-axis component only
   result_.gravity_imu = up;
-  // White noise: σ/√N. Vibration's tones leak < 1e-3 of their amplitude into the Hann mean,
-  // which the (vibration-inflated) std over √N covers.
-  result_.bias_gyro_std =
-      Vec3::Constant(m.gyro_std_radps / std::sqrt(static_cast<double>(window_.size())));
+  result_.bias_gyro_std = HannMeanStandardError(m, result_.window_s);
   result_.status = InitStatus::kInitialized;
 }
 

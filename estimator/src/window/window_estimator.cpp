@@ -60,16 +60,20 @@ ImuSample At(ImuSample s, int64_t t_ns) {
 }
 
 /// The first frame's gyro-bias σ after a standing start: the static initializer's standard error
-/// of the mean rate, per axis (σ_ω/√N: 1.7e-4 rad/s for the MTi-G-710 over 1 s), never below
-/// 1e-5 rad/s (a fifth of its 10 °/h in-run bias stability). The configured 0.005 rad/s, 30 times
-/// looser, let the LiDAR's yaw jitter move the bias while the robot still stood: on `short`
-/// seeds 1–3 the z bias was 0.7–1.7e-4 rad/s off after the initialization, 1.7–2.0e-4 off three
-/// seconds later (seed 2: 7.7e-4 within the first second), and the yaw drifted with it
-/// (docs/notes/2026-11-25-tightly-coupled-yaw-gyro-bias.md, "The gyro bias after a standing
-/// start").
-Eigen::Vector3d StaticGyroBiasSigma(const StaticInitResult& init) {
+/// of the mean rate, per axis (about 2e-4 rad/s for the MTi-G-710 over 1 s), never below what
+/// the datasheet's white noise allows a plain mean over that window (density/√T: 1.7e-4 rad/s)
+/// nor below 1e-5 rad/s (a fifth of its 10 °/h in-run bias stability). The configured
+/// 0.005 rad/s, 30 times looser, let the LiDAR's yaw jitter move the bias while the robot still
+/// stood: on `short` seeds 1–3 the z bias was 0.7–1.7e-4 rad/s off after the initialization,
+/// 1.7–2.0e-4 off three seconds later (seed 2: 7.7e-4 within the first second), and the yaw
+/// drifted with it (docs/notes/2026-11-25-tightly-coupled-yaw-gyro-bias.md, "The gyro bias
+/// after a standing start").
+Eigen::Vector3d StaticGyroBiasSigma(const StaticInitResult& init, const ImuNoiseConfig& noise) {
   constexpr double kFloorRadps = 1e-5;
-  return init.bias_gyro_std.cwiseMax(kFloorRadps);
+  const double white_radps =
+      init.window_s > 0.0 ? noise.gyro_noise_density_radps_per_sqrthz / std::sqrt(init.window_s)
+                          : 0.0;
+  return init.bias_gyro_std.cwiseMax(std::max(kFloorRadps, white_radps));
 }
 
 }  // namespace
@@ -165,7 +169,8 @@ void WindowEstimator::AddImu(const ImuSample& stamped) {
     const Eigen::Isometry3d T_fix = AnchorFor(init_state_.T_world_imu, init_state_.t_ns, false);
     init_state_.T_world_imu = T_fix * init_state_.T_world_imu;
     started_static_ = true;
-    init_sigma_bias_gyro_radps_ = StaticGyroBiasSigma(initializer_.result());
+    init_sigma_bias_gyro_radps_ =
+        StaticGyroBiasSigma(initializer_.result(), config_.odometry.estimator.imu_noise);
     anchor_.reset();
     imu_.assign(1, sample);
     bootstrap_.Reset();

@@ -41,6 +41,7 @@ struct ImuStillness {
   /// the samples span less than 0.2 s.
   double acc_lowpass_std_mps2 = 0.0;
   double gyro_lowpass_std_radps = 0.0;
+  Eigen::Vector3d gyro_lowpass_std_axes_radps = Eigen::Vector3d::Zero();  ///< per axis
   double velocity_excursion_mps = 0.0;  ///< largest per-axis |u(t) − mean u|, u = ∫(f − f̄)
   double velocity_rms_mps = 0.0;        ///< RMS of |u(t) − mean u| (all axes)
   double angle_excursion_rad = 0.0;     ///< the same for the rate
