@@ -162,8 +162,9 @@ TEST(WindowEstimator, WithTheMapTiltTheAttitudeAgainstGravityCarriesTheStartsAmb
 
 /// The first result's gyro-bias σ per axis after a standing start on a gyro with white noise of
 /// `gyro_sigma_radps` per sample (400 Hz), or NaN when it did not initialize.
-Eigen::Vector3d FirstGyroBiasSigma(double gyro_sigma_radps) {
-  WindowEstimator estimator(WindowEstimatorConfig{});
+Eigen::Vector3d FirstGyroBiasSigma(double gyro_sigma_radps,
+                                   const WindowEstimatorConfig& config = WindowEstimatorConfig{}) {
+  WindowEstimator estimator(config);
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0.0, gyro_sigma_radps);
   auto sample = [&](int64_t t_ns) {
@@ -187,16 +188,23 @@ Eigen::Vector3d FirstGyroBiasSigma(double gyro_sigma_radps) {
 // (400 samples in the default 1 s), not to the configured 0.005 rad/s: with that loose prior the
 // LiDAR's yaw jitter moved the bias while the robot stood
 // (docs/notes/2026-11-25-tightly-coupled-yaw-gyro-bias.md, "The gyro bias after a standing
-// start"). A noise-free gyro gets the 1e-5 rad/s floor.
+// start"). A noise-free gyro gets the datasheet's density/√T (the still window is 1–1.5 s), or
+// the 1e-5 rad/s floor under a density too small for that.
 TEST(WindowEstimator, AfterAStandingStartTheGyroBiasIsKnownToTheStillWindowsStandardError) {
   const double sigma_radps = 3.5e-3;  // the MTi-G-710 at 400 Hz: 0.01 °/s/√Hz · √400
   const Eigen::Vector3d noisy = FirstGyroBiasSigma(sigma_radps);
   for (int axis = 0; axis < 3; ++axis) {
     EXPECT_NEAR(noisy[axis], sigma_radps / std::sqrt(400.0), 2e-5) << "axis " << axis;
   }
-  const Eigen::Vector3d noise_free = FirstGyroBiasSigma(0.0);
-  EXPECT_NEAR(noise_free.maxCoeff(), 1e-5, 1e-6);
-  EXPECT_NEAR(noise_free.minCoeff(), 1e-5, 1e-6);
+  WindowEstimatorConfig config;
+  const double density = config.odometry.estimator.imu_noise.gyro_noise_density_radps_per_sqrthz;
+  const Eigen::Vector3d noise_free = FirstGyroBiasSigma(0.0, config);
+  EXPECT_LE(noise_free.maxCoeff(), density * 1.001);
+  EXPECT_GE(noise_free.minCoeff(), density / std::sqrt(1.5));
+  config.odometry.estimator.imu_noise.gyro_noise_density_radps_per_sqrthz = 1e-6;
+  const Eigen::Vector3d floored = FirstGyroBiasSigma(0.0, config);
+  EXPECT_NEAR(floored.maxCoeff(), 1e-5, 1e-6);
+  EXPECT_NEAR(floored.minCoeff(), 1e-5, 1e-6);
 }
 
 // The window's own edge settings, not odometry.front_end's, decide its sweeps' edges: a wall has
