@@ -17,12 +17,12 @@ using Vec3 = Eigen::Vector3d;
 // means: both are means of white noise under the same kernel shape, so their variances go as
 // 1/T. Pooled over the axes (one gyro noise density, as the datasheet gives): 1 s holds about
 // five independent 0.2 s means per axis, and one axis alone gave 0.6–1.3× density/√T on `short`
-// seeds 1–3. The tones of a vibrating chassis (15–80 Hz) leak < 1e-3 of
-// their amplitude into the window's mean and < 1 % into a 0.2 s mean (imu_stillness.h), so they
-// widen neither. The raw std over √N did: with the motors idling (`aggressive` world 1 seed 2008,
-// 0.79 m/s² RMS at rest) b_g's prior was 3× wider than without vibration (5.2e-4 against
-// 1.7e-4 rad/s), the window's yaw followed its own map's drift, and the APE rose 2.4×
-// (bench/README.md, "Vibration and the gyro bias's prior").
+// seeds 1–3. The tones of a vibrating chassis (15–80 Hz) leak < 1e-3 of their amplitude into the
+// window's mean and < 1 % into a 0.2 s mean (imu_stillness.h), so they widen neither. The raw std
+// over √N did: with the motors idling (`aggressive` world 1 seed 2008, 0.79 m/s² RMS at rest) b_g's
+// prior was 3× wider than without vibration (5.2e-4 against 1.7e-4 rad/s), the window's yaw
+// followed its own map's drift, and the APE rose 2.4× (bench/README.md, "Vibration and the gyro
+// bias's prior").
 Vec3 HannMeanStandardError(const ImuStillness& m, double window_s) {
   const double pooled_radps = std::sqrt(m.gyro_lowpass_std_axes_radps.squaredNorm() / 3.0);
   const double scale =
