@@ -2,7 +2,8 @@
 makes a pair in the given world (a second scenario or the disturbances), both are run once with
 loop closure off and the extra arguments; the table gives both APEs and their ratio, bold over
 the bound, then the median ratio, the ratio of the sums, the largest and how many exceed it;
-recordings are made once per work folder; a failing run is a clear error with exit status 1."""
+recordings are made once per work folder; simulator arguments for the variant alone give it
+recordings of its own; a failing run is a clear error with exit status 1."""
 import unittest
 from pathlib import Path
 
@@ -87,6 +88,25 @@ class ApeRealizations(StandInTest):
         self.assertEqual(again.returncode, 0, again.stderr)
         self.assertEqual(len(self.calls("sim")), 2)  # made once
         self.assertEqual(len(self.calls("run")), 4)  # run each time
+
+    def test_variant_simulator_arguments_go_to_the_variant_alone(self):
+        plain = ("--scenario", "aggressive", "--world-seed", "1", "--seeds", "2",
+                 "--disturb", "vibration")
+        self.assertEqual(self.evaluate(*plain).returncode, 0)
+        r = self.evaluate(*plain, "--variant-sim-args", "--vibration-rms 0.01:0.02")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("| seed | base APE (m) | vibration --vibration-rms 0.01:0.02 APE (m) |",
+                      r.stdout)
+        sims = self.calls("sim")
+        self.assertEqual(len(sims), 3)  # the base made once, each variant once
+        self.assertNotIn("--vibration-rms", sims[0] + sims[1])
+        self.assertEqual(sims[2][-2:], ["--vibration-rms", "0.01:0.02"])
+        self.assertTrue((self.work / "aggressive_vibration_w1_s2").is_dir())
+        self.assertTrue(
+            (self.work / "aggressive_vibration_vibration_rms_0.01_0.02_w1_s2").is_dir())
+        bad = self.evaluate(*plain, "--variant-sim-args", "--vibration-rms '0.01")
+        self.assertEqual(bad.returncode, 2)
+        self.assertIn("--variant-sim-args", bad.stderr)
 
     def test_a_failing_simulation_is_a_clear_error(self):
         r = self.evaluate("--scenario", "loop943", "--world-seed", "2", "--seeds", "99",
