@@ -37,5 +37,18 @@ TEST(RealtimeToMonotonic, RejectsImplausibleStamps) {
   EXPECT_TRUE(clock.Convert(Shift(now, -kMaxStampAgeNs + kNsPerSec)));
 }
 
+TEST(RealtimeToMonotonic, KeepsTheTightestReadingOfTheClocks) {
+  // Realtime is monotonic + 1 s here. The first reading was preempted for 400 µs right after
+  // its first monotonic read: its midpoint puts the offset 200 µs off. The second is tight.
+  const ClockReading readings[] = {{1'000'000, 1'001'000'100, 1'400'000},
+                                   {2'000'000, 1'002'000'500, 2'001'000},
+                                   {3'000'000, 1'003'000'000, 3'004'000}};
+  const RealtimeToMonotonic clock = RealtimeToMonotonic::FromTightest(readings, 3);
+  EXPECT_EQ(clock.offset_ns, 2'000'500 - 1'002'000'500);
+  EXPECT_EQ(clock.read_mono_ns, 2'001'000);
+  const RealtimeToMonotonic first = RealtimeToMonotonic::FromTightest(readings, 1);
+  EXPECT_EQ(first.offset_ns, 1'200'000 - 1'001'000'100);  // what one reading alone gave
+}
+
 }  // namespace
 }  // namespace swlio::drivers

@@ -6,7 +6,11 @@
 /// SO_TIMESTAMPNS (socket(7)) stamps each packet in software when the kernel receives it, on
 /// CLOCK_REALTIME. swlio's host clock is CLOCK_MONOTONIC, so each stamp is shifted by the
 /// offset (monotonic − realtime) measured when the batch is read: one realtime reading taken
-/// between two monotonic readings, offset = mid(monotonic) − realtime. The conversion is exact
+/// between two monotonic readings, offset = mid(monotonic) − realtime. Its error is at most half
+/// the time between the two monotonic readings. A thread preempted there (a busy machine, or
+/// tests run in parallel) made that hundreds of µs and one batch's stamps earlier than the
+/// last's, so up to kClockReadTries readings are taken and the tightest is kept, stopping at
+/// one within kTightClockReadNs. The conversion is then exact
 /// unless the realtime clock was stepped (settimeofday, an NTP step) between the kernel's stamp
 /// and our read, typically microseconds to milliseconds; slewing (adjtime) changes the two
 /// clocks' rates alike and does not matter. A converted stamp later than the read time, or more
@@ -28,12 +32,28 @@ inline constexpr int64_t kMaxStampAgeNs = 5'000'000'000;
 /// CLOCK_MONOTONIC now, ns.
 int64_t MonotonicNowNs();
 
+/// Readings of the offset taken at most, and the time between a reading's two monotonic reads
+/// (a few vDSO calls, well under 1 µs when not preempted) that ends the search early.
+inline constexpr int kClockReadTries = 4;
+inline constexpr int64_t kTightClockReadNs = 5'000;
+
+/// One reading: CLOCK_MONOTONIC, CLOCK_REALTIME, CLOCK_MONOTONIC, in that order (ns).
+struct ClockReading {
+  int64_t mono_before_ns = 0;
+  int64_t real_ns = 0;
+  int64_t mono_after_ns = 0;
+};
+
 /// The monotonic − realtime offset at this moment, with the monotonic read time.
 struct RealtimeToMonotonic {
   int64_t offset_ns = 0;  ///< add to a CLOCK_REALTIME time to get CLOCK_MONOTONIC
   int64_t read_mono_ns = 0;
 
+  /// From the system clocks (see the file comment).
   static RealtimeToMonotonic Measure();
+  /// From the tightest of `readings` (the smallest time between its monotonic reads; the first
+  /// of equals); `readings` must not be empty.
+  static RealtimeToMonotonic FromTightest(const ClockReading* readings, int count);
 
   /// Host time of a kernel stamp; std::nullopt when it is implausible (see file comment).
   std::optional<int64_t> Convert(const timespec& realtime_stamp) const;
