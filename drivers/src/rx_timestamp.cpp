@@ -24,27 +24,20 @@ int64_t ClockNs(clockid_t clock) {
 
 int64_t MonotonicNowNs() { return ClockNs(CLOCK_MONOTONIC); }
 
-RealtimeToMonotonic RealtimeToMonotonic::Measure() {
-  ClockReading readings[kClockReadTries];
-  int count = 0;
-  while (count < kClockReadTries) {
-    ClockReading& r = readings[count++];
-    r.mono_before_ns = ClockNs(CLOCK_MONOTONIC);
-    r.real_ns = ClockNs(CLOCK_REALTIME);
-    r.mono_after_ns = ClockNs(CLOCK_MONOTONIC);
-    if (r.mono_after_ns - r.mono_before_ns <= kTightClockReadNs) break;
-  }
-  return FromTightest(readings, count);
+ClockReading ReadSystemClocks() {
+  ClockReading r;
+  r.mono_before_ns = ClockNs(CLOCK_MONOTONIC);
+  r.real_ns = ClockNs(CLOCK_REALTIME);
+  r.mono_after_ns = ClockNs(CLOCK_MONOTONIC);
+  return r;
 }
 
-RealtimeToMonotonic RealtimeToMonotonic::FromTightest(const ClockReading* readings, int count) {
-  const ClockReading* best = &readings[0];
-  for (int i = 1; i < count; ++i) {
-    const ClockReading& r = readings[i];
-    if (r.mono_after_ns - r.mono_before_ns < best->mono_after_ns - best->mono_before_ns) best = &r;
-  }
-  const int64_t mono_mid = best->mono_before_ns + (best->mono_after_ns - best->mono_before_ns) / 2;
-  return {mono_mid - best->real_ns, best->mono_after_ns};
+RealtimeToMonotonic RealtimeToMonotonic::Measure() {
+  return FromReading(TightestClockReading(ReadSystemClocks, kClockReadTries, kTightClockReadNs));
+}
+
+RealtimeToMonotonic RealtimeToMonotonic::FromReading(const ClockReading& reading) {
+  return {reading.mono_mid_ns() - reading.real_ns, reading.mono_after_ns};
 }
 
 std::optional<int64_t> RealtimeToMonotonic::Convert(const timespec& realtime_stamp) const {

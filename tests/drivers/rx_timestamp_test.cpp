@@ -39,15 +39,28 @@ TEST(RealtimeToMonotonic, RejectsImplausibleStamps) {
 
 TEST(RealtimeToMonotonic, KeepsTheTightestReadingOfTheClocks) {
   // Realtime is monotonic + 1 s here. The first reading was preempted for 400 µs right after
-  // its first monotonic read: its midpoint puts the offset 200 µs off. The second is tight.
+  // its first monotonic read: its midpoint puts the offset 200 µs off. The second is tighter,
+  // the third tighter still but over the search's limit of readings.
   const ClockReading readings[] = {{1'000'000, 1'001'000'100, 1'400'000},
                                    {2'000'000, 1'002'000'500, 2'001'000},
-                                   {3'000'000, 1'003'000'000, 3'004'000}};
-  const RealtimeToMonotonic clock = RealtimeToMonotonic::FromTightest(readings, 3);
-  EXPECT_EQ(clock.offset_ns, 2'000'500 - 1'002'000'500);
+                                   {3'000'000, 1'003'000'000, 3'000'010}};
+  int calls = 0;
+  const auto read = [&] { return readings[calls++]; };
+  const ClockReading best = TightestClockReading(read, 2, 100);
+  EXPECT_EQ(calls, 2);
+  const RealtimeToMonotonic clock = RealtimeToMonotonic::FromReading(best);
+  EXPECT_EQ(clock.offset_ns, -kNsPerSec);
   EXPECT_EQ(clock.read_mono_ns, 2'001'000);
-  const RealtimeToMonotonic first = RealtimeToMonotonic::FromTightest(readings, 1);
-  EXPECT_EQ(first.offset_ns, 1'200'000 - 1'001'000'100);  // what one reading alone gave
+  EXPECT_EQ(RealtimeToMonotonic::FromReading(readings[0]).offset_ns, -kNsPerSec + 199'900);
+}
+
+TEST(RealtimeToMonotonic, StopsAtATightReading) {
+  const ClockReading readings[] = {{0, 1'000'000'400, 800}, {5'000, 1'000'005'000, 5'000}};
+  int calls = 0;
+  const auto read = [&] { return readings[calls++]; };
+  const ClockReading best = TightestClockReading(read, kClockReadTries, kTightClockReadNs);
+  EXPECT_EQ(calls, 1);  // 800 ns between the monotonic reads: no second reading
+  EXPECT_EQ(best.mono_mid_ns(), 400);
 }
 
 }  // namespace

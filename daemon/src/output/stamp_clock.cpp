@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "swlio/daemon/runtime/watchdog.h"
+#include "swlio/drivers/rx_timestamp.h"
 
 namespace swlio::daemon {
 
@@ -16,21 +17,16 @@ int64_t RealtimeNowNs() {
 }
 
 ClockOffsetSample SampleClockOffset(const ClockSources& clocks) {
-  ClockOffsetSample best;
-  int64_t best_gap_ns = -1;
-  for (int attempt = 0; attempt < StampClock::kPairAttempts; ++attempt) {
-    const int64_t m0 = clocks.monotonic ? clocks.monotonic() : MonotonicNowNs();
-    const int64_t r = clocks.realtime ? clocks.realtime() : RealtimeNowNs();
-    const int64_t m1 = clocks.monotonic ? clocks.monotonic() : MonotonicNowNs();
-    const int64_t gap_ns = m1 - m0;
-    if (best_gap_ns < 0 || gap_ns < best_gap_ns) {
-      best_gap_ns = gap_ns;
-      best.t_monotonic_ns = m0 + gap_ns / 2;
-      best.offset_ns = r - best.t_monotonic_ns;
-    }
-    if (gap_ns <= StampClock::kMaxPairGapNs) break;
-  }
-  return best;
+  const auto read = [&clocks] {
+    drivers::ClockReading r;
+    r.mono_before_ns = clocks.monotonic ? clocks.monotonic() : MonotonicNowNs();
+    r.real_ns = clocks.realtime ? clocks.realtime() : RealtimeNowNs();
+    r.mono_after_ns = clocks.monotonic ? clocks.monotonic() : MonotonicNowNs();
+    return r;
+  };
+  const drivers::ClockReading best =
+      drivers::TightestClockReading(read, StampClock::kPairAttempts, StampClock::kMaxPairGapNs);
+  return {best.mono_mid_ns(), best.real_ns - best.mono_mid_ns()};
 }
 
 StampClock::StampClock(bool realtime, ClockSources clocks)

@@ -10,7 +10,7 @@
 /// the time between the two monotonic readings. A thread preempted there (a busy machine, or
 /// tests run in parallel) made that hundreds of µs and one batch's stamps earlier than the
 /// last's, so up to kClockReadTries readings are taken and the tightest is kept, stopping at
-/// one within kTightClockReadNs. The conversion is then exact
+/// one within kTightClockReadNs (TightestClockReading). The conversion is then exact
 /// unless the realtime clock was stepped (settimeofday, an NTP step) between the kernel's stamp
 /// and our read, typically microseconds to milliseconds; slewing (adjtime) changes the two
 /// clocks' rates alike and does not matter. A converted stamp later than the read time, or more
@@ -42,18 +42,37 @@ struct ClockReading {
   int64_t mono_before_ns = 0;
   int64_t real_ns = 0;
   int64_t mono_after_ns = 0;
+
+  int64_t gap_ns() const { return mono_after_ns - mono_before_ns; }
+  /// Midpoint of the two monotonic reads: the monotonic time the realtime read is set against.
+  int64_t mono_mid_ns() const { return mono_before_ns + gap_ns() / 2; }
 };
+
+/// Up to `tries` readings from `read` (a callable returning a ClockReading), the tightest kept
+/// (the first of equals); stops at one whose gap is within `tight_ns`. Shared by the kernel
+/// stamps' conversion here and the daemon's published stamps (stamp_clock.h).
+template <class ReadFn>
+ClockReading TightestClockReading(ReadFn&& read, int tries, int64_t tight_ns) {
+  ClockReading best = read();
+  for (int i = 1; i < tries && best.gap_ns() > tight_ns; ++i) {
+    const ClockReading r = read();
+    if (r.gap_ns() < best.gap_ns()) best = r;
+  }
+  return best;
+}
+
+/// A reading of the system clocks.
+ClockReading ReadSystemClocks();
 
 /// The monotonic − realtime offset at this moment, with the monotonic read time.
 struct RealtimeToMonotonic {
   int64_t offset_ns = 0;  ///< add to a CLOCK_REALTIME time to get CLOCK_MONOTONIC
   int64_t read_mono_ns = 0;
 
-  /// From the system clocks (see the file comment).
+  /// From the system clocks: the tightest of up to kClockReadTries readings.
   static RealtimeToMonotonic Measure();
-  /// From the tightest of `readings` (the smallest time between its monotonic reads; the first
-  /// of equals); `readings` must not be empty.
-  static RealtimeToMonotonic FromTightest(const ClockReading* readings, int count);
+  /// From one reading.
+  static RealtimeToMonotonic FromReading(const ClockReading& reading);
 
   /// Host time of a kernel stamp; std::nullopt when it is implausible (see file comment).
   std::optional<int64_t> Convert(const timespec& realtime_stamp) const;
