@@ -7,16 +7,17 @@
 /// CLOCK_REALTIME. swlio's host clock is CLOCK_MONOTONIC, so each stamp is shifted by the
 /// offset (monotonic − realtime) measured when the batch is read: one realtime reading taken
 /// between two monotonic readings, offset = mid(monotonic) − realtime. Its error is at most half
-/// the time between the two monotonic readings. A thread preempted there (a busy machine, or
-/// tests run in parallel) made that hundreds of µs and one batch's stamps earlier than the
-/// last's, so up to kClockReadTries readings are taken and the tightest is kept, stopping at
-/// one within kTightClockReadNs (TightestClockReading). The conversion is then exact
-/// unless the realtime clock was stepped (settimeofday, an NTP step) between the kernel's stamp
-/// and our read, typically microseconds to milliseconds; slewing (adjtime) changes the two
-/// clocks' rates alike and does not matter. A converted stamp later than the read time, or more
-/// than `kMaxStampAgeNs` before it, proves such a step: it is replaced by the read time and
-/// counted. (SO_TIMESTAMPING's software stamps are also CLOCK_REALTIME, so it would not avoid
-/// this conversion; hardware stamps are on the NIC clock and need PTP, which we do not assume.)
+/// the time between the two monotonic readings. A thread preempted between them (a busy
+/// machine, or tests run in parallel) made that gap hundreds of µs, which put one batch's stamps
+/// before the previous batch's. So up to kClockReadTries readings are taken and the tightest is
+/// kept, stopping at one within kTightClockReadNs (TightestClockReading). The conversion is
+/// then exact unless the realtime clock was stepped (settimeofday, an NTP step) between the
+/// kernel's stamp and our read, typically microseconds to milliseconds; slewing (adjtime)
+/// changes the two clocks' rates alike and does not matter. A converted stamp later than the read
+/// time, or more than `kMaxStampAgeNs` before it, proves such a step: it is replaced by the read
+/// time and counted. (SO_TIMESTAMPING's software stamps are also CLOCK_REALTIME, so it would not
+/// avoid this conversion; hardware stamps are on the NIC clock and need PTP, which we do not
+/// assume.)
 
 #include <sys/socket.h>
 #include <time.h>
