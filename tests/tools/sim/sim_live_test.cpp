@@ -95,11 +95,13 @@ TEST(SimLive, LateSpansMarkWhereTheSimulatorFellBehind) {
   uo.bind_address = "127.0.0.1";
   uo.port = test::QuietUdpPort();
   auto msop = drivers::UdpReceiver::Open(uo, &error);
-  ASSERT_TRUE(msop) << error;
+  uo.port = test::QuietUdpPort();  // bound too: nothing is sent to a port another test may hold
+  auto difop = drivers::UdpReceiver::Open(uo, &error);
+  ASSERT_TRUE(msop && difop) << error;
   const auto dir = test::MakeTempDir("live-late");
   LiveOptions options;
   options.msop_port = msop->bound_port();
-  options.difop_port = test::QuietUdpPort();
+  options.difop_port = difop->bound_port();
   options.speed = 2.0;
   options.pty_link = (dir / "imu.pty").string();
   options.precast = true;
