@@ -218,6 +218,10 @@ int Run(int argc, char** argv) {
   app.add_option("--vibration-rms", vibration_rms,
                  "the vibration disturbance with these acceleration RMS (m/s^2) as REST:DRIVE "
                  "(standing, at 1 m/s) instead of drawn from the seed");
+  uint64_t vibration_seed = 0;
+  app.add_option("--vibration-seed", vibration_seed,
+                 "the vibration disturbance with its tones (frequencies, axes, phases) drawn "
+                 "from this seed instead of --seed: the same drive under another vibration");
   FaultArgs fault_args;
   fault_args.Add(app);
   StreamArgs stream_args;
@@ -259,6 +263,10 @@ int Run(int argc, char** argv) {
       }
       overrides.vibration_rest_rms_mps2 = w.start_s;
       overrides.vibration_drive_rms_mps2 = w.duration_s;
+      set->Add(swlio::sim::Disturbance::kVibration);
+    }
+    if (app.count("--vibration-seed") > 0) {
+      overrides.vibration_seed = vibration_seed;
       set->Add(swlio::sim::Disturbance::kVibration);
     }
     swlio::sim::ApplyDisturbances(&*setup, *set, overrides);

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <complex>
+#include <optional>
 
 #include "disturb/apply_disturbances.h"
 #include "disturb/disturbance_manifest.h"
@@ -59,6 +60,41 @@ TEST(SimVibration, MagnitudeStandingAndDrivingAndItsBand) {
   EXPECT_GT(band_rest, 0.99);
   EXPECT_GT(band_drive, 0.97);
   EXPECT_NE(DisturbanceManifestBlock(*vib).find("vibration_rest_rms_mps2: 0.8"), std::string::npos);
+}
+
+// --vibration-seed: the same drive under another vibration of the same magnitude. Its tones
+// change, its RMS does not; the drive's own seed as the vibration seed changes nothing.
+TEST(SimVibration, AnotherSeedDrawsOtherTonesOfTheSameMagnitude) {
+  auto calm = MakeSimSetup("short", 3, 30.0);
+  auto shaken = [](std::optional<uint64_t> vibration_seed) {
+    auto setup = MakeSimSetup("short", 3, 30.0);
+    DisturbanceOverrides o;
+    o.vibration_seed = vibration_seed;
+    ApplyDisturbances(&*setup, *ParseDisturbanceList("vibration", nullptr), o);
+    return setup;
+  };
+  const auto drawn = shaken(std::nullopt), same = shaken(3), other = shaken(77);
+  const ChassisVibration& v_drawn = *drawn->trajectory->vibration();
+  const ChassisVibration& v_other = *other->trajectory->vibration();
+  EXPECT_EQ(v_other.spec().rest_rms_mps2, v_drawn.spec().rest_rms_mps2);  // from the drive's seed
+  EXPECT_EQ(v_other.spec().drive_rms_mps2, v_drawn.spec().drive_rms_mps2);
+  EXPECT_NE(v_other.MotorFrequenciesHz(), v_drawn.MotorFrequenciesHz());
+  EXPECT_EQ(same->trajectory->vibration()->MotorFrequenciesHz(), v_drawn.MotorFrequenciesHz());
+  double rms_drawn = 0.0, rms_other = 0.0, band = 0.0;
+  VibrationStats(*drawn, *calm, 15.0, &rms_drawn, &band);
+  VibrationStats(*other, *calm, 15.0, &rms_other, &band);
+  EXPECT_NEAR(rms_other, rms_drawn, 0.2 * rms_drawn);
+  double largest_difference_mps2 = 0.0;
+  for (int k = 0; k < 400; ++k) {
+    const double t = 15.0 + k / 400.0;
+    largest_difference_mps2 =
+        std::max(largest_difference_mps2,
+                 (other->trajectory->At(t).a_world - drawn->trajectory->At(t).a_world).norm());
+    EXPECT_EQ(same->trajectory->At(t).a_world, drawn->trajectory->At(t).a_world);
+  }
+  EXPECT_GT(largest_difference_mps2, 0.5 * rms_drawn);
+  EXPECT_NE(DisturbanceManifestBlock(*other).find("vibration_seed: 77"), std::string::npos);
+  EXPECT_NE(DisturbanceManifestBlock(*drawn).find("vibration_seed: 3"), std::string::npos);
 }
 
 /// Velocity, acceleration and body rate with the vibration are the derivatives of the pose.

@@ -29,7 +29,8 @@ void SetUpVibration(SimSetup* setup, const DisturbanceOverrides& overrides) {
   spec.drive_rms_mps2 = rng.Uniform(1.0, 2.0);
   spec.rest_rms_mps2 = overrides.vibration_rest_rms_mps2.value_or(spec.rest_rms_mps2);
   spec.drive_rms_mps2 = overrides.vibration_drive_rms_mps2.value_or(spec.drive_rms_mps2);
-  setup->trajectory->SetVibration(std::make_shared<ChassisVibration>(spec, setup->seed));
+  setup->trajectory->SetVibration(
+      std::make_shared<ChassisVibration>(spec, overrides.vibration_seed.value_or(setup->seed)));
 }
 
 void SetUp(SimSetup* setup, Disturbance d, const DisturbanceOverrides& overrides) {
@@ -73,8 +74,9 @@ void ApplyDisturbances(SimSetup* setup,
     if (!set.Has(d)) continue;
     // An override applies even to a disturbance already on (the scenario's own).
     const bool overridden = (d == Disturbance::kTimeOffset && overrides.time_offset_s) ||
-                            (d == Disturbance::kVibration && (overrides.vibration_rest_rms_mps2 ||
-                                                              overrides.vibration_drive_rms_mps2));
+                            (d == Disturbance::kVibration &&
+                             (overrides.vibration_rest_rms_mps2 ||
+                              overrides.vibration_drive_rms_mps2 || overrides.vibration_seed));
     if (setup->disturb.Has(d) && !overridden) continue;
     SetUp(setup, d, overrides);
   }

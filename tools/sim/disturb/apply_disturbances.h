@@ -4,6 +4,7 @@
 /// where the model has random parts) in the sensor or world it acts on. Call after
 /// MakeSimSetup and before RepeatRoute or any emitter is built.
 
+#include <cstdint>
 #include <optional>
 
 #include "disturb/disturbances.h"
@@ -20,6 +21,9 @@ struct DisturbanceOverrides {
   /// 0.5–1.0 and 1.0–2.0 when not given.
   std::optional<double> vibration_rest_rms_mps2;
   std::optional<double> vibration_drive_rms_mps2;
+  /// Draws the vibration's tones (frequencies, axes, phases) from this seed instead of the
+  /// drive's: the same drive shaken by another vibration of the same magnitude.
+  std::optional<uint64_t> vibration_seed;
 };
 
 /// Adds `set` to setup->disturb and sets up each model that was not on yet.

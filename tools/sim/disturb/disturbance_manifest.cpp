@@ -25,6 +25,7 @@ std::string DisturbanceManifestBlock(const SimSetup& setup) {
       << "  vibration_reference_speed_mps: " << ExactNumber(v->spec().reference_speed_mps) << "\n"
       << "  vibration_band_hz: [" << ExactNumber(v->spec().min_hz) << ", "
       << ExactNumber(v->spec().max_hz) << "]\n"
+      << "  vibration_seed: " << v->seed() << "  # the tones' (the drive's seed unless set)\n"
       << "  vibration_motor_hz: [";
     const std::vector<double> hz = v->MotorFrequenciesHz();
     for (size_t i = 0; i < hz.size(); ++i) y << (i ? ", " : "") << ExactNumber(hz[i]);

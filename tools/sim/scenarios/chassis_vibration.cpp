@@ -32,7 +32,8 @@ void RandomPhase(Rng& rng, const Eigen::Vector3d& power, Eigen::Vector3d* c, Eig
 
 }  // namespace
 
-ChassisVibration::ChassisVibration(const ChassisVibrationSpec& spec, uint64_t seed) : spec_(spec) {
+ChassisVibration::ChassisVibration(const ChassisVibrationSpec& spec, uint64_t seed)
+    : spec_(spec), seed_(seed) {
   Rng rng(seed ^ 0x51B4A710ull);
   const double rest2 = spec.rest_rms_mps2 * spec.rest_rms_mps2;
   const double terrain2 = std::max(0.0, spec.drive_rms_mps2 * spec.drive_rms_mps2 - rest2);

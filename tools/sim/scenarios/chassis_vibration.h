@@ -46,6 +46,8 @@ class ChassisVibration {
   void Apply(double t_s, Kinematics* k) const;
 
   const ChassisVibrationSpec& spec() const { return spec_; }
+  /// The seed the tones were drawn from.
+  uint64_t seed() const { return seed_; }
   /// Motor tone frequencies (Hz), for the manifest.
   std::vector<double> MotorFrequenciesHz() const;
 
@@ -60,6 +62,7 @@ class ChassisVibration {
   void TerrainGain(const Kinematics& k, double* gain, double* gain_rate) const;
 
   ChassisVibrationSpec spec_;
+  uint64_t seed_ = 0;
   std::vector<Tone> tones_;
 };
 
