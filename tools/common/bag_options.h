@@ -14,6 +14,7 @@ namespace swlio::tools {
 struct BagCliOptions {
   std::string lidar_topic, imu_topic, gnss_topic, wheel_topic;
   std::string point_time = "auto", point_time_field, stamp = "header";
+  std::string imu_samples = "interval-mean";
 };
 
 inline void AddBagOptions(CLI::App& app, BagCliOptions* o) {
@@ -38,6 +39,11 @@ inline void AddBagOptions(CLI::App& app, BagCliOptions* o) {
                  "times (publishers stamping on another clock)")
       ->check(CLI::IsMember({"header", "receive"}))
       ->capture_default_str();
+  app.add_option("--imu-samples", o->imu_samples,
+                 "bag input: sensor_msgs/Imu values are means over the interval since the "
+                 "previous message (an Xsens MTi's, swlio's bags) or the values at the stamp")
+      ->check(CLI::IsMember({"interval-mean", "instantaneous"}))
+      ->capture_default_str();
 }
 
 inline daemon::BagInputOptions ToBagInputOptions(const BagCliOptions& o) {
@@ -46,6 +52,8 @@ inline daemon::BagInputOptions ToBagInputOptions(const BagCliOptions& o) {
   drivers::bag::ParsePointTimeConvention(o.point_time, &b.cloud.time);  // checked by CLI11
   b.cloud.time_field = o.point_time_field;
   b.stamp = o.stamp == "receive" ? daemon::BagStamp::kReceive : daemon::BagStamp::kHeader;
+  b.imu_samples = o.imu_samples == "instantaneous" ? daemon::BagImuSamples::kInstantaneous
+                                                   : daemon::BagImuSamples::kIntervalMean;
   return b;
 }
 

@@ -13,6 +13,7 @@
 
 #include "swlio/daemon/sensors/lidar_stage.h"
 #include "swlio/drivers/bag/bag_open.h"
+#include "swlio/estimator/imu/imu_interval_means.h"
 
 namespace swlio::daemon {
 namespace bag = drivers::bag;
@@ -123,6 +124,7 @@ class BagInput : public SensorInput {
   HostSweep sweep_;
   ReorderBuffer buffer_;
   RecordingStats stats_;
+  estimator::ImuIntervalMeans imu_means_;  ///< BagImuSamples::kInstantaneous
   uint64_t cloud_seq_ = 0;
   uint64_t points_out_of_range_ = 0;
   bool ended_ = false;
@@ -229,6 +231,7 @@ void BagInput::TakeImu(const bag::ImuMsg& msg, const bag::StreamMessage& m) {
   e.imu.t_ns = Time(msg.header.stamp_ns, m);
   e.imu.acc_mps2 = msg.linear_acceleration_mps2;
   e.imu.gyro_radps = msg.angular_velocity_radps;
+  if (options_.imu_samples == BagImuSamples::kInstantaneous) e.imu = imu_means_.Next(e.imu);
   ++stats_.imu_samples;
   buffer_.Push(e.imu.t_ns, std::move(e));
 }

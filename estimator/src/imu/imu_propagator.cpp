@@ -26,17 +26,9 @@ void Integrate(double gravity_mps2,
 
 }  // namespace
 
-bool StrapdownStep(double gravity_mps2,
-                   const ImuSample* previous,
-                   const ImuSample& sample,
-                   State* state) {
+bool StrapdownStep(double gravity_mps2, const ImuSample& sample, State* state) {
   if (sample.t_ns <= state->t_ns) return false;
-  if (previous == nullptr) {
-    Integrate(gravity_mps2, sample.gyro_radps, sample.acc_mps2, sample.t_ns, state);
-  } else {
-    Integrate(gravity_mps2, 0.5 * (sample.gyro_radps + previous->gyro_radps),
-              0.5 * (sample.acc_mps2 + previous->acc_mps2), sample.t_ns, state);
-  }
+  Integrate(gravity_mps2, sample.gyro_radps, sample.acc_mps2, sample.t_ns, state);
   return true;
 }
 
@@ -47,7 +39,7 @@ void ImuPropagator::Reset(const State& state) {
 }
 
 void ImuPropagator::Add(const ImuSample& sample) {
-  if (StrapdownStep(gravity_mps2_, have_last_ ? &last_ : nullptr, sample, &state_)) {
+  if (StrapdownStep(gravity_mps2_, sample, &state_)) {
     track_.Add(state_.t_ns, state_.T_world_imu);
   }
   last_ = sample;

@@ -100,7 +100,7 @@ std::optional<ImuRateOutput> ImuRatePropagator::SetState(const State& optimized)
   const ImuSample* previous = nullptr;
   for (size_t i = 0; i < size_; ++i) {
     const ImuSample& sample = At(i);
-    if (StrapdownStep(gravity_mps2_, previous, sample, &current_)) ++counters_.repropagated;
+    if (StrapdownStep(gravity_mps2_, sample, &current_)) ++counters_.repropagated;
     previous = &sample;
   }
   // Keep the last output where it was (same instant: the newest sample) and take the
@@ -120,8 +120,7 @@ std::optional<ImuRateOutput> ImuRatePropagator::Add(const ImuSample& sample) {
     return std::nullopt;
   }
   Push(sample);
-  const ImuSample* previous = size_ >= 2 ? &At(size_ - 2) : nullptr;
-  if (!has_state_ || !StrapdownStep(gravity_mps2_, previous, sample, &current_)) {
+  if (!has_state_ || !StrapdownStep(gravity_mps2_, sample, &current_)) {
     ++counters_.before_state;
     return std::nullopt;
   }

@@ -1,5 +1,6 @@
 #include "swlio/estimator/imu/preintegration.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "swlio/core/lie.h"
@@ -24,13 +25,11 @@ void ApplyA(
 
 }  // namespace
 
-ImuSample InterpolateSample(const ImuSample& a, const ImuSample& b, int64_t t_ns) {
-  if (b.t_ns <= a.t_ns) return a;
-  const double s = static_cast<double>(t_ns - a.t_ns) / static_cast<double>(b.t_ns - a.t_ns);
-  ImuSample out;
+ImuSample SampleHolding(std::span<const ImuSample> samples, int64_t t_ns) {
+  const auto it = std::lower_bound(samples.begin(), samples.end(), t_ns,
+                                   [](const ImuSample& s, int64_t t) { return s.t_ns < t; });
+  ImuSample out = it == samples.end() ? samples.back() : *it;
   out.t_ns = t_ns;
-  out.acc_mps2 = (1.0 - s) * a.acc_mps2 + s * b.acc_mps2;
-  out.gyro_radps = (1.0 - s) * a.gyro_radps + s * b.gyro_radps;
   return out;
 }
 
@@ -79,7 +78,8 @@ void Preintegrator::Reset(int64_t t_ns, const Vec3& bias_gyro, const Vec3& bias_
   samples_.clear();
 }
 
-// One midpoint step, with θ = (ω̄ − b_g)Δt, a = ā − b_a, E = Exp(θ), H = Exp(½θ),
+// One step from sample a to sample b, with b's interval means ω̄, ā (preintegration.h),
+// θ = (ω̄ − b_g)Δt, a = ā − b_a, E = Exp(θ), H = Exp(½θ),
 // R_m = ΔR_k H (attitude at the step's middle):
 //   ΔR_{k+1} = ΔR_k E
 //   Δv_{k+1} = Δv_k + R_m a Δt
@@ -93,7 +93,7 @@ void Preintegrator::Reset(int64_t t_ns, const Vec3& bias_gyro, const Vec3& bias_
 //   δp_{k+1} = δp_k + Δt δv_k − ½ R_m [a]× Δt² δφ_m + ½ R_m Δt² η_a
 // i.e. δ_{k+1} = A δ_k + B η with the 9×9 A and 9×6 B below. Then
 //   covariance:     Σ_{k+1} = A Σ_k Aᵀ + B Q Bᵀ, Q = diag(σ_g² I, σ_a² I), σ² = density²/Δt
-//                   (the discrete noise of a sample averaged over Δt, Forster §IV: Cov(η_d) =
+//                   (the noise of a sample averaged over Δt, Forster §IV: Cov(η_d) =
 //                   Cov(η)/Δt), plus σ_a² Δt³/12 I on δp: white acceleration noise integrated
 //                   exactly over the step gives Cov(δp) = σ_a² Δt³/3 where B Q Bᵀ gives
 //                   σ_a² Δt³/4 (Cov(δp, δv) = σ_a² Δt²/2 and Cov(δv) = σ_a² Δt agree). The
@@ -114,8 +114,8 @@ void Preintegrator::Propagate(const ImuSample& a, const ImuSample& b) {
   const double dt = NsToSec(b.t_ns - a.t_ns);
   pim_.t_end_ns = b.t_ns;
   if (dt <= 0.0) return;
-  const Vec3 theta = (0.5 * (a.gyro_radps + b.gyro_radps) - pim_.bias_gyro_lin) * dt;
-  const Vec3 acc = 0.5 * (a.acc_mps2 + b.acc_mps2) - pim_.bias_acc_lin;
+  const Vec3 theta = (b.gyro_radps - pim_.bias_gyro_lin) * dt;  // b's interval holds the step
+  const Vec3 acc = b.acc_mps2 - pim_.bias_acc_lin;
   const Mat3 E = lie::Exp(theta);
   const Mat3 H = lie::Exp(0.5 * theta);
   const Mat3 R_mid = pim_.delta_R * H;
@@ -176,21 +176,13 @@ PreintegrationStatus Preintegrator::Integrate(std::span<const ImuSample> samples
   size_t last = first;
   while (samples[last].t_ns < t_end_ns) ++last;
 
-  const ImuSample start = first + 1 < samples.size()
-                              ? InterpolateSample(samples[first], samples[first + 1], t_start_ns)
-                              : samples[first];
-  const ImuSample end =
-      last > 0 ? InterpolateSample(samples[last - 1], samples[last], t_end_ns) : samples[last];
-  ImuSample prev = start;
-  prev.t_ns = t_start_ns;
+  ImuSample prev = SampleHolding(samples, t_start_ns);
   if (options_.keep_samples) samples_.reserve(last - first + 2);
   for (size_t k = first + 1; k < last; ++k) {
     IntegrateStep(prev, samples[k]);
     prev = samples[k];
   }
-  ImuSample stop = end;
-  stop.t_ns = t_end_ns;
-  IntegrateStep(prev, stop);
+  IntegrateStep(prev, SampleHolding(samples.subspan(last), t_end_ns));
   return PreintegrationStatus::kOk;
 }
 

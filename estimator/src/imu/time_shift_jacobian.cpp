@@ -26,10 +26,14 @@ ImuSample EndRates(const std::vector<ImuSample>& samples, int64_t t_ns, int64_t 
   Eigen::Vector3d sum_w = Eigen::Vector3d::Zero(), sum_a = Eigen::Vector3d::Zero();
   Eigen::Vector3d sum_tw = Eigen::Vector3d::Zero(), sum_ta = Eigen::Vector3d::Zero();
   const ImuSample* nearest = &samples.front();
-  for (const ImuSample& s : samples) {
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const ImuSample& s = samples[k];
     if (std::llabs(s.t_ns - t_ns) < std::llabs(nearest->t_ns - t_ns)) nearest = &s;
     if (std::llabs(s.t_ns - t_ns) > span_ns) continue;
-    const double t = static_cast<double>(s.t_ns - t_ns) * 1e-9;
+    // The sample's mean stands for its interval's middle (the first: the next one's length).
+    const int64_t length_ns =
+        k > 0 ? s.t_ns - samples[k - 1].t_ns : (samples.size() > 1 ? samples[1].t_ns - s.t_ns : 0);
+    const double t = static_cast<double>(s.t_ns - length_ns / 2 - t_ns) * 1e-9;
     n += 1.0;
     sum_t += t;
     sum_tt += t * t;

@@ -172,16 +172,12 @@ Eigen::Isometry3d DynamicBootstrap::BuildTrack(const Eigen::Vector3d& v_w0, int6
   track_.Add(t0, last_.T_w0_imu);
   auto it = std::upper_bound(imu_.begin(), imu_.end(), t0,
                              [](int64_t t, const ImuSample& s) { return t < s.t_ns; });
-  const ImuSample* previous = it == imu_.begin() ? nullptr : &*std::prev(it);
   int64_t t = t0;
-  for (; it != imu_.end() && t < t_end_ns; ++it) {
+  for (; it != imu_.end() && t < t_end_ns; ++it) {  // each sample's mean over its interval
     const int64_t t_next = std::min(it->t_ns, t_end_ns);
-    const Eigen::Vector3d w =
-        previous ? Eigen::Vector3d(0.5 * (previous->gyro_radps + it->gyro_radps)) : it->gyro_radps;
-    R = R * lie::Exp(w * NsToSec(t_next - t));
+    R = R * lie::Exp(it->gyro_radps * NsToSec(t_next - t));
     t = t_next;
     track_.Add(t, pose_at(t));
-    previous = &*it;
   }
   if (t < t_end_ns) {  // the IMU ends before the sweep (≤ max_imu_lag_s): hold the last rate
     R = R * lie::Exp(imu_.back().gyro_radps * NsToSec(t_end_ns - t));

@@ -19,11 +19,6 @@ constexpr size_t kRowsPerSolve = 300;
 
 int64_t ToNs(double s) { return static_cast<int64_t>(std::llround(s * 1e9)); }
 
-Eigen::Vector3d RateAt(const ImuSample& s0, const ImuSample& s1, int64_t t_ns) {
-  const double u = static_cast<double>(t_ns - s0.t_ns) / static_cast<double>(s1.t_ns - s0.t_ns);
-  return (1.0 - u) * s0.gyro_radps + u * s1.gyro_radps;
-}
-
 }  // namespace
 
 ConfigIssues TimeOffsetConfig::Validate() const {
@@ -109,7 +104,7 @@ std::optional<Eigen::Quaterniond> TimeOffsetEstimator::IntegrateGyro(
     const int64_t lo = std::max(a_ns, s0.t_ns);
     const int64_t hi = std::min(b_ns, s1.t_ns);
     if (hi <= lo) continue;
-    const Eigen::Vector3d w = 0.5 * (RateAt(s0, s1, lo) + RateAt(s0, s1, hi)) - bias;
+    const Eigen::Vector3d w = s1.gyro_radps - bias;  // s1's interval holds [lo, hi]
     q = q * lie::QuatExp(w * static_cast<double>(hi - lo) * 1e-9);
   }
   return q.normalized();

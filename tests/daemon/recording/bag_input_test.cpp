@@ -110,6 +110,7 @@ fs::path LaggingBag(int64_t imu_lag_ns) {
     bag::ImuMsg m;
     m.header = {t0 + i * 5'000'000LL, "imu_link"};
     m.linear_acceleration_mps2 = Eigen::Vector3d(0, 0, 9.81);
+    m.angular_velocity_radps = Eigen::Vector3d(0, 0, 0.01 * i);  // a steady yaw acceleration
     out.push_back(
         {m.header.stamp_ns + imu_lag_ns, imu, bag::EncodeImu(m, bag::MessageEncoding::kCdr)});
   }
@@ -172,6 +173,28 @@ TEST(BagInput, ReceiveTimesReplaceStampsWhenAsked) {
   for (const RecordingEvent& e : ReadAll(*input)) {
     if (e.kind != RecordingEvent::Kind::kImu) continue;
     EXPECT_EQ((e.imu.t_ns - 1'764'000'000'002'000'000) % 5'000'000, 0) << e.imu.t_ns;
+  }
+}
+
+TEST(BagInput, InstantaneousImuValuesBecomeIntervalMeans) {
+  const fs::path bag = LaggingBag(2'000'000);
+  for (const BagImuSamples kind : {BagImuSamples::kIntervalMean, BagImuSamples::kInstantaneous}) {
+    std::string error;
+    BagInputOptions options;
+    options.imu_samples = kind;
+    auto input = OpenBagInput(bag.string(), {}, options, &error);
+    ASSERT_NE(input, nullptr) << error;
+    int k = 0;
+    for (const RecordingEvent& e : ReadAll(*input)) {
+      if (e.kind != RecordingEvent::Kind::kImu) continue;
+      // Means as they are; instantaneous values averaged with the one before (the first alone).
+      const double mean =
+          kind == BagImuSamples::kIntervalMean || k == 0 ? 0.01 * k : 0.01 * (k - 0.5);
+      EXPECT_NEAR(e.imu.gyro_radps.z(), mean, 1e-12) << k;
+      EXPECT_NEAR(e.imu.acc_mps2.z(), 9.81, 1e-12) << k;
+      ++k;
+    }
+    EXPECT_EQ(k, 400);
   }
 }
 

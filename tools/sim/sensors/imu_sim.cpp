@@ -48,6 +48,38 @@ void MarkGnssEpochs(std::vector<SimImuSample>& samples, const ImuSimConfig& conf
   }
 }
 
+/// An MTi's strapdown integration rate: it samples and integrates at 2 kHz, then outputs the
+/// integrals' means at the output rate (MTi 600-series documentation, "Signal processing and
+/// algorithms": strapdown at up to 2000 Hz with coning and sculling compensation; Xsens
+/// knowledge base, "Signal processing pipeline - fidelity of 400 Hz signal").
+constexpr double kStrapdownRateHz = 2000.0;
+
+struct IntervalMeans {
+  Eigen::Vector3d acc_mps2, gyro_radps;
+};
+
+/// What the MTi outputs for (t0_s, t1_s] as Acceleration and RateOfTurn: dv/Δt and dq/Δt
+/// (core/types.h). dq is the body's exact turn over the interval; dv sums the specific force
+/// of the strapdown steps in the interval's start frame and is expressed in its middle frame,
+/// the frame the pre-integration turns a step's specific force with (preintegration.h).
+IntervalMeans MeansOver(const Trajectory& trajectory,
+                        double t0_s,
+                        double t1_s,
+                        const Eigen::Vector3d& gravity) {
+  const double dt = t1_s - t0_s;
+  const int steps = std::max(1, static_cast<int>(std::ceil(dt * kStrapdownRateHz - 1e-9)));
+  const double h = dt / steps;
+  const Eigen::Matrix3d R0 = trajectory.At(std::max(0.0, t0_s)).R_world_body;
+  const Eigen::Matrix3d R1 = trajectory.At(std::max(0.0, t1_s)).R_world_body;
+  Eigen::Vector3d dv_world = Eigen::Vector3d::Zero();
+  for (int j = 0; j < steps; ++j) {
+    dv_world += (trajectory.At(std::max(0.0, t0_s + (j + 0.5) * h)).a_world + gravity) * h;
+  }
+  const Eigen::AngleAxisd turn(R0.transpose() * R1);
+  const Eigen::Matrix3d R_mid = R0 * Eigen::AngleAxisd(0.5 * turn.angle(), turn.axis());
+  return {R_mid.transpose() * dv_world / dt, turn.angle() * turn.axis() / dt};
+}
+
 }  // namespace
 
 std::vector<SimImuSample> SimulateImu(const Trajectory& trajectory,
@@ -61,6 +93,8 @@ std::vector<SimImuSample> SimulateImu(const Trajectory& trajectory,
   Eigen::Vector3d bias_acc = NormalVec(rng, n.acc_bias_initial_sigma);
   Eigen::Vector3d bias_gyro = NormalVec(rng, n.gyro_bias_initial_sigma);
   const Eigen::Vector3d gravity(0.0, 0.0, config.gravity_mps2);
+  // A device tick's interval in true time (a clock step relabels the ticks, it is no motion).
+  const double interval_s = dt / (1.0 + config.clock.drift_ppm * 1e-6);
 
   std::vector<SimImuSample> out;
   // Device ticks start at the first 1/rate boundary of the device clock after host time 0.
@@ -69,7 +103,7 @@ std::vector<SimImuSample> SimulateImu(const Trajectory& trajectory,
     const double device_s = device_start + static_cast<double>(k) * dt;
     const double host_s = config.clock.ToHost(device_s);
     if (host_s > trajectory.duration_s()) break;
-    const Kinematics kin = trajectory.At(std::max(0.0, host_s - config.time_offset_s));
+    const double t_meas = host_s - config.time_offset_s;
     SimImuSample s;
     s.t_true_ns = SecToNs(host_s);
     s.sample_time_fine =
@@ -81,9 +115,9 @@ std::vector<SimImuSample> SimulateImu(const Trajectory& trajectory,
       s.bias_acc += ImuTemperatureAccBias(config.temperature, host_s);
       s.bias_gyro += ImuTemperatureGyroBias(config.temperature, host_s);
     }
-    s.acc_mps2 = kin.R_world_body.transpose() * (kin.a_world + gravity) + s.bias_acc +
-                 NormalVec(rng, acc_sigma);
-    s.gyro_radps = kin.omega_body + s.bias_gyro + NormalVec(rng, gyro_sigma);
+    const IntervalMeans m = MeansOver(trajectory, t_meas - interval_s, t_meas, gravity);
+    s.acc_mps2 = m.acc_mps2 + s.bias_acc + NormalVec(rng, acc_sigma);
+    s.gyro_radps = m.gyro_radps + s.bias_gyro + NormalVec(rng, gyro_sigma);
     out.push_back(s);
     bias_acc += NormalVec(rng, n.acc_bias_random_walk * std::sqrt(dt));
     bias_gyro += NormalVec(rng, n.gyro_bias_random_walk * std::sqrt(dt));

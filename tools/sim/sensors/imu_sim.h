@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// MTi-G-710-like IMU: samples on the device's own clock (SampleTimeFine, 10 kHz ticks) with
-/// offset and drift against host time; white noise and bias random walk; gravity; serial
-/// delivery in USB-like bursts.
+/// offset and drift against host time, each the mean specific force and rate over its output
+/// interval as the MTi's 2 kHz strapdown integration gives them (dv/Δt, dq/Δt: core/types.h);
+/// white noise and bias random walk; gravity; serial delivery in USB-like bursts.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -56,8 +57,9 @@ struct SerialDelivery {
 };
 
 struct SimImuSample {
-  /// Host time its SampleTimeFine stands for (ground truth); the motion it measures is that
-  /// of t_true_ns − ImuSimConfig::time_offset_s.
+  /// Host time its SampleTimeFine stands for (ground truth): the end of the interval it
+  /// measures the motion of, shifted by ImuSimConfig::time_offset_s (the interval ends at
+  /// t_true_ns − time_offset_s).
   int64_t t_true_ns = 0;
   int64_t t_rx_ns = 0;            ///< host time at which its frame arrives over serial
   uint32_t sample_time_fine = 0;  ///< device clock, 100 µs ticks, wraps at 2³²

@@ -38,10 +38,16 @@ namespace swlio::daemon {
 
 enum class BagStamp : uint8_t { kHeader, kReceive };
 
+/// What a sensor_msgs/Imu's values are: means over the interval since the previous message (an
+/// Xsens MTi's Acceleration and RateOfTurn, and swlio's own bags), or the values at the stamp
+/// (turned into means by ImuIntervalMeans, estimator/imu/imu_interval_means.h).
+enum class BagImuSamples : uint8_t { kIntervalMean, kInstantaneous };
+
 struct BagInputOptions {
   drivers::bag::TopicChoice topics;  ///< names chosen by the user; empty: found by type
   drivers::bag::CloudOptions cloud;  ///< PointCloud2 per-point time convention
   BagStamp stamp = BagStamp::kHeader;
+  BagImuSamples imu_samples = BagImuSamples::kIntervalMean;
   bool gnss = false;   ///< deliver kGnss events (the GNSS topic must exist)
   bool wheel = false;  ///< deliver kWheel events (the wheel topic must exist)
   /// Refuse a bag without an IMU topic. Both estimator modes need the IMU (the LiDAR-only

@@ -12,11 +12,18 @@
 
 namespace swlio {
 
-/// One inertial measurement in the IMU frame.
+/// One inertial measurement in the IMU frame: the means of the specific force and of the
+/// angular rate over the interval since the previous sample, stamped at the interval's end.
+/// That is what an Xsens MTi outputs as Acceleration and RateOfTurn (dv/Δt and dq/Δt of its
+/// strapdown integration: MTi Family Reference Manual MT1600P §4.3, "calibrated data has been
+/// going through strapdown integration and inverse strapdown integration"; Xsens DOT User
+/// Manual §4.2.1, "calibrated acceleration = dv/dt"), and it keeps motion faster than the
+/// output rate (chassis vibration) in the integrals. Instantaneous samples are turned into such
+/// means by `ImuIntervalMeans` (estimator/imu/imu_interval_means.h).
 struct ImuSample {
-  int64_t t_ns = 0;                                      ///< host time (CLOCK_MONOTONIC ns)
-  Eigen::Vector3d acc_mps2 = Eigen::Vector3d::Zero();    ///< specific force, m/s²
-  Eigen::Vector3d gyro_radps = Eigen::Vector3d::Zero();  ///< angular rate, rad/s
+  int64_t t_ns = 0;  ///< host time (CLOCK_MONOTONIC ns) of the interval's end
+  Eigen::Vector3d acc_mps2 = Eigen::Vector3d::Zero();    ///< mean specific force, m/s²
+  Eigen::Vector3d gyro_radps = Eigen::Vector3d::Zero();  ///< mean angular rate, rad/s
 };
 
 /// One LiDAR return in the LiDAR frame of its scan.

@@ -11,12 +11,12 @@
 /// the samples hold at high frequency, and σ_hf/√f_s its density.
 /// Use: density = √(datasheet² + (gain · measured)²), per sensor.
 ///
-/// OFF by default: where the samples resolve the vibration, its cost is not noise. The
-/// midpoint rule's error over an interval telescopes to (h/12)·(Δf_start − Δf_end) (h the
-/// sample spacing, Δf the change of the samples at the interval's ends): a velocity offset at
-/// each boundary that the next interval carries with the opposite sign, which the window's
-/// velocity states absorb (PreintegrationVibration.* shows it: 4 × 10⁻⁴ m/s per 0.1 s
-/// interval at 2 m/s² RMS, and no more after 50 intervals). Loosening the factors as if it were
+/// OFF by default: where the samples are the device's interval means (core/types.h), its cost is
+/// not noise. They integrate the vibration exactly between samples; where a sweep's bound cuts
+/// a sample's interval, the error is a velocity offset at the bound that the next interval
+/// carries with the opposite sign, which the window's velocity states absorb
+/// (PreintegrationVibration.* shows it: 6 × 10⁻⁴ m/s per 0.1 s interval at 2 m/s² RMS, and no
+/// more after 50 intervals). Loosening the factors as if it were
 /// white noise gives the LiDAR the vertical: on `aggressive` seed 42 with the simulator's
 /// vibration (keyed recordings, three draws each, bench/README.md) the APE rose 1.22× with the
 /// adapter (gain 0.3) and 1.03× without it. It remains for an IMU whose output aliases

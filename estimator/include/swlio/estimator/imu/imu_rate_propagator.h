@@ -5,8 +5,8 @@
 /// imuPreintegration thread is the pattern; design.md "propagator thread").
 ///
 /// The samples are kept in a fixed ring buffer. When the optimizer delivers a new state at t_k
-/// (pose, velocity, biases), the samples up to t_k are dropped except the last one (it is the
-/// trapezoid's left end for the interval that straddles t_k), and the samples after t_k are
+/// (pose, velocity, biases), the samples up to t_k are dropped except the last one, and the
+/// samples after t_k (the first of them holds the interval that straddles t_k) are
 /// integrated again from the new state: the output then equals integrating from that state
 /// through the same samples (`ImuPropagator`, whose step function `StrapdownStep` is shared).
 ///

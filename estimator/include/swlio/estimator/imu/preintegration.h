@@ -10,13 +10,17 @@
 ///   Δp_ij = Σ_k [Δv_ik Δt + ½ ΔR_ik (ã_k − b_a) Δt²]
 /// They depend only on the measurements and the linearization bias b̄ = (b̄_g, b̄_a).
 ///
-/// Integration scheme (stated once): MIDPOINT. Between two consecutive samples k, k+1 the
-/// measurements are averaged, ω̄ = ½(ω̃_k + ω̃_{k+1}), ā = ½(ã_k + ã_{k+1}) (the rate and
-/// specific force at the step's middle time), and the specific force is rotated with the
-/// attitude at the step's middle, ΔR_mid = ΔR_ik Exp(½ θ_k), θ_k = (ω̄ − b_g) Δt. This is
-/// second-order accurate, where the sums above (forward Euler with ΔR_ik) are first order;
-/// the noise and bias Jacobian recursions (derived in preintegration.cpp) are the exact
-/// linearization of this scheme, checked against central differences in the tests.
+/// Integration scheme (stated once): INTERVAL MEANS. A sample holds the mean rate and specific
+/// force over the interval since the previous sample (core/types.h), so the step from sample k
+/// to sample k+1 takes sample k+1's values, ω̄ = ω̃_{k+1}, ā = ã_{k+1}, and rotates the
+/// specific force with the attitude at the step's middle, ΔR_mid = ΔR_ik Exp(½ θ_k),
+/// θ_k = (ω̄ − b_g) Δt. The rotation is then the device's own integral, and the velocity and
+/// position are exact up to the specific force's turn within a step: motion faster than the
+/// sample rate (vibration) integrates as the device measured it, where averaging two samples
+/// (the midpoint rule for instantaneous samples) filters it out. A step cut by an interval
+/// bound takes the values of the sample whose interval holds it. The noise and bias Jacobian
+/// recursions (derived in preintegration.cpp) are the exact linearization of this scheme,
+/// checked against central differences in the tests.
 ///
 /// Error state (9): [δφ; δv; δp] with ΔR̃ = ΔR Exp(δφ), Δṽ = Δv + δv, Δp̃ = Δp + δp (§V-B).
 /// Bias Jacobian J (9×6): rows [φ; v; p], columns [b_g; b_a]; first-order bias update (eq. (44)):
@@ -112,13 +116,13 @@ class Preintegrator {
   /// Starts an empty interval at t_ns with new linearization biases.
   void Reset(int64_t t_ns, const Eigen::Vector3d& bias_gyro, const Eigen::Vector3d& bias_acc);
 
-  /// Integrates one midpoint step from sample a to sample b (b.t_ns ≥ a.t_ns; a.t_ns should be
-  /// the current end of the interval). Streaming use: call with consecutive samples.
+  /// Integrates one step from sample a's time to sample b's with b's values (b.t_ns ≥ a.t_ns;
+  /// a.t_ns should be the current end of the interval). Streaming use: consecutive samples.
   void IntegrateStep(const ImuSample& a, const ImuSample& b);
 
   /// Resets at t_start_ns and integrates `samples` (sorted by time) over [t_start, t_end]. The
-  /// samples must bracket both bounds; the first and last are replaced by samples linearly
-  /// interpolated to t_start_ns and t_end_ns.
+  /// samples must bracket both bounds; the steps cut by a bound take the values of the sample
+  /// whose interval holds them (SampleHolding).
   PreintegrationStatus Integrate(std::span<const ImuSample> samples,
                                  int64_t t_start_ns,
                                  int64_t t_end_ns);
@@ -146,7 +150,8 @@ class Preintegrator {
   std::vector<ImuSample> samples_;  ///< bounds-interpolated samples of the interval
 };
 
-/// Linear interpolation of two samples at t_ns (a.t_ns ≤ t_ns ≤ b.t_ns; a if they coincide).
-ImuSample InterpolateSample(const ImuSample& a, const ImuSample& b, int64_t t_ns);
+/// The values that hold at t_ns: those of the first sample at or after it (its interval holds
+/// t_ns), restamped t_ns. `samples` sorted by time, the last at or after t_ns.
+ImuSample SampleHolding(std::span<const ImuSample> samples, int64_t t_ns);
 
 }  // namespace swlio::estimator

@@ -37,11 +37,12 @@ Vec9 TimeShiftJacobian(const PreintegratedImu& pim, const ImuSample& first, cons
 inline constexpr int64_t kEndRatesSpanNs = 40'000'000;
 
 /// The rate and specific force at `t_ns` (stamped so), from a straight line fitted by least
-/// squares to the samples (sorted by time) within `span_ns` of it; the nearest sample where
-/// fewer than three are. J from raw samples carries their white noise: at 400 Hz one sample's
-/// variance is the noise density² · 400 Hz, and σ_d² J Jᵀ then doubles a 0.1 s interval's
-/// covariance at σ_d = 10 ms on a drive whose motion hardly changes. The line's end keeps a
-/// steady change of the motion unbiased and has about a quarter of one sample's variance
+/// squares to the samples (sorted by time) within `span_ns` of it, each at the middle of its
+/// interval (core/types.h); the nearest sample where fewer than three are. J from raw samples
+/// carries their white noise: at 400 Hz one sample's variance is the noise density² · 400 Hz, and
+/// σ_d² J Jᵀ then doubles a 0.1 s interval's covariance at σ_d = 10 ms on a drive whose motion
+/// hardly changes. The line's end keeps a steady change of the motion unbiased and has about a
+/// quarter of one sample's variance
 /// ((4n − 2) / (n (n + 1)) for n samples).
 ImuSample EndRates(const std::vector<ImuSample>& samples,
                    int64_t t_ns,

@@ -6,7 +6,7 @@
 ///
 /// Per sweep (host times, in order; the IMU fed up to the sweep's end first):
 ///   track: from the last registered IMU pose (t_k, R_k, p_k), the attitude integrates the raw
-///     gyro (midpoint rates; an unknown bias of 0.1 °/s moves it 0.01° over a sweep) and the
+///     gyro (sample means; an unknown bias of 0.1 °/s moves it 0.01° over a sweep) and the
 ///     position follows the constant velocity v = (p_k − p_k−1) / (t_k − t_k−1) of the last two
 ///     registered poses: R(t) = R_k Π Exp(ω̄ Δt), p(t) = p_k + v (t − t_k), one pose per sample;
 ///   → Deskew into the sweep-end LiDAR frame → FrontEnd → ScanMatcher::Match against the plane

@@ -158,8 +158,8 @@ class TimeOffsetEstimator {
   /// 0 where the offset is not estimated or `initial_sigma_s` is 0.
   double followed_sigma_s() const;
 
-  /// Gyro rotation over stamps [a_ns, b_ns] with `bias` removed: rates linear between samples,
-  /// one midpoint step per sample interval. Empty unless the samples cover [a_ns, b_ns].
+  /// Gyro rotation over stamps [a_ns, b_ns] with `bias` removed: each sample's mean rate over
+  /// its interval (core/types.h). Empty unless the samples cover [a_ns, b_ns].
   static std::optional<Eigen::Quaterniond> IntegrateGyro(const std::deque<ImuSample>& samples,
                                                          int64_t a_ns,
                                                          int64_t b_ns,
