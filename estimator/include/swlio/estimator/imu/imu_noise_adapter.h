@@ -16,12 +16,12 @@
 /// a sample's interval, the error is a velocity offset at the bound that the next interval
 /// carries with the opposite sign, which the window's velocity states absorb
 /// (PreintegrationVibration.* shows it: 6 × 10⁻⁴ m/s per 0.1 s interval at 2 m/s² RMS, and no
-/// more after 50 intervals). Loosening the factors as if it were
-/// white noise gives the LiDAR the vertical: on `aggressive` seed 42 with the simulator's
-/// vibration (keyed recordings, three draws each, bench/README.md) the APE rose 1.22× with the
-/// adapter (gain 0.3) and 1.03× without it. It remains for an IMU whose output aliases
-/// vibration (no anti-alias filter before its output rate), where the samples do not follow
-/// the motion.
+/// more after 50 intervals). Loosening the factors as if it were white noise gives the LiDAR
+/// the vertical: on `aggressive` seed 42 with the simulator's vibration (keyed recordings,
+/// three draws each, bench/README.md; instantaneous samples and the midpoint rule, before
+/// `7906080`) the APE rose 1.22× with the adapter (gain 0.3) and 1.03× without it. It remains for
+/// an IMU whose output aliases vibration (no anti-alias filter before its output rate), where the
+/// samples do not follow the motion.
 
 #include <cstdint>
 

@@ -147,7 +147,7 @@ class Preintegrator {
   ImuNoiseConfig noise_;
   Options options_;
   PreintegratedImu pim_;
-  std::vector<ImuSample> samples_;  ///< bounds-interpolated samples of the interval
+  std::vector<ImuSample> samples_;  ///< the interval's samples, the cut bounds' restamped
 };
 
 /// The values that hold at t_ns: those of the first sample at or after it (its interval holds

@@ -42,8 +42,7 @@ inline constexpr int64_t kEndRatesSpanNs = 40'000'000;
 /// carries their white noise: at 400 Hz one sample's variance is the noise density² · 400 Hz, and
 /// σ_d² J Jᵀ then doubles a 0.1 s interval's covariance at σ_d = 10 ms on a drive whose motion
 /// hardly changes. The line's end keeps a steady change of the motion unbiased and has about a
-/// quarter of one sample's variance
-/// ((4n − 2) / (n (n + 1)) for n samples).
+/// quarter of one sample's variance ((4n − 2) / (n (n + 1)) for n samples).
 ImuSample EndRates(const std::vector<ImuSample>& samples,
                    int64_t t_ns,
                    int64_t span_ns = kEndRatesSpanNs);
