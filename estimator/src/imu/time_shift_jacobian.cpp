@@ -33,7 +33,8 @@ ImuSample EndRates(const std::vector<ImuSample>& samples, int64_t t_ns, int64_t 
     // The sample's mean stands for its interval's middle (the first: the next one's length).
     const int64_t length_ns =
         k > 0 ? s.t_ns - samples[k - 1].t_ns : (samples.size() > 1 ? samples[1].t_ns - s.t_ns : 0);
-    const double t = static_cast<double>(s.t_ns - length_ns / 2 - t_ns) * 1e-9;
+    const double t =
+        (static_cast<double>(s.t_ns - t_ns) - 0.5 * static_cast<double>(length_ns)) * 1e-9;
     n += 1.0;
     sum_t += t;
     sum_tt += t * t;
