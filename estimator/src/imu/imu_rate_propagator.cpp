@@ -97,11 +97,8 @@ std::optional<ImuRateOutput> ImuRatePropagator::SetState(const State& optimized)
   current_ = optimized;
   ++counters_.states;
   DropUpTo(optimized.t_ns);
-  const ImuSample* previous = nullptr;
   for (size_t i = 0; i < size_; ++i) {
-    const ImuSample& sample = At(i);
-    if (StrapdownStep(gravity_mps2_, sample, &current_)) ++counters_.repropagated;
-    previous = &sample;
+    if (StrapdownStep(gravity_mps2_, At(i), &current_)) ++counters_.repropagated;
   }
   // Keep the last output where it was (same instant: the newest sample) and take the
   // correction in over the next samples; a large one at once.
@@ -111,7 +108,7 @@ std::optional<ImuRateOutput> ImuRatePropagator::SetState(const State& optimized)
                        Eigen::AngleAxisd(offset.linear()).angle() <= config_.rebase_max_rad;
     rebase_ = small ? offset : Eigen::Isometry3d::Identity();
   }
-  return Output(previous);
+  return Output(size_ > 0 ? &At(size_ - 1) : nullptr);
 }
 
 std::optional<ImuRateOutput> ImuRatePropagator::Add(const ImuSample& sample) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "swlio/core/lie.h"
 #include "swlio/core/time.h"
 
 namespace swlio::sim {
@@ -59,8 +60,8 @@ struct IntervalMeans {
 };
 
 /// What the MTi outputs for (t0_s, t1_s] as Acceleration and RateOfTurn: dv/Δt and dq/Δt
-/// (core/types.h). dq is the body's exact turn over the interval; dv sums the specific force
-/// of the strapdown steps in the interval's start frame and is expressed in its middle frame,
+/// (core/types.h). dq is the body's exact turn over the interval; dv sums the world velocity
+/// change and gravity over the strapdown steps and is expressed in the interval's middle frame,
 /// the frame the pre-integration turns a step's specific force with (preintegration.h).
 IntervalMeans MeansOver(const Trajectory& trajectory,
                         double t0_s,
@@ -75,9 +76,9 @@ IntervalMeans MeansOver(const Trajectory& trajectory,
   for (int j = 0; j < steps; ++j) {
     dv_world += (trajectory.At(std::max(0.0, t0_s + (j + 0.5) * h)).a_world + gravity) * h;
   }
-  const Eigen::AngleAxisd turn(R0.transpose() * R1);
-  const Eigen::Matrix3d R_mid = R0 * Eigen::AngleAxisd(0.5 * turn.angle(), turn.axis());
-  return {R_mid.transpose() * dv_world / dt, turn.angle() * turn.axis() / dt};
+  const Eigen::Vector3d turn = lie::Log(R0.transpose() * R1);
+  const Eigen::Matrix3d R_mid = R0 * lie::Exp(0.5 * turn);
+  return {R_mid.transpose() * dv_world / dt, turn / dt};
 }
 
 }  // namespace
