@@ -33,6 +33,27 @@ ImuSample SampleHolding(std::span<const ImuSample> samples, int64_t t_ns) {
   return out;
 }
 
+ImuSample MeanOverPart(std::span<const ImuSample> samples, size_t h, int64_t lo_ns, int64_t hi_ns) {
+  ImuSample out = samples[h];
+  out.t_ns = hi_ns;
+  if (h == 0 || h + 1 >= samples.size()) return out;  // no neighbour on one side: its mean
+  const ImuSample& before = samples[h - 1];
+  const ImuSample& after = samples[h + 1];
+  const int64_t own_ns = samples[h].t_ns - before.t_ns;
+  const int64_t next_ns = after.t_ns - samples[h].t_ns;
+  // Uneven spacing (a gap, a synthetic bound): the neighbours are no line's samples.
+  if (own_ns <= 0 || next_ns <= 0 || 2 * std::max(own_ns, next_ns) > 3 * std::min(own_ns, next_ns))
+    return out;
+  // The line through the neighbours' means (at their intervals' middles, 2T apart), held to this
+  // sample's mean: a(t) = m + g (t − c), c the middle of its interval.
+  const double span_s = NsToSec(after.t_ns - before.t_ns);
+  const double from_middle_s =
+      0.5 * NsToSec((lo_ns - before.t_ns) + (hi_ns - samples[h].t_ns));  // (lo + hi)/2 − c
+  out.gyro_radps += (after.gyro_radps - before.gyro_radps) * (from_middle_s / span_s);
+  out.acc_mps2 += (after.acc_mps2 - before.acc_mps2) * (from_middle_s / span_s);
+  return out;
+}
+
 CorrectedDeltas Corrected(const PreintegratedImu& pim,
                           const Vec3& bias_gyro,
                           const Vec3& bias_acc) {
@@ -176,13 +197,15 @@ PreintegrationStatus Preintegrator::Integrate(std::span<const ImuSample> samples
   size_t last = first;
   while (samples[last].t_ns < t_end_ns) ++last;
 
+  // The steps cut by a bound take the mean over their part of the sample's interval.
   ImuSample prev = SampleHolding(samples, t_start_ns);
   if (options_.keep_samples) samples_.reserve(last - first + 2);
   for (size_t k = first + 1; k < last; ++k) {
-    IntegrateStep(prev, samples[k]);
+    IntegrateStep(
+        prev, k == first + 1 ? MeanOverPart(samples, k, t_start_ns, samples[k].t_ns) : samples[k]);
     prev = samples[k];
   }
-  IntegrateStep(prev, SampleHolding(samples.subspan(last), t_end_ns));
+  IntegrateStep(prev, MeanOverPart(samples, last, prev.t_ns, t_end_ns));
   return PreintegrationStatus::kOk;
 }
 

@@ -249,9 +249,11 @@ std::unique_ptr<WindowEstimator::Frame> WindowEstimator::NewFrame(int64_t t_ns,
 
 bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) {
   // The samples over [from, to]: the last one before `from` (else the first one, held back to
-  // `from`), those in between, and the first at or after `to` (else the last one, held).
+  // `from`), those in between, the first at or after `to` (else the last one, held) and the one
+  // after it where it has come (the line of the cut step's part, preintegration.h).
   std::vector<ImuSample>& s = imu_interval_;  // reused: no allocation per sweep
   s.clear();
+  bool past_end = false;
   for (const ImuSample& x : imu_) {
     if (x.t_ns < from.t_ns) {
       s.assign(1, x);
@@ -259,7 +261,8 @@ bool WindowEstimator::Preintegrate(const Frame& from, Frame* to) {
     }
     if (s.empty() && x.t_ns > from.t_ns) s.push_back(At(x, from.t_ns));
     s.push_back(x);
-    if (x.t_ns >= to->t_ns) break;
+    if (past_end) break;
+    past_end = x.t_ns >= to->t_ns;
   }
   if (s.empty()) return false;
   if (s.back().t_ns < to->t_ns) s.push_back(At(s.back(), to->t_ns));  // hold the last rates

@@ -46,8 +46,12 @@ TEST(EstimatorRunner, ProcessesASweepOnceTheImuHasPassedItsEnd) {
   for (int64_t t = 502'500'000; t <= 600 * kMs; t += 2'500'000) runner.AddImu(Still(t));
   EXPECT_EQ(processed.size(), 1u) << "a sample at the end itself does not cover it";
   runner.AddImu(Still(602'500'000));
+  EXPECT_EQ(processed.size(), 1u) << "the cut step's line needs the sample after the holder";
+  runner.AddImu(Still(605 * kMs));
   EXPECT_EQ(processed, (std::vector<int64_t>{400 * kMs, 600 * kMs}));
   runner.AddImu(Still(800 * kMs));
+  EXPECT_EQ(processed.size(), 2u);
+  runner.AddImu(Still(802'500'000));
   EXPECT_EQ(processed, (std::vector<int64_t>{400 * kMs, 600 * kMs, 700 * kMs}));
   EXPECT_EQ(runner.waiting(), 0u);
 }

@@ -55,7 +55,8 @@ class EstimatorRunner {
   void AddImu(const ImuSample& sample);
   /// Chassis wheel odometry (tightly coupled mode with `wheel.enabled`; ignored otherwise).
   void AddWheel(const WheelOdometry& sample);
-  /// Takes the sweep (moved from); processed now or once the IMU covers its end.
+  /// Takes the sweep (moved from); processed now or once the IMU covers its end and one sample
+  /// more.
   void AddScan(Scan&& scan);
 
   /// Re-initializes the tightly coupled window (WindowEstimator::Reset); false in LiDAR-only
@@ -79,7 +80,7 @@ class EstimatorRunner {
 
  private:
   void Process(const Scan& scan);
-  /// Processes the waiting sweeps whose end the newest IMU sample has passed.
+  /// Processes the waiting sweeps whose end the second newest IMU sample has passed.
   void ProcessCovered();
   /// Drops the waiting sweep (neither the oldest, which follows the last processed state, nor
   /// the newest) whose neighbours are closest in time: the largest gap grows least.
@@ -90,8 +91,12 @@ class EstimatorRunner {
   std::unique_ptr<estimator::WindowEstimator> window_;
   Sink sink_;
   std::deque<Scan> waiting_;
+  /// The two newest IMU samples' times on the window's time base. A sweep is processed once the
+  /// older one has passed its end: the sample holding the end and the one after it have come
+  /// (the cut step's line, estimator/imu/preintegration.h); 2.5 ms later at 400 Hz.
   int64_t newest_imu_t_ns_ = 0;
-  bool have_imu_ = false;
+  int64_t second_newest_imu_t_ns_ = 0;
+  int imu_seen_ = 0;  ///< up to 2
   size_t dropped_waiting_ = 0;
 };
 

@@ -18,7 +18,12 @@
 /// position are exact up to the specific force's turn within a step: motion faster than the
 /// sample rate (vibration) integrates as the device measured it, where averaging two samples
 /// (the midpoint rule for instantaneous samples) filters it out. A step cut by an interval
-/// bound takes the values of the sample whose interval holds it. The noise and bias Jacobian
+/// bound takes the mean over its part of the sample's interval, from the line through the
+/// neighbouring samples' means held to the sample's own (MeanOverPart): the sample's whole mean
+/// there is off by about ½ ȧ τ (T − τ) over the part τ of its interval T, which on a vibrating
+/// chassis is several times the white noise's share of an interval (issue 36; the two parts of
+/// one sample still sum to its mean, so consecutive intervals keep the device's integral).
+/// The noise and bias Jacobian
 /// recursions (derived in preintegration.cpp) are the exact linearization of this scheme,
 /// checked against central differences in the tests.
 ///
@@ -121,8 +126,9 @@ class Preintegrator {
   void IntegrateStep(const ImuSample& a, const ImuSample& b);
 
   /// Resets at t_start_ns and integrates `samples` (sorted by time) over [t_start, t_end]. The
-  /// samples must bracket both bounds; the steps cut by a bound take the values of the sample
-  /// whose interval holds them (SampleHolding).
+  /// samples must bracket both bounds; the steps cut by a bound take the mean over their part of
+  /// the interval of the sample that holds them (MeanOverPart: with a sample before and after
+  /// that one; else its whole mean).
   PreintegrationStatus Integrate(std::span<const ImuSample> samples,
                                  int64_t t_start_ns,
                                  int64_t t_end_ns);
@@ -153,5 +159,13 @@ class Preintegrator {
 /// The values that hold at t_ns: those of the first sample at or after it (its interval holds
 /// t_ns), restamped t_ns. `samples` sorted by time, the last at or after t_ns.
 ImuSample SampleHolding(std::span<const ImuSample> samples, int64_t t_ns);
+
+/// Sample h's values over [lo_ns, hi_ns], a part of its interval (samples[h − 1].t_ns,
+/// samples[h].t_ns], stamped hi_ns: its mean moved along the line through the means of samples
+/// h − 1 and h + 1 (a central difference, each mean at its interval's middle) to the part's
+/// middle. Its whole mean where a neighbour is missing or the three are unevenly spaced (over
+/// 3:2, a gap). Against a tone of 15 / 80 Hz sampled at 400 Hz it leaves 2 % / 28 % of the
+/// whole mean's error over a part (RMS over phases and cuts).
+ImuSample MeanOverPart(std::span<const ImuSample> samples, size_t h, int64_t lo_ns, int64_t hi_ns);
 
 }  // namespace swlio::estimator
