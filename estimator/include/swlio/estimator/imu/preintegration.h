@@ -23,9 +23,8 @@
 /// there is off by about ½ ȧ τ (T − τ) over the part τ of its interval T, which on a vibrating
 /// chassis is several times the white noise's share of an interval (issue 36; the two parts of
 /// one sample still sum to its mean, so consecutive intervals keep the device's integral).
-/// The noise and bias Jacobian
-/// recursions (derived in preintegration.cpp) are the exact linearization of this scheme,
-/// checked against central differences in the tests.
+/// The noise and bias Jacobian recursions (derived in preintegration.cpp) are the exact
+/// linearization of this scheme, checked against central differences in the tests.
 ///
 /// Error state (9): [δφ; δv; δp] with ΔR̃ = ΔR Exp(δφ), Δṽ = Δv + δv, Δp̃ = Δp + δp (§V-B).
 /// Bias Jacobian J (9×6): rows [φ; v; p], columns [b_g; b_a]; first-order bias update (eq. (44)):
