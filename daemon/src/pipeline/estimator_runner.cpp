@@ -1,6 +1,5 @@
 #include "swlio/daemon/pipeline/estimator_runner.h"
 
-#include <algorithm>
 #include <utility>
 
 #include "swlio/daemon/config/daemon_config.h"
@@ -53,13 +52,11 @@ void EstimatorRunner::AddImu(const ImuSample& sample) {
   // Coverage on the window's time base: the sample measured the motion of its stamp − offset.
   second_newest_imu_t_ns_ = newest_imu_t_ns_;
   newest_imu_t_ns_ = sample.t_ns - window_->imu_time_offset_ns();
-  imu_seen_ = std::min(imu_seen_ + 1, 2);
   ProcessCovered();
 }
 
 void EstimatorRunner::ProcessCovered() {
-  while (imu_seen_ == 2 && !waiting_.empty() &&
-         waiting_.front().t_end_ns < second_newest_imu_t_ns_) {
+  while (!waiting_.empty() && waiting_.front().t_end_ns < second_newest_imu_t_ns_) {
     Process(waiting_.front());
     waiting_.pop_front();
   }

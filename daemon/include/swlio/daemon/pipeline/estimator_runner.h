@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -91,12 +92,12 @@ class EstimatorRunner {
   std::unique_ptr<estimator::WindowEstimator> window_;
   Sink sink_;
   std::deque<Scan> waiting_;
-  /// The two newest IMU samples' times on the window's time base. A sweep is processed once the
-  /// older one has passed its end: the sample holding the end and the one after it have come
-  /// (the cut step's line, estimator/imu/preintegration.h); 2.5 ms later at 400 Hz.
-  int64_t newest_imu_t_ns_ = 0;
-  int64_t second_newest_imu_t_ns_ = 0;
-  int imu_seen_ = 0;  ///< up to 2
+  /// The two newest IMU samples' times on the window's time base (the lowest time until they
+  /// have come). A sweep is processed once the older one has passed its end: the sample holding
+  /// the end and the one after it have come (the cut step's line,
+  /// estimator/imu/preintegration.h); 2.5 ms later at 400 Hz.
+  int64_t newest_imu_t_ns_ = std::numeric_limits<int64_t>::min();
+  int64_t second_newest_imu_t_ns_ = std::numeric_limits<int64_t>::min();
   size_t dropped_waiting_ = 0;
 };
 
